@@ -1,0 +1,38 @@
+#pragma once
+// Axis-aligned boxes in world space (double precision, so brick faces shared by two bricks are
+// bit-identical however they are computed) and in integer sample-index space.
+#include <glm/glm.hpp>
+
+namespace sortlast {
+
+struct Box3 {
+  glm::dvec3 lo{0.0}, hi{0.0};
+
+  bool contains(const glm::dvec3& p) const {
+    return p.x >= lo.x && p.y >= lo.y && p.z >= lo.z && p.x <= hi.x && p.y <= hi.y && p.z <= hi.z;
+  }
+  glm::dvec3 centre() const { return 0.5 * (lo + hi); }
+  glm::dvec3 extent() const { return hi - lo; }
+  // Corner c (0..7): bit 0 picks x, bit 1 y, bit 2 z.
+  glm::dvec3 corner(int c) const {
+    return {(c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z};
+  }
+};
+
+// Inclusive range of sample indices [lo, hi] on each axis.
+struct IndexBox {
+  glm::ivec3 lo{0}, hi{-1};
+
+  glm::ivec3 size() const { return hi - lo + 1; }
+  long long count() const {
+    glm::ivec3 s = size();
+    return (s.x <= 0 || s.y <= 0 || s.z <= 0) ? 0 : 1LL * s.x * s.y * s.z;
+  }
+};
+
+// Ray-box slab test. Returns false if the ray misses; otherwise [t0, t1] is the parametric overlap
+// (t0 may be negative if the origin is inside).
+bool intersectRayBox(const glm::dvec3& origin, const glm::dvec3& dir, const Box3& box, double& t0,
+                     double& t1);
+
+}  // namespace sortlast

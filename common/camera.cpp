@@ -1,0 +1,80 @@
+#include "common/camera.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace sortlast {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+double tanHalfFov(double fov_deg) { return std::tan(0.5 * fov_deg * kPi / 180.0); }
+}  // namespace
+
+glm::dvec3 Camera::rayDirection(double px, double py) const {
+  double th = tanHalfFov(fov_deg), aspect = double(width) / height;
+  double sx = (2.0 * (px + 0.5) / width - 1.0) * th * aspect;
+  double sy = (1.0 - 2.0 * (py + 0.5) / height) * th;
+  return glm::normalize(forward() + sx * right() + sy * trueUp());
+}
+
+glm::mat4 Camera::viewProjection(double near_plane, double far_plane) const {
+  glm::dmat4 view = glm::lookAt(position, look_at, up);
+  glm::dmat4 proj = glm::perspective(fov_deg * kPi / 180.0, double(width) / height, near_plane,
+                                     far_plane);
+  glm::dmat4 flip = glm::scale(glm::dmat4(1.0), glm::dvec3(1.0, -1.0, 1.0));
+  return glm::mat4(flip * proj * view);
+}
+
+std::optional<glm::dvec2> Camera::project(const glm::dvec3& p) const {
+  glm::dvec3 d = p - position;
+  double z = glm::dot(d, forward());
+  if (z <= 0.0) return std::nullopt;
+  double th = tanHalfFov(fov_deg), aspect = double(width) / height;
+  double sx = glm::dot(d, right()) / (z * th * aspect), sy = glm::dot(d, trueUp()) / (z * th);
+  return glm::dvec2((sx + 1.0) * 0.5 * width, (1.0 - sy) * 0.5 * height);
+}
+
+Camera orbitCamera(const Camera& base, const glm::dvec3& centre, double radius,
+                   double elevation_deg, int i, int n) {
+  // Orthonormal frame around the orbit axis (base.up); azimuth 0 is the base camera's direction.
+  glm::dvec3 axis = glm::normalize(base.up);
+  glm::dvec3 start = base.position - centre;
+  start -= glm::dot(start, axis) * axis;
+  if (glm::length(start) < 1e-12 * radius) {
+    start = std::abs(axis.z) < 0.9 ? glm::cross(axis, glm::dvec3(0, 0, 1))
+                                   : glm::cross(axis, glm::dvec3(1, 0, 0));
+  }
+  glm::dvec3 e1 = glm::normalize(start), e2 = glm::cross(axis, e1);
+  double az = 2.0 * kPi * i / n, el = elevation_deg * kPi / 180.0;
+  Camera c = base;
+  c.look_at = centre;
+  c.position = centre + radius * (std::cos(el) * (std::cos(az) * e1 + std::sin(az) * e2) +
+                                  std::sin(el) * axis);
+  if (std::abs(std::abs(elevation_deg) - 90.0) < 1e-9) {
+    // Looking straight down the axis: the up vector must not be parallel to the view direction.
+    c.up = std::cos(az) * e1 + std::sin(az) * e2;
+  }
+  return c;
+}
+
+Rect screenRectOf(const Camera& cam, const Box3& box) {
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  for (int c = 0; c < 8; ++c) {
+    auto p = cam.project(box.corner(c));
+    if (!p) return {0, 0, cam.width, cam.height};  // box reaches behind the eye: be conservative
+    x0 = std::min(x0, p->x), x1 = std::max(x1, p->x);
+    y0 = std::min(y0, p->y), y1 = std::max(y1, p->y);
+  }
+  // A pixel is covered when its centre (+0.5) is inside; pad one pixel for rasteriser rounding.
+  // Clamp first: a corner just in front of the eye plane projects to huge coordinates.
+  x0 = std::clamp(x0, -2.0, cam.width + 2.0), x1 = std::clamp(x1, -2.0, cam.width + 2.0);
+  y0 = std::clamp(y0, -2.0, cam.height + 2.0), y1 = std::clamp(y1, -2.0, cam.height + 2.0);
+  int ix0 = std::max(0, int(std::floor(x0)) - 1), iy0 = std::max(0, int(std::floor(y0)) - 1);
+  int ix1 = std::min(cam.width, int(std::ceil(x1)) + 1), iy1 = std::min(cam.height, int(std::ceil(y1)) + 1);
+  if (ix1 <= ix0 || iy1 <= iy0) return {};
+  return {ix0, iy0, ix1 - ix0, iy1 - iy0};
+}
+
+}  // namespace sortlast

@@ -1,0 +1,49 @@
+#pragma once
+// A pinhole camera. Pixel (0,0) is the top-left of the image; pixel centres sit at +0.5. Both the
+// GL renderer (through viewProjection) and the CPU reference (through rayDirection) derive their
+// rays from this one object, so they sample the same rays.
+#include <optional>
+
+#include <glm/glm.hpp>
+
+#include "common/box.h"
+
+namespace sortlast {
+
+struct Camera {
+  glm::dvec3 position{0.0, 0.0, 5.0};
+  glm::dvec3 look_at{0.0};
+  glm::dvec3 up{0.0, 1.0, 0.0};
+  double fov_deg = 45.0;  // vertical field of view
+  int width = 512, height = 512;
+
+  glm::dvec3 forward() const { return glm::normalize(look_at - position); }
+  glm::dvec3 right() const { return glm::normalize(glm::cross(forward(), up)); }
+  glm::dvec3 trueUp() const { return glm::cross(right(), forward()); }
+
+  // Unit direction of the ray through the centre of pixel (px, py).
+  glm::dvec3 rayDirection(double px, double py) const;
+
+  // Clip-space transform for OpenGL with window row 0 = image row 0 (top): the y axis is flipped
+  // relative to the usual GL convention so read-back needs no row swap.
+  glm::mat4 viewProjection(double near_plane, double far_plane) const;
+
+  // Pixel coordinates of a world point, or nothing if it is at or behind the eye plane.
+  std::optional<glm::dvec2> project(const glm::dvec3& p) const;
+};
+
+// Frame i of an orbit of n frames: a circle of the given radius around `centre`, in the plane
+// perpendicular to base.up, tilted by `elevation_deg`, starting from the base camera's azimuth.
+Camera orbitCamera(const Camera& base, const glm::dvec3& centre, double radius,
+                   double elevation_deg, int i, int n);
+
+// Screen rectangle (in pixels, clamped to the image) that covers the projection of a box.
+struct Rect {
+  int x = 0, y = 0, w = 0, h = 0;
+  bool empty() const { return w <= 0 || h <= 0; }
+  long long area() const { return empty() ? 0 : 1LL * w * h; }
+  bool operator==(const Rect&) const = default;
+};
+Rect screenRectOf(const Camera& cam, const Box3& box);
+
+}  // namespace sortlast

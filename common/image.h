@@ -1,0 +1,41 @@
+#pragma once
+// Images in memory: premultiplied RGBA, row 0 at the top. RGBA8 is what travels between ranks
+// (the paper's intermediate image format); float images are for the reference and EXR output.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace sortlast {
+
+struct ImageRGBA8 {
+  int width = 0, height = 0;
+  std::vector<uint8_t> px;  // 4 bytes per pixel
+  ImageRGBA8() = default;
+  ImageRGBA8(int w, int h) : width(w), height(h), px(size_t(w) * h * 4, 0) {}
+  uint8_t* at(int x, int y) { return &px[(size_t(y) * width + x) * 4]; }
+  const uint8_t* at(int x, int y) const { return &px[(size_t(y) * width + x) * 4]; }
+};
+
+struct ImageF {
+  int width = 0, height = 0;
+  std::vector<float> px;  // 4 floats per pixel
+  ImageF() = default;
+  ImageF(int w, int h) : width(w), height(h), px(size_t(w) * h * 4, 0.0f) {}
+};
+
+// Round a premultiplied float pixel to RGBA8, keeping colour <= alpha so the result is still a
+// valid premultiplied pixel (and A = 0 implies RGB = 0, which the RLE codec relies on).
+void toRGBA8(const float* in, uint8_t* out);
+ImageRGBA8 toRGBA8(const ImageF& img);
+ImageF toFloat(const ImageRGBA8& img);
+
+// Writes PNG (8-bit) or EXR (float) by extension through OpenImageIO. The premultiplied image is
+// composited over `background` and written opaque. Throws InputError on failure.
+void writeImage(const std::string& path, const ImageF& img, const glm::dvec3& background);
+void writeImage(const std::string& path, const ImageRGBA8& img, const glm::dvec3& background);
+// Reads an image as RGBA8 (an opaque RGB file gets A = 255).
+ImageRGBA8 readImageRGBA8(const std::string& path);
+
+}  // namespace sortlast

@@ -1,0 +1,281 @@
+#include "common/scene.h"
+
+#include <cmath>
+#include <filesystem>
+
+#include <yaml-cpp/yaml.h>
+
+#include "common/error.h"
+
+namespace sortlast {
+
+namespace {
+
+const SceneKey* findKey(const std::string& path) {
+  for (const SceneKey& k : sceneKeys())
+    if (path == k.path) return &k;
+  return nullptr;
+}
+
+bool isMapPrefix(const std::string& path) {
+  for (const SceneKey& k : sceneKeys())
+    if (std::string(k.path).rfind(path + ".", 0) == 0) return true;
+  return false;
+}
+
+std::vector<std::string> splitPath(const std::string& path) {
+  std::vector<std::string> parts;
+  size_t start = 0;
+  for (size_t i = 0; i <= path.size(); ++i)
+    if (i == path.size() || path[i] == '.') {
+      parts.push_back(path.substr(start, i - start));
+      start = i + 1;
+    }
+  return parts;
+}
+
+std::string where(const YAML::Node& n) {
+  auto m = n.Mark();
+  return m.line >= 0 ? " (line " + std::to_string(m.line + 1) + ")" : "";
+}
+
+// Every key in the file must be one we know: a typo must not silently fall back to a default.
+void checkKeys(const YAML::Node& map, const std::string& prefix) {
+  for (auto it = map.begin(); it != map.end(); ++it) {
+    std::string name = it->first.as<std::string>();
+    std::string full = prefix.empty() ? name : prefix + "." + name;
+    if (findKey(full)) continue;
+    if (isMapPrefix(full)) {
+      if (!it->second.IsMap()) throw InputError("scene key '" + full + "' must be a map" + where(it->second));
+      checkKeys(it->second, full);
+      continue;
+    }
+    throw InputError("unknown scene key '" + full + "'" + where(it->first) +
+                     " (see docs/scene.md or `sortlast keys` for the known keys)");
+  }
+}
+
+void setPath(YAML::Node node, const std::vector<std::string>& parts, size_t i, const YAML::Node& v) {
+  if (i + 1 == parts.size()) {
+    node[parts[i]] = v;
+    return;
+  }
+  if (!node[parts[i]] || !node[parts[i]].IsMap()) node[parts[i]] = YAML::Node(YAML::NodeType::Map);
+  setPath(node[parts[i]], parts, i + 1, v);
+}
+
+// Reads typed values by key path, falling back to the table's default.
+class Reader {
+ public:
+  explicit Reader(YAML::Node root) : root_(std::move(root)) {}
+
+  YAML::Node get(const std::string& path) const {
+    YAML::Node n = YAML::Clone(root_);
+    for (const std::string& p : splitPath(path)) {
+      if (!n.IsMap() || !n[p]) return YAML::Load(findKey(path)->default_yaml);
+      n.reset(n[p]);
+    }
+    return n;
+  }
+  bool isAuto(const std::string& path) const {
+    YAML::Node n = get(path);
+    return n.IsNull() || (n.IsScalar() && n.Scalar() == "auto");
+  }
+  template <class T>
+  T as(const std::string& path) const {
+    YAML::Node n = get(path);
+    try {
+      if (!n.IsScalar()) throw YAML::Exception(n.Mark(), "not a scalar");
+      return n.as<T>();
+    } catch (const YAML::Exception&) {
+      throw InputError("scene key '" + path + "': expected " + typeName<T>() + where(n));
+    }
+  }
+  std::vector<double> numbers(const std::string& path, size_t n_expected) const {
+    YAML::Node n = get(path);
+    std::vector<double> v;
+    try {
+      if (!n.IsSequence()) throw YAML::Exception(n.Mark(), "not a list");
+      for (const auto& e : n) v.push_back(e.as<double>());
+    } catch (const YAML::Exception&) {
+      v.clear();
+    }
+    if (v.size() != n_expected)
+      throw InputError("scene key '" + path + "': expected a list of " + std::to_string(n_expected) +
+                       " numbers" + where(n));
+    for (double x : v)
+      if (!std::isfinite(x)) throw InputError("scene key '" + path + "': values must be finite" + where(n));
+    return v;
+  }
+  glm::dvec3 vec3(const std::string& path) const {
+    auto v = numbers(path, 3);
+    return {v[0], v[1], v[2]};
+  }
+
+ private:
+  template <class T>
+  static std::string typeName() {
+    if constexpr (std::is_integral_v<T>) return "an integer";
+    if constexpr (std::is_same_v<T, double>) return "a number";
+    return "a string";
+  }
+  YAML::Node root_;
+};
+
+}  // namespace
+
+TransferFunction TransferSpec::build(double data_min, double data_max, double min_spacing) const {
+  double lo = range ? range->first : data_min, hi = range ? range->second : data_max;
+  if (!range && !(hi > lo)) hi = lo + 1.0;  // constant volume: any non-empty range will do
+  return TransferFunction(points, lo, hi, unit_length.value_or(min_spacing));
+}
+
+std::vector<Camera> Scene::frameCameras() const {
+  Camera base = camera;
+  double extent = volume.grid.largestExtent();
+  if (camera_auto)
+    base.position = base.look_at + 2.0 * extent * glm::normalize(glm::dvec3(0.55, 0.35, 1.0));
+  if (orbit_frames == 0) return {base};
+  std::vector<Camera> cams;
+  double radius = orbit_radius.value_or(2.0 * extent);
+  for (int i = 0; i < orbit_frames; ++i)
+    cams.push_back(orbitCamera(base, base.look_at, radius, orbit_elevation, i, orbit_frames));
+  return cams;
+}
+
+Scene loadScene(const std::string& path, const std::vector<std::string>& overrides) {
+  YAML::Node root(YAML::NodeType::Map);
+  std::filesystem::path base_dir = std::filesystem::current_path();
+  if (!path.empty()) {
+    try {
+      root = YAML::LoadFile(path);
+    } catch (const YAML::BadFile&) {
+      throw InputError("scene file " + path + ": cannot open");
+    } catch (const YAML::Exception& e) {
+      throw InputError("scene file " + path + ": not valid YAML: " + e.what());
+    }
+    if (root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
+    if (!root.IsMap()) throw InputError("scene file " + path + ": top level must be a map of keys");
+    base_dir = std::filesystem::absolute(path).parent_path();
+  }
+  checkKeys(root, "");
+  bool file_from_override = false;
+  for (const std::string& o : overrides) {
+    auto eq = o.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw InputError("--set " + o + ": expected key.path=value");
+    std::string key = o.substr(0, eq);
+    if (!findKey(key)) throw InputError("--set " + o + ": unknown scene key '" + key + "'");
+    YAML::Node v;
+    try {
+      v = YAML::Load(o.substr(eq + 1));
+    } catch (const YAML::Exception& e) {
+      throw InputError("--set " + o + ": value is not valid YAML: " + e.what());
+    }
+    setPath(root, splitPath(key), 0, v);
+    if (key == "volume.file") file_from_override = true;
+  }
+
+  Reader r(root);
+  Scene s;
+  VolumeDesc& vol = s.volume;
+  vol.file = r.as<std::string>("volume.file");
+  if (!vol.file.empty() && std::filesystem::path(vol.file).is_relative() && !file_from_override)
+    vol.file = (base_dir / vol.file).string();
+  vol.procedural = r.as<std::string>("volume.procedural");
+  auto dims = r.numbers("volume.dims", 3);
+  for (int a = 0; a < 3; ++a) {
+    if (dims[a] != std::floor(dims[a]) || dims[a] < 2 || dims[a] > 1 << 20)
+      throw InputError("scene key 'volume.dims': entries must be integers in [2, 2^20]");
+    vol.grid.dims[a] = int(dims[a]);
+  }
+  vol.grid.spacing = r.vec3("volume.spacing");
+  vol.type = parseSampleType(r.as<std::string>("volume.type"));
+  std::string order = r.as<std::string>("volume.byte_order");
+  if (order != "little" && order != "big")
+    throw InputError("scene key 'volume.byte_order': expected little or big, got '" + order + "'");
+  vol.big_endian = order == "big";
+  vol.header_bytes = r.as<long long>("volume.header_bytes");
+  if (vol.header_bytes < 0) throw InputError("scene key 'volume.header_bytes': must be >= 0");
+
+  TransferSpec& tf = s.transfer;
+  YAML::Node pts = r.get("transfer.points");
+  if (pts.IsNull()) {
+    tf.points = TransferFunction::preset(r.as<std::string>("transfer.preset"));
+  } else {
+    if (!pts.IsSequence() || pts.size() == 0)
+      throw InputError("scene key 'transfer.points': expected a list of [value, r, g, b, a]" + where(pts));
+    for (const auto& p : pts) {
+      std::vector<double> v;
+      try {
+        for (const auto& e : p) v.push_back(e.as<double>());
+      } catch (const YAML::Exception&) {
+        v.clear();
+      }
+      if (v.size() != 5)
+        throw InputError("scene key 'transfer.points': each point is [value, r, g, b, a]" + where(p));
+      tf.points.push_back({v[0], v[1], v[2], v[3], v[4]});
+    }
+  }
+  if (!r.isAuto("transfer.range")) {
+    auto v = r.numbers("transfer.range", 2);
+    if (!(v[1] > v[0])) throw InputError("scene key 'transfer.range': needs lo < hi");
+    tf.range = std::make_pair(v[0], v[1]);
+  }
+  if (!r.isAuto("transfer.unit_length")) tf.unit_length = r.as<double>("transfer.unit_length");
+  tf.table_size = r.as<int>("transfer.table_size");
+  if (tf.table_size < 2 || tf.table_size > 65536)
+    throw InputError("scene key 'transfer.table_size': must be in [2, 65536]");
+  // Validate the points now (range and unit length are placeholders until the data is known).
+  TransferFunction(tf.points, 0.0, 1.0, tf.unit_length.value_or(1.0));
+
+  Camera& cam = s.camera;
+  cam.width = r.as<int>("image.width");
+  cam.height = r.as<int>("image.height");
+  if (cam.width <= 0 || cam.height <= 0 || cam.width > 32768 || cam.height > 32768)
+    throw InputError("image size " + std::to_string(cam.width) + " x " + std::to_string(cam.height) +
+                     ": image.width and image.height must be in [1, 32768]");
+  s.background = r.vec3("image.background");
+  cam.look_at = r.isAuto("camera.look_at") ? glm::dvec3(0.0) : r.vec3("camera.look_at");
+  s.camera_auto = r.isAuto("camera.position");
+  if (!s.camera_auto) cam.position = r.vec3("camera.position");
+  cam.up = r.vec3("camera.up");
+  cam.fov_deg = r.as<double>("camera.fov");
+  if (!(cam.fov_deg > 0.0 && cam.fov_deg < 180.0))
+    throw InputError("scene key 'camera.fov': must be in (0, 180) degrees");
+  if (glm::length(cam.up) == 0.0) throw InputError("scene key 'camera.up': must not be zero");
+  s.orbit_frames = r.as<int>("camera.orbit.frames");
+  if (s.orbit_frames < 0) throw InputError("scene key 'camera.orbit.frames': must be >= 0");
+  s.orbit_elevation = r.as<double>("camera.orbit.elevation");
+  if (std::abs(s.orbit_elevation) > 90.0)
+    throw InputError("scene key 'camera.orbit.elevation': must be in [-90, 90] degrees");
+  if (!r.isAuto("camera.orbit.radius")) {
+    s.orbit_radius = r.as<double>("camera.orbit.radius");
+    if (!(*s.orbit_radius > 0.0)) throw InputError("scene key 'camera.orbit.radius': must be > 0");
+  }
+  if (!s.camera_auto && s.orbit_frames == 0) {
+    if (glm::length(cam.look_at - cam.position) == 0.0)
+      throw InputError("camera.position equals camera.look_at: no view direction");
+    if (glm::length(glm::cross(cam.forward(), cam.up)) < 1e-9)
+      throw InputError("camera.up is parallel to the view direction");
+  }
+
+  s.bricks_per_axis = r.as<int>("bricks.per_axis");
+  if (s.bricks_per_axis < 1 || s.bricks_per_axis > 64)
+    throw InputError("scene key 'bricks.per_axis': must be in [1, 64]");
+  s.backend = r.as<std::string>("render.backend");
+  if (s.backend != "osmesa" && s.backend != "egl")
+    throw InputError("scene key 'render.backend': expected osmesa or egl, got '" + s.backend + "'");
+  s.sample_spacing = r.as<double>("render.sample_spacing");
+  if (!(s.sample_spacing >= 0.01 && s.sample_spacing <= 100.0))
+    throw InputError("scene key 'render.sample_spacing': must be in [0.01, 100] voxels");
+  s.strategy = r.as<std::string>("compositing.strategy");
+  if (s.strategy != "direct")
+    throw InputError("scene key 'compositing.strategy': expected direct, got '" + s.strategy + "'");
+  s.reference_step = r.as<double>("reference.step");
+  if (!(s.reference_step > 0.0 && s.reference_step <= 1.0))
+    throw InputError("scene key 'reference.step': must be in (0, 1] voxels");
+  return s;
+}
+
+}  // namespace sortlast

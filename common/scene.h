@@ -1,0 +1,57 @@
+#pragma once
+// The scene: everything a frame needs, read from a YAML file plus `--set key.path=value`
+// overrides. Every key, its default and its meaning live in one table (scene_keys.cpp), which
+// also generates docs/scene.md, so the documentation cannot drift from the parser.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/camera.h"
+#include "common/transfer_function.h"
+#include "common/volume_source.h"
+
+namespace sortlast {
+
+struct SceneKey {
+  const char* path;           // dotted key, e.g. "camera.orbit.frames"
+  const char* default_yaml;   // default value as YAML ("auto" where it is derived)
+  const char* doc;
+};
+const std::vector<SceneKey>& sceneKeys();
+std::string sceneKeysMarkdown();
+
+struct TransferSpec {
+  std::vector<TfPoint> points;
+  std::optional<std::pair<double, double>> range;  // unset: the data's global min and max
+  std::optional<double> unit_length;               // unset: the smallest voxel spacing
+  int table_size = 4096;
+
+  // Resolves the automatic parts against the data.
+  TransferFunction build(double data_min, double data_max, double min_spacing) const;
+};
+
+struct Scene {
+  VolumeDesc volume;
+  TransferSpec transfer;
+  Camera camera;               // with image width and height
+  bool camera_auto = true;     // position derived from the volume (camera.position: auto)
+  int orbit_frames = 0;        // 0: a single view
+  double orbit_elevation = 0;  // degrees
+  std::optional<double> orbit_radius;
+  glm::dvec3 background{0.0};
+  int bricks_per_axis = 2;
+  std::string backend = "osmesa";
+  double sample_spacing = 1.0;  // in units of the smallest voxel spacing
+  std::string strategy = "direct";
+  double reference_step = 0.0625;  // reference integrator step, in voxel units
+
+  // Cameras of every frame (one, or the orbit's), with the automatic parts resolved.
+  std::vector<Camera> frameCameras() const;
+  double sampleSpacingWorld() const { return sample_spacing * volume.grid.minSpacing(); }
+};
+
+// Parses and validates; throws InputError naming the key (and file line) at fault. An empty path
+// means the built-in default scene.
+Scene loadScene(const std::string& path, const std::vector<std::string>& overrides);
+
+}  // namespace sortlast

@@ -1,0 +1,46 @@
+#include "master/compare.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+
+#include "common/error.h"
+
+namespace sortlast {
+
+ImageDifference compareImages(const ImageRGBA8& a, const ImageRGBA8& b) {
+  if (a.width != b.width || a.height != b.height)
+    throw InputError("compare: image sizes differ (" + std::to_string(a.width) + "x" +
+                     std::to_string(a.height) + " vs " + std::to_string(b.width) + "x" +
+                     std::to_string(b.height) + ")");
+  ImageDifference d;
+  double se = 0.0, sa = 0.0;
+  size_t n = size_t(a.width) * a.height;
+  for (size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 4; ++c) {
+      int diff = std::abs(int(a.px[4 * i + c]) - int(b.px[4 * i + c]));
+      if (c < 3) se += double(diff) * diff;
+      sa += diff;
+      if (diff > d.max_diff) {
+        d.max_diff = diff;
+        d.worst_x = int(i % a.width);
+        d.worst_y = int(i / a.width);
+      }
+    }
+  double mse = se / (3.0 * n);
+  d.psnr_db = mse == 0.0 ? std::numeric_limits<double>::infinity() : 10.0 * std::log10(255.0 * 255.0 / mse);
+  d.mean_abs = sa / (4.0 * n);
+  return d;
+}
+
+ImageRGBA8 differenceImage(const ImageRGBA8& a, const ImageRGBA8& b, int gain) {
+  ImageRGBA8 out(a.width, a.height);
+  for (size_t i = 0; i < out.px.size(); i += 4) {
+    for (int c = 0; c < 3; ++c)
+      out.px[i + c] = uint8_t(std::min(255, gain * std::abs(int(a.px[i + c]) - int(b.px[i + c]))));
+    out.px[i + 3] = 255;
+  }
+  return out;
+}
+
+}  // namespace sortlast

@@ -1,0 +1,21 @@
+#pragma once
+// `sortlast compare A B`: how far two images are apart — PSNR over RGB, the largest per-channel
+// difference and where it is — and, on request, a difference image. Used by the tests to hold
+// renders to stated bounds, and by users to check a shortcut against the reference.
+#include <string>
+
+#include "common/image.h"
+
+namespace sortlast {
+
+struct ImageDifference {
+  double psnr_db = 0.0;  // infinity when identical
+  int max_diff = 0;      // largest |a - b| over RGBA channels, in 1/255
+  int worst_x = 0, worst_y = 0;
+  double mean_abs = 0.0;
+};
+
+ImageDifference compareImages(const ImageRGBA8& a, const ImageRGBA8& b);  // throws on size mismatch
+ImageRGBA8 differenceImage(const ImageRGBA8& a, const ImageRGBA8& b, int gain);
+
+}  // namespace sortlast

@@ -1,0 +1,29 @@
+#pragma once
+// Per-frame timings and byte counts, gathered from every rank to rank 0 and written as JSON
+// (--stats FILE.json), one object per frame.
+#include <mpi.h>
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace sortlast {
+
+struct RankFrameStats {
+  double render_s = 0, encode_s = 0, transfer_s = 0;
+  double bytes_raw = 0, bytes_rle = 0;  // RGBA8 bytes of the rectangles sent, before and after RLE
+  double bricks_rendered = 0, bricks_skipped = 0;
+  double peak_rss_mb = 0;
+};
+
+// Gathers every rank's stats to rank 0 (empty vector elsewhere). Collective.
+std::vector<RankFrameStats> gatherStats(const RankFrameStats& mine, MPI_Comm comm);
+
+// Peak resident memory of this process so far, in MiB.
+double peakRssMiB();
+
+nlohmann::json frameJson(int frame, const std::vector<RankFrameStats>& ranks, double composite_s,
+                         double total_s);
+
+}  // namespace sortlast

@@ -1,0 +1,66 @@
+#include "master/reference.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <thread>
+
+namespace sortlast {
+
+double WholeVolume::at(const glm::dvec3& u) const {
+  const glm::ivec3 n = grid.dims;
+  int i[3];
+  double f[3];
+  for (int a = 0; a < 3; ++a) {
+    double c = std::clamp(u[a], 0.0, double(n[a] - 1));
+    i[a] = std::min(int(c), n[a] - 2);
+    f[a] = c - i[a];
+  }
+  auto s = [&](int dx, int dy, int dz) {
+    return double(samples[size_t(i[0] + dx) + size_t(n.x) * (size_t(i[1] + dy) + size_t(n.y) * size_t(i[2] + dz))]);
+  };
+  double c00 = s(0, 0, 0) * (1 - f[0]) + s(1, 0, 0) * f[0];
+  double c10 = s(0, 1, 0) * (1 - f[0]) + s(1, 1, 0) * f[0];
+  double c01 = s(0, 0, 1) * (1 - f[0]) + s(1, 0, 1) * f[0];
+  double c11 = s(0, 1, 1) * (1 - f[0]) + s(1, 1, 1) * f[0];
+  double c0 = c00 * (1 - f[1]) + c10 * f[1], c1 = c01 * (1 - f[1]) + c11 * f[1];
+  return c0 * (1 - f[2]) + c1 * f[2];
+}
+
+ImageF renderReference(const WholeVolume& vol, const TransferFunction& tf, const Camera& cam,
+                       double step, int threads) {
+  ImageF img(cam.width, cam.height);
+  Box3 box = vol.grid.worldBox();
+  std::atomic<int> next_row{0};
+  auto worker = [&] {
+    for (int y; (y = next_row++) < cam.height;) {
+      for (int x = 0; x < cam.width; ++x) {
+        glm::dvec3 o = cam.position, d = cam.rayDirection(x, y);
+        double t0, t1;
+        double rgb[3] = {0, 0, 0}, transmit = 1.0;
+        if (intersectRayBox(o, d, box, t0, t1)) {
+          t0 = std::max(t0, 0.0);
+          long long n = std::max(1LL, (long long)std::ceil((t1 - t0) / step));
+          double h = (t1 - t0) / double(n);
+          for (long long i = 0; i < n && transmit > 1e-15; ++i) {
+            double v = vol.at(vol.grid.indexOfWorld(o + (t0 + (i + 0.5) * h) * d));
+            double a = 1.0 - std::exp(-tf.extinction(v) * h);
+            if (a <= 0.0) continue;
+            auto c = tf.colour(v);
+            for (int k = 0; k < 3; ++k) rgb[k] += transmit * a * c[k];
+            transmit *= 1.0 - a;
+          }
+        }
+        float* p = &img.px[(size_t(y) * cam.width + x) * 4];
+        for (int k = 0; k < 3; ++k) p[k] = float(rgb[k]);
+        p[3] = float(1.0 - transmit);
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 0; t < std::max(1, threads); ++t) pool.emplace_back(worker);
+  for (auto& t : pool) t.join();
+  return img;
+}
+
+}  // namespace sortlast

@@ -1,0 +1,25 @@
+#pragma once
+// `sortlast render`: the frame loop on every rank.
+#include <mpi.h>
+
+#include <string>
+#include <vector>
+
+namespace sortlast {
+
+struct RenderOptions {
+  std::string scene;                   // empty: built-in default scene
+  std::vector<std::string> overrides;  // key.path=value
+  std::string output = "sortlast.png";
+  std::string stats;                   // JSON file, or empty
+  bool quiet = false;
+};
+
+// Returns the process exit code (0 on success). Collective over `comm`.
+int runRenderJob(const RenderOptions& opts, MPI_Comm comm);
+
+// Output file of frame i: OUT itself for a single frame, OUT with _0000 before the extension
+// for a series.
+std::string frameFileName(const std::string& out, int frame, int frames);
+
+}  // namespace sortlast

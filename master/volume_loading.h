@@ -1,0 +1,23 @@
+#pragma once
+// Getting each rank its own bricks' samples, and nothing more. Raw and procedural volumes are read
+// by each rank for its bricks only (one seek per row); VTK files are read whole by rank 0 and the
+// bricks sent to their owners (VTK has no sub-box reader for these formats).
+#include <mpi.h>
+
+#include <vector>
+
+#include "common/brick.h"
+#include "common/decomposition.h"
+#include "common/volume_source.h"
+
+namespace sortlast {
+
+// Samples of each brick in `mine` (same order), stored box with ghosts. Collective.
+std::vector<std::vector<float>> loadOwnBricks(const VolumeDesc& desc, const std::vector<Brick>& bricks,
+                                              const std::vector<int>& mine,
+                                              const Assignment& assignment, MPI_Comm comm);
+
+// Global [min, max] over all ranks' samples. Collective.
+std::pair<double, double> globalRange(const std::vector<std::vector<float>>& local, MPI_Comm comm);
+
+}  // namespace sortlast

@@ -1,0 +1,56 @@
+#pragma once
+// 3D-texture slicing of bricks (the paper's renderer), in OpenGL 4.5 core. Each brick is a 3D
+// texture of its stored samples (ghosts included); it is drawn as view-aligned slice polygons
+// blended back to front with premultiplied alpha into a float framebuffer, and read back as RGBA8
+// over the screen rectangle its projection covers.
+#include <vector>
+
+#include "common/brick.h"
+#include "common/camera.h"
+#include "common/image.h"
+#include "common/transfer_function.h"
+#include "worker/gl_context.h"
+
+namespace sortlast {
+
+struct RenderedBrick {
+  Rect rect;           // empty: nothing to draw (invisible under the transfer function, or off screen)
+  ImageRGBA8 pixels;   // rect.w x rect.h
+};
+
+class SlicingRenderer {
+ public:
+  SlicingRenderer(const GlContext& ctx, int width, int height);
+  ~SlicingRenderer();
+  SlicingRenderer(const SlicingRenderer&) = delete;
+  SlicingRenderer& operator=(const SlicingRenderer&) = delete;
+
+  void setTransferFunction(const TransferFunction& tf, int table_size);
+  // Uploads a brick's stored samples (x fastest); returns a handle for render(). The samples'
+  // min and max are kept so invisible bricks can be skipped.
+  int addBrick(const Brick& brick, const GridGeometry& grid, const std::vector<float>& samples);
+
+  // Renders one brick for `cam`; `spacing` is the world distance between slice planes and
+  // [near_plane, far_plane] must enclose the whole volume (the same for all bricks of a frame).
+  RenderedBrick render(int handle, const Camera& cam, double spacing, double near_plane,
+                       double far_plane);
+
+ private:
+  struct GpuBrick {
+    Brick brick;
+    unsigned texture = 0;
+    glm::vec3 tex_scale, tex_offset;  // texture coordinate = world * scale + offset
+    float vmin = 0, vmax = 0;
+  };
+  bool visible(const GpuBrick& b) const;
+
+  const GlApi& gl_;
+  int width_, height_;
+  unsigned fbo_ = 0, colour_ = 0, program_ = 0, vao_ = 0, vbo_ = 0, tf_texture_ = 0;
+  TransferFunction tf_;
+  int tf_table_size_ = 0;
+  std::vector<GpuBrick> bricks_;
+  std::vector<float> readback_;
+};
+
+}  // namespace sortlast

@@ -1,0 +1,41 @@
+#pragma once
+// GLSL for 3D-texture slicing. The fragment shader classifies the interpolated sample through the
+// transfer-function table (r, g, b, tau) and corrects opacity for the actual distance between
+// slices along this pixel's ray, ds = spacing / cos(angle to the view axis), so that slicing and
+// the reference integrator are the same emission-absorption model.
+namespace sortlast::shaders {
+
+inline constexpr const char* kSliceVertex = R"(#version 450 core
+layout(location = 0) in vec3 a_world;
+uniform mat4 u_view_proj;
+out vec3 v_world;
+void main() {
+  v_world = a_world;
+  gl_Position = u_view_proj * vec4(a_world, 1.0);
+}
+)";
+
+inline constexpr const char* kSliceFragment = R"(#version 450 core
+in vec3 v_world;
+uniform sampler3D u_volume;
+uniform sampler1D u_table;
+uniform vec3 u_tex_scale;
+uniform vec3 u_tex_offset;
+uniform vec3 u_eye;
+uniform vec3 u_forward;
+uniform float u_spacing;
+uniform vec2 u_value_map;   // normalised value = v * x + y
+uniform vec2 u_table_map;   // table coordinate = normalised * x + y (texel centres at the ends)
+out vec4 frag;
+void main() {
+  float v = texture(u_volume, v_world * u_tex_scale + u_tex_offset).r;
+  float x = clamp(v * u_value_map.x + u_value_map.y, 0.0, 1.0);
+  vec4 e = texture(u_table, x * u_table_map.x + u_table_map.y);
+  vec3 d = v_world - u_eye;
+  float ds = u_spacing * length(d) / dot(d, u_forward);
+  float a = 1.0 - exp(-e.a * ds);
+  frag = vec4(e.rgb * a, a);
+}
+)";
+
+}  // namespace sortlast::shaders
