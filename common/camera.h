@@ -14,7 +14,7 @@ struct Camera {
   glm::dvec3 position{0.0, 0.0, 5.0};
   glm::dvec3 look_at{0.0};
   glm::dvec3 up{0.0, 1.0, 0.0};
-  double fov_deg = 45.0;  // vertical field of view
+  double fov_deg = 35.0;  // vertical field of view
   int width = 512, height = 512;
 
   glm::dvec3 forward() const { return glm::normalize(look_at - position); }

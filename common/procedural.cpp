@@ -22,7 +22,7 @@ double blobs(const glm::dvec3& u) {
   double v = 0.9 * gauss({0.35, 0.3, 0.1}, 0.12) + 0.7 * gauss({-0.4, -0.2, 0.3}, 0.18) +
              0.55 * gauss({0.1, -0.45, -0.4}, 0.1);
   double r = glm::length(u);
-  v += 0.5 * std::exp(-std::pow((r - 0.8) / 0.03, 2.0));  // shell
+  v += 0.32 * std::exp(-std::pow((r - 0.8) / 0.03, 2.0));  // shell
   double ring = std::hypot(std::hypot(u.x, u.z) - 0.5, u.y);
   v += 0.65 * std::exp(-std::pow(ring / 0.07, 2.0));  // torus
   return std::min(v, 1.0);

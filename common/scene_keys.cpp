@@ -41,7 +41,7 @@ const std::vector<SceneKey>& sceneKeys() {
        "along (0.55, 0.35, 1). Must lie outside the volume."},
       {"camera.look_at", "auto", "Point the camera looks at. `auto`: the volume centre (origin)."},
       {"camera.up", "[0, 1, 0]", "Up direction; also the axis of the orbit."},
-      {"camera.fov", "45", "Vertical field of view in degrees."},
+      {"camera.fov", "35", "Vertical field of view in degrees."},
       {"camera.orbit.frames", "0",
        "0: a single view. N > 0: the paper's orbit, N frames 360/N degrees apart on a circle "
        "around `camera.look_at`, written as a numbered series (out_0000.png, ...)."},

@@ -33,6 +33,16 @@ ImageDifference compareImages(const ImageRGBA8& a, const ImageRGBA8& b) {
   return d;
 }
 
+long long countPixelsOver(const ImageRGBA8& a, const ImageRGBA8& b, int tolerance) {
+  long long n = 0;
+  for (size_t i = 0; i < a.px.size(); i += 4) {
+    bool over = false;
+    for (int c = 0; c < 4; ++c) over |= std::abs(int(a.px[i + c]) - int(b.px[i + c])) > tolerance;
+    n += over;
+  }
+  return n;
+}
+
 ImageRGBA8 differenceImage(const ImageRGBA8& a, const ImageRGBA8& b, int gain) {
   ImageRGBA8 out(a.width, a.height);
   for (size_t i = 0; i < out.px.size(); i += 4) {

@@ -16,6 +16,8 @@ struct ImageDifference {
 };
 
 ImageDifference compareImages(const ImageRGBA8& a, const ImageRGBA8& b);  // throws on size mismatch
+// Pixels where some channel differs by more than `tolerance`.
+long long countPixelsOver(const ImageRGBA8& a, const ImageRGBA8& b, int tolerance);
 ImageRGBA8 differenceImage(const ImageRGBA8& a, const ImageRGBA8& b, int gain);
 
 }  // namespace sortlast

@@ -24,8 +24,8 @@ void addSceneOptions(CLI::App* cmd, RenderOptions& o) {
   cmd->add_flag("-q,--quiet", o.quiet, "No progress lines");
 }
 
-int runCompare(const std::string& a, const std::string& b, int max_diff, double min_psnr,
-               const std::string& diff_out) {
+int runCompare(const std::string& a, const std::string& b, int max_diff, long long allow_pixels,
+               double min_psnr, const std::string& diff_out) {
   try {
     ImageRGBA8 ia = readImageRGBA8(a), ib = readImageRGBA8(b);
     ImageDifference d = compareImages(ia, ib);
@@ -33,9 +33,14 @@ int runCompare(const std::string& a, const std::string& b, int max_diff, double 
                 d.max_diff, d.worst_x, d.worst_y, d.mean_abs);
     if (!diff_out.empty()) writeImage(diff_out, differenceImage(ia, ib, 16), glm::dvec3(0.0));
     bool ok = true;
-    if (max_diff >= 0 && d.max_diff > max_diff) {
-      std::printf("FAIL: max_diff %d > allowed %d at pixel (%d,%d)\n", d.max_diff, max_diff, d.worst_x, d.worst_y);
-      ok = false;
+    if (max_diff >= 0) {
+      long long over = countPixelsOver(ia, ib, max_diff);
+      std::printf("pixels_over_%d=%lld\n", max_diff, over);
+      if (over > allow_pixels) {
+        std::printf("FAIL: %lld pixels differ by more than %d (allowed: %lld); worst %d at pixel (%d,%d)\n",
+                    over, max_diff, allow_pixels, d.max_diff, d.worst_x, d.worst_y);
+        ok = false;
+      }
     }
     if (!std::isnan(min_psnr) && d.psnr_db < min_psnr) {
       std::printf("FAIL: psnr %.3f dB < required %.3f dB\n", d.psnr_db, min_psnr);
@@ -68,11 +73,13 @@ int main(int argc, char** argv) {
 
   std::string img_a, img_b, diff_out;
   int max_diff = -1;
+  long long allow_pixels = 0;
   double min_psnr = std::nan("");
   auto* compare = app.add_subcommand("compare", "Compare two images (PSNR, largest difference)");
   compare->add_option("a", img_a)->required();
   compare->add_option("b", img_b)->required();
   compare->add_option("--max-diff", max_diff, "Fail if any channel differs by more (1/255 units)");
+  compare->add_option("--allow-pixels", allow_pixels, "How many pixels may exceed --max-diff (default 0)");
   compare->add_option("--min-psnr", min_psnr, "Fail if PSNR is lower (dB)");
   compare->add_option("--diff", diff_out, "Write a difference image (x16)");
 
@@ -84,7 +91,7 @@ int main(int argc, char** argv) {
     std::fputs(sceneKeysMarkdown().c_str(), stdout);
     return 0;
   }
-  if (*compare) return runCompare(img_a, img_b, max_diff, min_psnr, diff_out);
+  if (*compare) return runCompare(img_a, img_b, max_diff, allow_pixels, min_psnr, diff_out);
   if (*reference) return runReferenceJob(ref_opts, threads);
 
   MPI_Init(&argc, &argv);

@@ -3,6 +3,7 @@
 #include "master/render_job.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -77,6 +78,14 @@ std::array<std::vector<double>, 3> brickPlanes(const std::vector<Brick>& bricks,
   return planes;
 }
 
+// Fault injection for the tests: a rank that throws (the others must stop cleanly) or dies (mpirun
+// must end the job). Inert unless the variables are set.
+void injectTestFault(int rank) {
+  auto is_me = [&](const char* var) { const char* v = std::getenv(var); return v && std::atoi(v) == rank; };
+  if (is_me("SORTLAST_TEST_FAIL_RANK")) throw std::runtime_error("injected failure (SORTLAST_TEST_FAIL_RANK)");
+  if (is_me("SORTLAST_TEST_CRASH_RANK")) std::abort();
+}
+
 }  // namespace
 
 int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
@@ -135,6 +144,7 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
       RankFrameStats st;
       std::vector<BrickImage> images;
       collectively(comm, [&] {
+        injectTestFault(rank);
         for (size_t i = 0; i < mine.size(); ++i) {
           double t0 = MPI_Wtime();
           RenderedBrick rb = renderer->render(handles[i], cam, scene.sampleSpacingWorld(),

@@ -1,0 +1,181 @@
+// Scene loading (common/scene.h): defaults, --set overrides, and rejection of bad input.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+#include "common/error.h"
+#include "common/scene.h"
+
+namespace sortlast {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A private temporary directory, removed at the end of the test.
+class SceneFiles : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    static std::atomic<int> counter{0};
+    dir_ = fs::temp_directory_path() /
+           ("sortlast_scene_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+  std::string write(const std::string& name, const std::string& text) {
+    fs::path p = dir_ / name;
+    std::ofstream(p) << text;
+    return p.string();
+  }
+  fs::path dir_;
+};
+
+// Runs `f`, which must throw InputError; returns its message.
+template <class F>
+std::string inputErrorOf(F f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "threw something other than InputError: " << e.what();
+    return "";
+  }
+  ADD_FAILURE() << "did not throw";
+  return "";
+}
+
+TEST(Scene, BuiltInDefaults) {
+  Scene s = loadScene("", {});
+  EXPECT_EQ(s.volume.grid.dims, glm::ivec3(128, 128, 128));
+  EXPECT_EQ(s.volume.grid.spacing, glm::dvec3(1.0));
+  EXPECT_TRUE(s.volume.file.empty());
+  EXPECT_EQ(s.volume.procedural, "blobs");
+  EXPECT_EQ(s.camera.width, 512);
+  EXPECT_EQ(s.camera.height, 512);
+  EXPECT_DOUBLE_EQ(s.camera.fov_deg, 45.0);
+  EXPECT_EQ(s.camera.up, glm::dvec3(0.0, 1.0, 0.0));
+  EXPECT_TRUE(s.camera_auto);
+  EXPECT_EQ(s.orbit_frames, 0);
+  EXPECT_EQ(s.bricks_per_axis, 2);
+  EXPECT_EQ(s.backend, "osmesa");
+  EXPECT_EQ(s.strategy, "direct");
+  EXPECT_DOUBLE_EQ(s.sample_spacing, 1.0);
+  EXPECT_DOUBLE_EQ(s.reference_step, 0.0625);
+  EXPECT_EQ(s.transfer.table_size, 4096);
+  EXPECT_FALSE(s.transfer.range.has_value());
+  EXPECT_FALSE(s.transfer.unit_length.has_value());
+  EXPECT_EQ(s.transfer.points.size(), TransferFunction::preset("default").size());
+  EXPECT_EQ(s.frameCameras().size(), 1u);
+}
+
+TEST(Scene, SetOverrides) {
+  Scene s = loadScene("", {"volume.dims=[64,32,16]", "camera.orbit.frames=8", "image.width=100",
+                           "render.backend=egl", "bricks.per_axis=3",
+                           "transfer.points=[[0,0,0,0,0],[1,1,0.5,0.25,0.75]]"});
+  EXPECT_EQ(s.volume.grid.dims, glm::ivec3(64, 32, 16));
+  EXPECT_EQ(s.orbit_frames, 8);
+  EXPECT_EQ(s.frameCameras().size(), 8u);
+  EXPECT_EQ(s.camera.width, 100);
+  EXPECT_EQ(s.camera.height, 512);  // untouched keys keep their defaults
+  EXPECT_EQ(s.backend, "egl");
+  EXPECT_EQ(s.bricks_per_axis, 3);
+  ASSERT_EQ(s.transfer.points.size(), 2u);
+  EXPECT_DOUBLE_EQ(s.transfer.points[1].g, 0.5);
+  EXPECT_DOUBLE_EQ(s.transfer.points[1].a, 0.75);
+}
+
+TEST_F(SceneFiles, FileValuesAndOverridesOnTop) {
+  std::string path = write("scene.yaml",
+                           "volume:\n  dims: [10, 20, 30]\n  spacing: [1, 2, 0.5]\n"
+                           "image:\n  width: 64\n  height: 48\n"
+                           "camera:\n  position: [0, 0, 100]\n  orbit:\n    frames: 3\n"
+                           "bricks:\n  per_axis: 4\n");
+  Scene s = loadScene(path, {});
+  EXPECT_EQ(s.volume.grid.dims, glm::ivec3(10, 20, 30));
+  EXPECT_EQ(s.volume.grid.spacing, glm::dvec3(1.0, 2.0, 0.5));
+  EXPECT_EQ(s.camera.width, 64);
+  EXPECT_EQ(s.camera.height, 48);
+  EXPECT_FALSE(s.camera_auto);
+  EXPECT_EQ(s.camera.position, glm::dvec3(0.0, 0.0, 100.0));
+  EXPECT_EQ(s.orbit_frames, 3);
+  EXPECT_EQ(s.bricks_per_axis, 4);
+  EXPECT_EQ(s.backend, "osmesa");
+
+  Scene o = loadScene(path, {"image.width=100", "camera.orbit.frames=0"});
+  EXPECT_EQ(o.camera.width, 100);
+  EXPECT_EQ(o.camera.height, 48);
+  EXPECT_EQ(o.orbit_frames, 0);
+  EXPECT_EQ(o.volume.grid.dims, glm::ivec3(10, 20, 30));
+}
+
+TEST_F(SceneFiles, UnknownKeyInFileNamesTheKey) {
+  std::string path = write("typo.yaml", "image:\n  widht: 64\n");
+  std::string msg = inputErrorOf([&] { loadScene(path, {}); });
+  EXPECT_NE(msg.find("image.widht"), std::string::npos) << msg;
+  path = write("typo_top.yaml", "colour_map: hot\n");
+  msg = inputErrorOf([&] { loadScene(path, {}); });
+  EXPECT_NE(msg.find("colour_map"), std::string::npos) << msg;
+}
+
+TEST(Scene, UnknownKeyInSetNamesTheKey) {
+  std::string msg = inputErrorOf([] { loadScene("", {"camera.orbit.framez=8"}); });
+  EXPECT_NE(msg.find("camera.orbit.framez"), std::string::npos) << msg;
+  msg = inputErrorOf([] { loadScene("", {"nonsense=1"}); });
+  EXPECT_NE(msg.find("nonsense"), std::string::npos) << msg;
+}
+
+TEST_F(SceneFiles, MalformedYamlThrows) {
+  std::string path = write("bad.yaml", "volume:\n  dims: [1, 2\n  spacing: {a: \n");
+  inputErrorOf([&] { loadScene(path, {}); });
+  path = write("list.yaml", "- a\n- b\n");  // valid YAML, but not a map of keys
+  inputErrorOf([&] { loadScene(path, {}); });
+}
+
+TEST_F(SceneFiles, MissingFileThrows) {
+  std::string msg = inputErrorOf([&] { loadScene((dir_ / "does_not_exist.yaml").string(), {}); });
+  EXPECT_NE(msg.find("does_not_exist.yaml"), std::string::npos) << msg;
+}
+
+TEST(Scene, InvalidValuesThrow) {
+  inputErrorOf([] { loadScene("", {"image.width=0"}); });
+  inputErrorOf([] { loadScene("", {"image.height=-3"}); });
+  std::string msg = inputErrorOf([] { loadScene("", {"render.backend=vulkan"}); });
+  EXPECT_NE(msg.find("vulkan"), std::string::npos) << msg;
+  inputErrorOf([] { loadScene("", {"transfer.points=[[0,0,0,0],[1,1,1,1,1]]"}); });   // 4 entries
+  inputErrorOf([] { loadScene("", {"transfer.points=[[0,0,0,0,0,0]]"}); });          // 6 entries
+  inputErrorOf([] { loadScene("", {"volume.dims=[64,64]"}); });
+  inputErrorOf([] { loadScene("", {"image.width=wide"}); });
+  inputErrorOf([] { loadScene("", {"compositing.strategy=binary_swap"}); });
+  inputErrorOf([] { loadScene("", {"image.width"}); });  // no '='
+}
+
+TEST_F(SceneFiles, InvalidValueInFileThrows) {
+  std::string path = write("w0.yaml", "image:\n  width: 0\n");
+  inputErrorOf([&] { loadScene(path, {}); });
+  path = write("tf.yaml", "transfer:\n  points:\n    - [0, 0, 0, 0]\n");
+  std::string msg = inputErrorOf([&] { loadScene(path, {}); });
+  EXPECT_NE(msg.find("transfer.points"), std::string::npos) << msg;
+}
+
+TEST(Scene, KeysMarkdownListsEveryKey) {
+  std::string md = sceneKeysMarkdown();
+  ASSERT_FALSE(sceneKeys().empty());
+  for (const SceneKey& k : sceneKeys())
+    EXPECT_NE(md.find("`" + std::string(k.path) + "`"), std::string::npos) << k.path;
+  // Every key can be set on the command line to its own default.
+  for (const SceneKey& k : sceneKeys()) {
+    std::string o = std::string(k.path) + "=" + k.default_yaml;
+    EXPECT_NO_THROW(loadScene("", {o})) << o;
+  }
+}
+
+}  // namespace
+}  // namespace sortlast
