@@ -269,6 +269,8 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
   s.sample_spacing = r.as<double>("render.sample_spacing");
   if (!(s.sample_spacing >= 0.01 && s.sample_spacing <= 100.0))
     throw InputError("scene key 'render.sample_spacing': must be in [0.01, 100] voxels");
+  s.block_cells = r.as<int>("render.block_cells");
+  if (s.block_cells < 1) throw InputError("scene key 'render.block_cells': must be >= 1");
   s.strategy = r.as<std::string>("compositing.strategy");
   if (s.strategy != "direct")
     throw InputError("scene key 'compositing.strategy': expected direct, got '" + s.strategy + "'");

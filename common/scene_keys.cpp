@@ -54,6 +54,9 @@ const std::vector<SceneKey>& sceneKeys() {
        "platform on an NVIDIA GPU)."},
       {"render.sample_spacing", "1.0",
        "Distance between slices, in units of the smallest voxel spacing (the paper: 1)."},
+      {"render.block_cells", "32",
+       "Empty-space skipping: bricks are cut into blocks of this many cells per axis, and blocks "
+       "whose values all map to zero opacity are not drawn."},
       {"compositing.strategy", "direct", "How brick images reach rank 0: `direct` (direct send)."},
       {"reference.step", "0.0625",
        "Step of the CPU reference integrator, in units of the smallest voxel spacing."},

@@ -121,7 +121,8 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
     std::vector<int> handles;
     collectively(comm, [&] {
       ctx = createGlContext(scene.backend);
-      renderer = std::make_unique<SlicingRenderer>(*ctx, scene.camera.width, scene.camera.height);
+      renderer = std::make_unique<SlicingRenderer>(*ctx, scene.camera.width, scene.camera.height,
+                                                   scene.block_cells);
       renderer->setTransferFunction(tf, scene.transfer.table_size);
       for (size_t i = 0; i < mine.size(); ++i) {
         handles.push_back(renderer->addBrick(bricks[mine[i]], scene.volume.grid, samples[i]));

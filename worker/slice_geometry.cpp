@@ -21,7 +21,9 @@ std::vector<float> sliceTriangles(const Box3& box, const glm::dvec3& eye, const 
   glm::dvec3 v = glm::cross(f, u);
 
   std::vector<float> tris;
-  long long k0 = (long long)std::ceil(std::max(tmin, min_t) / spacing);
+  // Planes strictly beyond min_t (a plane exactly at min_t is left out), and none before tmin.
+  long long k0 = std::max((long long)std::ceil(tmin / spacing),
+                          (long long)std::floor(min_t / spacing) + 1);
   long long k1 = (long long)std::floor(tmax / spacing);
   if (std::max(tmin, min_t) > tmax) return tris;
   std::vector<glm::dvec3> poly;

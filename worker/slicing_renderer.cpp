@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "compositing/visibility.h"
 #include "worker/slice_geometry.h"
 #include "worker/slicing_shaders.h"
 
@@ -45,8 +46,8 @@ unsigned link(const GlApi& gl, const char* vs, const char* fs) {
 
 }  // namespace
 
-SlicingRenderer::SlicingRenderer(const GlContext& ctx, int width, int height)
-    : gl_(ctx.gl()), width_(width), height_(height) {
+SlicingRenderer::SlicingRenderer(const GlContext& ctx, int width, int height, int block_cells)
+    : gl_(ctx.gl()), width_(width), height_(height), block_cells_(std::max(1, block_cells)) {
   gl_.GenTextures(1, &colour_);
   gl_.BindTexture(GL_TEXTURE_2D, colour_);
   gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, height, 0, GL_RGBA, GL_FLOAT, nullptr);
@@ -99,9 +100,32 @@ int SlicingRenderer::addBrick(const Brick& brick, const GridGeometry& grid,
   glm::ivec3 n = brick.stored.size();
   if (samples.size() != size_t(brick.stored.count()))
     throw std::logic_error("addBrick: sample count does not match the brick");
-  auto [lo, hi] = std::minmax_element(samples.begin(), samples.end());
-  g.vmin = *lo;
-  g.vmax = *hi;
+  // Block grid over the brick's cells; each block keeps the range of the samples it spans.
+  glm::ivec3 cells = brick.domain.size() - 1, nb = (cells + block_cells_ - 1) / block_cells_;
+  std::array<std::vector<int>, 3> cuts;
+  for (int a = 0; a < 3; ++a) {
+    for (int i = 0; i <= nb[a]; ++i) cuts[a].push_back(brick.domain.lo[a] + int((long long)cells[a] * i / nb[a]));
+    for (int c : cuts[a]) {
+      glm::dvec3 idx(0.0);
+      idx[a] = c;
+      g.block_planes[a].push_back(grid.worldOfIndex(idx)[a]);
+    }
+  }
+  for (int bz = 0; bz < nb.z; ++bz)
+    for (int by = 0; by < nb.y; ++by)
+      for (int bx = 0; bx < nb.x; ++bx) {
+        IndexBox box{{cuts[0][bx], cuts[1][by], cuts[2][bz]}, {cuts[0][bx + 1], cuts[1][by + 1], cuts[2][bz + 1]}};
+        Block blk{grid.worldBoxOf(box), 1e30f, -1e30f};
+        for (int z = box.lo.z; z <= box.hi.z; ++z)
+          for (int y = box.lo.y; y <= box.hi.y; ++y) {
+            const float* row = &samples[size_t(box.lo.x - brick.stored.lo.x) +
+                                        size_t(n.x) * (size_t(y - brick.stored.lo.y) + size_t(n.y) * (z - brick.stored.lo.z))];
+            auto [lo, hi] = std::minmax_element(row, row + (box.hi.x - box.lo.x + 1));
+            blk.vmin = std::min(blk.vmin, *lo);
+            blk.vmax = std::max(blk.vmax, *hi);
+          }
+        g.blocks.push_back(blk);
+      }
   // Texel centres: stored sample s sits at texture coordinate (s - stored.lo + 0.5) / n, and the
   // sample index of world point p is p / spacing + (dims - 1) / 2.
   glm::dvec3 inv_n = 1.0 / glm::dvec3(n);
@@ -121,7 +145,7 @@ int SlicingRenderer::addBrick(const Brick& brick, const GridGeometry& grid,
   return int(bricks_.size()) - 1;
 }
 
-bool SlicingRenderer::visible(const GpuBrick& b) const {
+bool SlicingRenderer::visible(const Block& b) const {
   // The table is linearly filtered, so a value can pick up its neighbour entry: widen by one entry.
   double pad = (tf_.rangeHi() - tf_.rangeLo()) / (tf_table_size_ - 1);
   return tf_.maxOpacity(b.vmin - pad, b.vmax + pad) > 0.0;
@@ -131,12 +155,22 @@ RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spac
                                       double near_plane, double far_plane) {
   const GpuBrick& b = bricks_.at(size_t(handle));
   RenderedBrick out;
-  if (!visible(b)) return out;
-  Rect r = screenRectOf(cam, b.brick.world);
-  if (r.empty()) return out;
   glm::dvec3 eye = cam.position, fwd = cam.forward();
-  // Slices start just beyond the near plane so no polygon is clipped by it.
-  std::vector<float> tris = sliceTriangles(b.brick.world, eye, fwd, spacing, near_plane * 1.001);
+  // Visible blocks, back to front, and the box around them (which sets the output rectangle).
+  std::vector<float> tris;
+  Box3 bound{glm::dvec3(1e300), glm::dvec3(-1e300)};
+  for (int id : backToFrontOrder(b.block_planes, eye)) {
+    const Block& blk = b.blocks[size_t(id)];
+    if (!visible(blk)) continue;
+    bound.lo = glm::min(bound.lo, blk.world.lo);
+    bound.hi = glm::max(bound.hi, blk.world.hi);
+    // Slices start just beyond the near plane so no polygon is clipped by it.
+    std::vector<float> t = sliceTriangles(blk.world, eye, fwd, spacing, near_plane * 1.001);
+    tris.insert(tris.end(), t.begin(), t.end());
+  }
+  if (tris.empty()) return out;
+  Rect r = screenRectOf(cam, bound);
+  if (r.empty()) return out;
 
   gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
   gl_.Viewport(0, 0, width_, height_);
@@ -144,7 +178,7 @@ RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spac
   gl_.Scissor(r.x, r.y, r.w, r.h);
   gl_.ClearColor(0, 0, 0, 0);
   gl_.Clear(GL_COLOR_BUFFER_BIT);
-  if (!tris.empty()) {
+  {
     gl_.Enable(GL_BLEND);
     gl_.BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // premultiplied "over", back to front
     gl_.UseProgram(program_);

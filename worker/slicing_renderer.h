@@ -3,6 +3,13 @@
 // texture of its stored samples (ghosts included); it is drawn as view-aligned slice polygons
 // blended back to front with premultiplied alpha into a float framebuffer, and read back as RGBA8
 // over the screen rectangle its projection covers.
+//
+// Empty-space skipping: each brick is cut into blocks of up to `block_cells` cells per axis; a
+// block whose samples all map to zero opacity is not drawn, and the brick's rectangle covers only
+// the blocks that are. Visible blocks are drawn in back-to-front block order, each with its part
+// of the shared slice planes; "over" is associative, so this equals slicing the whole brick (up to
+// float rounding) while rasterising no fragment in empty blocks.
+#include <array>
 #include <vector>
 
 #include "common/brick.h"
@@ -20,7 +27,7 @@ struct RenderedBrick {
 
 class SlicingRenderer {
  public:
-  SlicingRenderer(const GlContext& ctx, int width, int height);
+  SlicingRenderer(const GlContext& ctx, int width, int height, int block_cells = 32);
   ~SlicingRenderer();
   SlicingRenderer(const SlicingRenderer&) = delete;
   SlicingRenderer& operator=(const SlicingRenderer&) = delete;
@@ -36,16 +43,21 @@ class SlicingRenderer {
                        double far_plane);
 
  private:
+  struct Block {
+    Box3 world;
+    float vmin, vmax;
+  };
   struct GpuBrick {
     Brick brick;
+    std::array<std::vector<double>, 3> block_planes;  // world block boundaries per axis
+    std::vector<Block> blocks;                        // x fastest over the block grid
     unsigned texture = 0;
     glm::vec3 tex_scale, tex_offset;  // texture coordinate = world * scale + offset
-    float vmin = 0, vmax = 0;
   };
-  bool visible(const GpuBrick& b) const;
+  bool visible(const Block& b) const;
 
   const GlApi& gl_;
-  int width_, height_;
+  int width_, height_, block_cells_;
   unsigned fbo_ = 0, colour_ = 0, program_ = 0, vao_ = 0, vbo_ = 0, tf_texture_ = 0;
   TransferFunction tf_;
   int tf_table_size_ = 0;

@@ -86,8 +86,8 @@ TEST(Bricks, StoredIsDomainGrownByOneClamped) {
           EXPECT_EQ(b.stored.lo[a], std::max(0, b.domain.lo[a] - 1)) << "brick " << b.id << " axis " << a;
           EXPECT_EQ(b.stored.hi[a], std::min(bc.dims[a] - 1, b.domain.hi[a] + 1)) << "brick " << b.id << " axis " << a;
           // Interior faces do have a ghost layer.
-          if (b.cell[a] > 0) EXPECT_EQ(b.stored.lo[a], b.domain.lo[a] - 1);
-          if (b.cell[a] < d - 1) EXPECT_EQ(b.stored.hi[a], b.domain.hi[a] + 1);
+          if (b.cell[a] > 0) { EXPECT_EQ(b.stored.lo[a], b.domain.lo[a] - 1); }
+          if (b.cell[a] < d - 1) { EXPECT_EQ(b.stored.hi[a], b.domain.hi[a] + 1); }
         }
     }
   }
@@ -107,8 +107,8 @@ TEST(Bricks, WorldBoxesShareFacesBitwise) {
           EXPECT_TRUE(bitEqual(b.world.lo[a], want.lo[a])) << "brick " << b.id << " axis " << a;
           EXPECT_TRUE(bitEqual(b.world.hi[a], want.hi[a])) << "brick " << b.id << " axis " << a;
           EXPECT_LT(b.world.lo[a], b.world.hi[a]);
-          if (b.cell[a] == 0) EXPECT_TRUE(bitEqual(b.world.lo[a], whole.lo[a]));
-          if (b.cell[a] == d - 1) EXPECT_TRUE(bitEqual(b.world.hi[a], whole.hi[a]));
+          if (b.cell[a] == 0) { EXPECT_TRUE(bitEqual(b.world.lo[a], whole.lo[a])); }
+          if (b.cell[a] == d - 1) { EXPECT_TRUE(bitEqual(b.world.hi[a], whole.hi[a])); }
           if (b.cell[a] + 1 < d) {
             glm::ivec3 nc = b.cell;
             ++nc[a];
