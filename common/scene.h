@@ -42,7 +42,7 @@ struct Scene {
   int bricks_per_axis = 2;
   std::string backend = "osmesa";
   double sample_spacing = 1.0;  // in units of the smallest voxel spacing
-  int block_cells = 32;         // empty-space skipping granularity
+  int block_cells = 64;         // empty-space skipping granularity
   std::string strategy = "direct";
   double reference_step = 0.0625;  // reference integrator step, in voxel units
 

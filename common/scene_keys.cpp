@@ -54,7 +54,7 @@ const std::vector<SceneKey>& sceneKeys() {
        "platform on an NVIDIA GPU)."},
       {"render.sample_spacing", "1.0",
        "Distance between slices, in units of the smallest voxel spacing (the paper: 1)."},
-      {"render.block_cells", "32",
+      {"render.block_cells", "64",
        "Empty-space skipping: bricks are cut into blocks of this many cells per axis, and blocks "
        "whose values all map to zero opacity are not drawn."},
       {"compositing.strategy", "direct", "How brick images reach rank 0: `direct` (direct send)."},

@@ -27,7 +27,7 @@ struct RenderedBrick {
 
 class SlicingRenderer {
  public:
-  SlicingRenderer(const GlContext& ctx, int width, int height, int block_cells = 32);
+  SlicingRenderer(const GlContext& ctx, int width, int height, int block_cells = 64);
   ~SlicingRenderer();
   SlicingRenderer(const SlicingRenderer&) = delete;
   SlicingRenderer& operator=(const SlicingRenderer&) = delete;
