@@ -66,6 +66,8 @@ set boxwidth 0.7
 set ylabel "seconds per frame"
 set xtics rotate by -40
 set key top left
+set yrange [0:*]
+set offsets 0, 0, 0.25, 0
 set grid ytics
 plot "{dat}" using 2:xtic(1) title "render", "" using 3 title "encode (RLE)", \\
      "" using 4 title "transfer / wait", "" using 5 title "composite", \\
