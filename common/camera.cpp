@@ -77,4 +77,10 @@ Rect screenRectOf(const Camera& cam, const Box3& box) {
   return {ix0, iy0, ix1 - ix0, iy1 - iy0};
 }
 
+Rect unite(const Rect& a, const Rect& b) {
+  int x0 = std::min(a.x, b.x), y0 = std::min(a.y, b.y);
+  int x1 = std::max(a.x + a.w, b.x + b.w), y1 = std::max(a.y + a.h, b.y + b.h);
+  return {x0, y0, x1 - x0, y1 - y0};
+}
+
 }  // namespace sortlast

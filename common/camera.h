@@ -45,5 +45,7 @@ struct Rect {
   bool operator==(const Rect&) const = default;
 };
 Rect screenRectOf(const Camera& cam, const Box3& box);
+// Smallest rectangle holding both (non-empty) rectangles.
+Rect unite(const Rect& a, const Rect& b);
 
 }  // namespace sortlast

@@ -7,7 +7,10 @@ namespace sortlast {
 
 namespace {
 
-void split(const IndexBox& cells, int first_rank, int n_ranks, int d, Assignment& out) {
+// Splits `cells` among ranks [first_rank, first_rank + n_ranks); returns the index of its node.
+int split(const IndexBox& cells, int first_rank, int n_ranks, int d, Assignment& out) {
+  const int node = int(out.tree.size());
+  out.tree.push_back({first_rank, n_ranks, cells});
   glm::ivec3 size = cells.size();
   int axis = 0;
   for (int a = 1; a < 3; ++a)
@@ -18,15 +21,22 @@ void split(const IndexBox& cells, int first_rank, int n_ranks, int d, Assignment
     for (int z = cells.lo.z; z <= cells.hi.z; ++z)
       for (int y = cells.lo.y; y <= cells.hi.y; ++y)
         for (int x = cells.lo.x; x <= cells.hi.x; ++x) out.owner[x + d * (y + d * z)] = first_rank;
-    return;
+    return node;
   }
   int left_ranks = n_ranks / 2;
-  int cut = std::clamp(int(std::lround(double(size[axis]) * left_ranks / n_ranks)), 1, size[axis] - 1);
+  int cut =
+      std::clamp(int(std::lround(double(size[axis]) * left_ranks / n_ranks)), 1, size[axis] - 1);
   IndexBox left = cells, right = cells;
   left.hi[axis] = cells.lo[axis] + cut - 1;
   right.lo[axis] = cells.lo[axis] + cut;
-  split(left, first_rank, left_ranks, d, out);
-  split(right, first_rank + left_ranks, n_ranks - left_ranks, d, out);
+  int lower = split(left, first_rank, left_ranks, d, out);
+  int upper = split(right, first_rank + left_ranks, n_ranks - left_ranks, d, out);
+  KdNode& n = out.tree[size_t(node)];
+  n.axis = axis;
+  n.cut = right.lo[axis];
+  n.lower = lower;
+  n.upper = upper;
+  return node;
 }
 
 }  // namespace

@@ -11,6 +11,9 @@ namespace sortlast {
 
 namespace {
 
+constexpr long long kDefaultProceduralParticles = 4096;  // particles.count: auto, procedural
+constexpr long long kMaxParticles = 1LL << 31;            // 24 GiB of centres: surely a typo
+
 const SceneKey* findKey(const std::string& path) {
   for (const SceneKey& k : sceneKeys())
     if (path == k.path) return &k;
@@ -115,12 +118,70 @@ class Reader {
  private:
   template <class T>
   static std::string typeName() {
+    if constexpr (std::is_same_v<T, bool>) return "true or false";
     if constexpr (std::is_integral_v<T>) return "an integer";
     if constexpr (std::is_same_v<T, double>) return "a number";
     return "a string";
   }
   YAML::Node root_;
 };
+
+// The particles.* keys. Relative file paths are relative to the scene file (not for --set, whose
+// paths are the user's, relative to where they run).
+ParticleDesc readParticles(const Reader& r, const std::filesystem::path& base_dir,
+                           bool file_from_override) {
+  ParticleDesc p;
+  p.file = r.as<std::string>("particles.file");
+  if (!p.file.empty() && std::filesystem::path(p.file).is_relative() && !file_from_override)
+    p.file = (base_dir / p.file).string();
+  p.procedural = r.as<std::string>("particles.procedural");
+  if (p.procedural != "none" && p.procedural != "layers" && p.procedural != "splash")
+    throw InputError("scene key 'particles.procedural': expected none, layers or splash, got '" +
+                     p.procedural + "'");
+  if (!p.file.empty() && p.procedural != "none")
+    throw InputError(
+        "scene keys 'particles.file' and 'particles.procedural' are both set: use one "
+        "(set particles.procedural to none to read the file)");
+  p.format = r.as<std::string>("particles.format");
+  if (p.format != "auto" && p.format != "vtk" && p.format != "raw" && p.format != "csv")
+    throw InputError("scene key 'particles.format': expected auto, vtk, raw or csv, got '" +
+                     p.format + "'");
+  if (!r.isAuto("particles.count")) {
+    p.count = r.as<long long>("particles.count");
+    if (p.count < 0 || p.count > kMaxParticles)
+      throw InputError("scene key 'particles.count': must be auto or in [0, " +
+                       std::to_string(kMaxParticles) + "], got " + std::to_string(p.count));
+  } else if (p.file.empty() && p.procedural != "none") {
+    p.count = kDefaultProceduralParticles;
+  }
+  auto positive = [&](const char* key) {
+    double v = r.as<double>(key);
+    if (!(v > 0.0) || !std::isfinite(v))
+      throw InputError(std::string("scene key '") + key + "': must be a finite number > 0");
+    return v;
+  };
+  p.spacing = positive("particles.spacing");
+  p.radius = positive("particles.radius");
+  if (!r.isAuto("particles.influence")) p.influence = positive("particles.influence");
+  p.threshold = r.as<double>("particles.threshold");
+  if (!(p.threshold > 0.0 && p.threshold < 1.0))
+    throw InputError("scene key 'particles.threshold': must be in (0, 1)");
+  p.colour = r.vec3("particles.color");
+  for (int c = 0; c < 3; ++c)
+    if (p.colour[c] < 0.0 || p.colour[c] > 1.0)
+      throw InputError("scene key 'particles.color': entries must be in [0, 1]");
+  p.step = positive("particles.step");
+  p.max_samples = r.as<int>("particles.max_samples");
+  if (p.max_samples < 1) throw InputError("scene key 'particles.max_samples': must be >= 1");
+  p.refine_iterations = r.as<int>("particles.refine_iterations");
+  if (p.refine_iterations < 0)
+    throw InputError("scene key 'particles.refine_iterations': must be >= 0");
+  p.cull = r.as<bool>("particles.cull");
+  p.samples_per_pass = r.as<int>("particles.samples_per_pass");
+  if (p.samples_per_pass != 4 && p.samples_per_pass != 8)
+    throw InputError("scene key 'particles.samples_per_pass': must be 4 or 8");
+  return p;
+}
 
 }  // namespace
 
@@ -130,9 +191,15 @@ TransferFunction TransferSpec::build(double data_min, double data_max, double mi
   return TransferFunction(points, lo, hi, unit_length.value_or(min_spacing));
 }
 
-std::vector<Camera> Scene::frameCameras() const {
+std::vector<Camera> Scene::frameCameras(const Box3& bounds) const {
   Camera base = camera;
-  double extent = volume.grid.largestExtent();
+  // No volume and no particles leaves an empty box; one particle, a point: any camera that looks
+  // at where the (absent) data would be will do.
+  bool empty = bounds.lo.x > bounds.hi.x || bounds.lo.y > bounds.hi.y || bounds.lo.z > bounds.hi.z;
+  glm::dvec3 e = bounds.extent();
+  double largest = glm::max(e.x, glm::max(e.y, e.z));
+  double extent = empty || !(largest > 0.0) ? 1.0 : largest;
+  if (look_at_auto) base.look_at = empty ? glm::dvec3(0.0) : bounds.centre();
   if (camera_auto)
     base.position = base.look_at + 2.0 * extent * glm::normalize(glm::dvec3(0.55, 0.35, 1.0));
   if (orbit_frames == 0) return {base};
@@ -159,7 +226,7 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     base_dir = std::filesystem::absolute(path).parent_path();
   }
   checkKeys(root, "");
-  bool file_from_override = false;
+  bool file_from_override = false, particles_file_from_override = false;
   for (const std::string& o : overrides) {
     auto eq = o.find('=');
     if (eq == std::string::npos || eq == 0)
@@ -174,6 +241,7 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     }
     setPath(root, splitPath(key), 0, v);
     if (key == "volume.file") file_from_override = true;
+    if (key == "particles.file") particles_file_from_override = true;
   }
 
   Reader r(root);
@@ -197,6 +265,11 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
   vol.big_endian = order == "big";
   vol.header_bytes = r.as<long long>("volume.header_bytes");
   if (vol.header_bytes < 0) throw InputError("scene key 'volume.header_bytes': must be >= 0");
+
+  s.particles = readParticles(r, base_dir, particles_file_from_override);
+  if (!s.hasVolume() && !s.particles.enabled())
+    throw InputError("the scene has nothing to render: volume.procedural is none with no "
+                     "volume.file, and neither particles.file nor particles.procedural is set");
 
   TransferSpec& tf = s.transfer;
   YAML::Node pts = r.get("transfer.points");
@@ -236,7 +309,8 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     throw InputError("image size " + std::to_string(cam.width) + " x " + std::to_string(cam.height) +
                      ": image.width and image.height must be in [1, 32768]");
   s.background = r.vec3("image.background");
-  cam.look_at = r.isAuto("camera.look_at") ? glm::dvec3(0.0) : r.vec3("camera.look_at");
+  s.look_at_auto = r.isAuto("camera.look_at");
+  cam.look_at = s.look_at_auto ? glm::dvec3(0.0) : r.vec3("camera.look_at");
   s.camera_auto = r.isAuto("camera.position");
   if (!s.camera_auto) cam.position = r.vec3("camera.position");
   cam.up = r.vec3("camera.up");
@@ -272,8 +346,11 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
   s.block_cells = r.as<int>("render.block_cells");
   if (s.block_cells < 1) throw InputError("scene key 'render.block_cells': must be >= 1");
   s.strategy = r.as<std::string>("compositing.strategy");
-  if (s.strategy != "direct")
-    throw InputError("scene key 'compositing.strategy': expected direct, got '" + s.strategy + "'");
+  if (s.strategy != "direct" && s.strategy != "binary-swap" && s.strategy != "radix-k")
+    throw InputError("scene key 'compositing.strategy': expected direct, binary-swap or radix-k, got '" +
+                     s.strategy + "'");
+  s.radix = r.as<int>("compositing.radix");
+  if (s.radix < 2) throw InputError("scene key 'compositing.radix': must be >= 2");
   s.reference_step = r.as<double>("reference.step");
   if (!(s.reference_step > 0.0 && s.reference_step <= 1.0))
     throw InputError("scene key 'reference.step': must be in (0, 1] voxels");

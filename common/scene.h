@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "common/camera.h"
+#include "common/particles.h"
 #include "common/transfer_function.h"
 #include "common/volume_source.h"
 
@@ -31,10 +32,12 @@ struct TransferSpec {
 };
 
 struct Scene {
-  VolumeDesc volume;
+  VolumeDesc volume;           // none when volume.procedural is `none` and there is no file
+  ParticleDesc particles;
   TransferSpec transfer;
   Camera camera;               // with image width and height
-  bool camera_auto = true;     // position derived from the volume (camera.position: auto)
+  bool camera_auto = true;     // position derived from the bounds (camera.position: auto)
+  bool look_at_auto = true;    // camera.look_at: auto, the bounds' centre (camera.look_at holds 0)
   int orbit_frames = 0;        // 0: a single view
   double orbit_elevation = 0;  // degrees
   std::optional<double> orbit_radius;
@@ -43,11 +46,16 @@ struct Scene {
   std::string backend = "osmesa";
   double sample_spacing = 1.0;  // in units of the smallest voxel spacing
   int block_cells = 64;         // empty-space skipping granularity
-  std::string strategy = "direct";
+  std::string strategy = "direct";  // direct | binary-swap | radix-k
+  int radix = 4;                    // radix-k: partners per round
   double reference_step = 0.0625;  // reference integrator step, in voxel units
 
-  // Cameras of every frame (one, or the orbit's), with the automatic parts resolved.
-  std::vector<Camera> frameCameras() const;
+  bool hasVolume() const { return !volume.file.empty() || volume.procedural != "none"; }
+
+  // Cameras of every frame (one, or the orbit's), with the automatic parts resolved against the
+  // scene's bounds: the volume box, grown to hold the particles' domain. An empty box (lo > hi)
+  // counts as the origin with extent 1, a box of zero size as its centre with extent 1.
+  std::vector<Camera> frameCameras(const Box3& bounds) const;
   double sampleSpacingWorld() const { return sample_spacing * volume.grid.minSpacing(); }
 };
 

@@ -7,22 +7,82 @@
 
 namespace sortlast {
 
-void blendBackToFront(const std::vector<const BrickImage*>& images, ImageRGBA8& frame) {
+namespace {
+
+// The pixels of rectangle `r` (row 0 first) blended over the same pixels of a destination whose
+// row stride is `dst_width` pixels and whose first pixel is frame pixel (ox, oy).
+void blendRect8(const uint8_t* src, const Rect& r, uint8_t* dst, int dst_width, int ox, int oy) {
+  for (int y = 0; y < r.h; ++y) {
+    const uint8_t* s = src + size_t(y) * r.w * 4;
+    uint8_t* d = dst + (size_t(r.y - oy + y) * dst_width + size_t(r.x - ox)) * 4;
+    for (int x = 0; x < r.w; ++x)
+      if (s[4 * x + 3] != 0) overRGBA8(s + 4 * x, d + 4 * x);
+  }
+}
+
+void blendRect8(const uint8_t* src, const Rect& r, float* dst, int dst_width, int ox, int oy) {
+  for (int y = 0; y < r.h; ++y) {
+    const uint8_t* s = src + size_t(y) * r.w * 4;
+    float* d = dst + (size_t(r.y - oy + y) * dst_width + size_t(r.x - ox)) * 4;
+    for (int x = 0; x < r.w; ++x)
+      if (s[4 * x + 3] != 0) {
+        float f[4];
+        for (int c = 0; c < 4; ++c) f[c] = s[4 * x + c] / 255.0f;
+        overFloat(f, d + 4 * x);
+      }
+  }
+}
+
+void blendRectF(const float* src, const Rect& r, float* dst, int dst_width, int ox, int oy) {
+  for (int y = 0; y < r.h; ++y) {
+    const float* s = src + size_t(y) * r.w * 4;
+    float* d = dst + (size_t(r.y - oy + y) * dst_width + size_t(r.x - ox)) * 4;
+    for (int x = 0; x < r.w; ++x)
+      if (s[4 * x + 3] > 0.0f) overFloat(s + 4 * x, d + 4 * x);
+  }
+}
+
+// Decodes each brick image and blends it into `dst` (a frame or a rectangle image).
+template <class Pixel>
+void blendBricks(const std::vector<const BrickImage*>& images, Pixel* dst, const Rect& dst_rect) {
   std::vector<uint8_t> pixels;
   for (const BrickImage* b : images) {
     const Rect& r = b->rect;
     if (r.empty()) continue;
-    if (r.x < 0 || r.y < 0 || r.x + r.w > frame.width || r.y + r.h > frame.height)
+    if (r.x < dst_rect.x || r.y < dst_rect.y || r.x + r.w > dst_rect.x + dst_rect.w ||
+        r.y + r.h > dst_rect.y + dst_rect.h)
       throw RleError("brick " + std::to_string(b->brick_id) + ": rectangle outside the frame");
     pixels.resize(size_t(r.area()) * 4);
     rleDecode(b->rle, size_t(r.area()), pixels);
-    for (int y = 0; y < r.h; ++y) {
-      const uint8_t* src = &pixels[size_t(y) * r.w * 4];
-      uint8_t* dst = frame.at(r.x, r.y + y);
-      for (int x = 0; x < r.w; ++x)
-        if (src[4 * x + 3] != 0) overRGBA8(src + 4 * x, dst + 4 * x);
-    }
+    blendRect8(pixels.data(), r, dst, dst_rect.w, dst_rect.x, dst_rect.y);
   }
+}
+
+}  // namespace
+
+void blendBackToFront(const std::vector<const BrickImage*>& images, ImageRGBA8& frame) {
+  blendBricks(images, frame.px.data(), Rect{0, 0, frame.width, frame.height});
+}
+
+void blendBackToFront(const std::vector<const BrickImage*>& images, ImageF& frame) {
+  blendBricks(images, frame.px.data(), Rect{0, 0, frame.width, frame.height});
+}
+
+RectImage blendBackToFront(const std::vector<const BrickImage*>& images) {
+  Rect all;
+  for (const BrickImage* b : images) all = unionOf(all, b->rect);
+  RectImage out(all);
+  blendBricks(images, out.px.data(), all);
+  return out;
+}
+
+RectImage blendBackToFront(const std::vector<const RectImage*>& layers) {
+  Rect all;
+  for (const RectImage* l : layers) all = unionOf(all, l->rect);
+  RectImage out(all);
+  for (const RectImage* l : layers)
+    if (!l->rect.empty()) blendRectF(l->px.data(), l->rect, out.px.data(), all.w, all.x, all.y);
+  return out;
 }
 
 }  // namespace sortlast

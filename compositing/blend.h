@@ -1,15 +1,27 @@
 #pragma once
-// Blending decoded brick images into a frame, back to front, with "over" on premultiplied RGBA8.
+// Blending decoded images back to front with "over" on premultiplied colour: on RGBA8 with the
+// paper's rounding at every blend, or in float with one rounding at the end (what the compositing
+// strategies do, so that grouping the blends differently cannot change the frame).
 #include <vector>
 
 #include "common/image.h"
 #include "compositing/brick_image.h"
+#include "compositing/rect_image.h"
 
 namespace sortlast {
 
 // `images` in back-to-front order; each is decoded and blended over what is already in `frame`
 // (which starts transparent). Throws RleError on a malformed stream or a rectangle outside the
-// frame.
+// frame. RGBA8: rounds at every blend.
 void blendBackToFront(const std::vector<const BrickImage*>& images, ImageRGBA8& frame);
+// The same in float.
+void blendBackToFront(const std::vector<const BrickImage*>& images, ImageF& frame);
+
+// The same in float into one image of the rectangle the (non-empty) images cover.
+RectImage blendBackToFront(const std::vector<const BrickImage*>& images);
+
+// Layers in back-to-front order, each blended over the ones before it, into one image of the
+// rectangle they cover.
+RectImage blendBackToFront(const std::vector<const RectImage*>& layers);
 
 }  // namespace sortlast

@@ -4,11 +4,14 @@
 #include <stdexcept>
 
 #include "compositing/direct_send.h"
+#include "compositing/radix_k.h"
 
 namespace sortlast {
 
-std::unique_ptr<Compositor> makeCompositor(const std::string& strategy) {
+std::unique_ptr<Compositor> makeCompositor(const std::string& strategy, int radix) {
   if (strategy == "direct") return std::make_unique<DirectSend>();
+  if (strategy == "binary-swap") return std::make_unique<RadixK>(2);
+  if (strategy == "radix-k") return std::make_unique<RadixK>(radix);
   throw std::invalid_argument("unknown compositing strategy '" + strategy + "'");
 }
 

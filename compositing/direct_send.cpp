@@ -11,8 +11,9 @@ namespace {
 constexpr int kBrickTag = 101;
 }
 
-ImageRGBA8 DirectSend::composite(std::vector<BrickImage> mine, const std::vector<int>& order,
+ImageRGBA8 DirectSend::composite(std::vector<BrickImage> mine, const VisibilityOrder& visibility,
                                  int width, int height, MPI_Comm comm, CompositeStats& stats) {
+  const std::vector<int>& order = visibility.bricks;
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   double t0 = MPI_Wtime();
@@ -21,7 +22,9 @@ ImageRGBA8 DirectSend::composite(std::vector<BrickImage> mine, const std::vector
     std::vector<MPI_Request> req(mine.size());
     for (size_t i = 0; i < mine.size(); ++i) {
       packed.push_back(packBrickImage(mine[i]));
-      MPI_Isend(packed.back().data(), int(packed.back().size()), MPI_BYTE, 0, kBrickTag, comm, &req[i]);
+      stats.bytes_sent += double(packed.back().size());
+      MPI_Isend(packed.back().data(), int(packed.back().size()), MPI_BYTE, 0, kBrickTag, comm,
+                &req[i]);
     }
     MPI_Waitall(int(req.size()), req.data(), MPI_STATUSES_IGNORE);
     stats.transfer_s = MPI_Wtime() - t0;
@@ -48,10 +51,13 @@ ImageRGBA8 DirectSend::composite(std::vector<BrickImage> mine, const std::vector
   stats.transfer_s = t1 - t0;
   std::vector<const BrickImage*> ordered;
   for (int id : order) ordered.push_back(&by_id.at(id));
-  ImageRGBA8 frame(width, height);
+  // Blended in float and rounded once, like the swap strategies: the frame does not depend on
+  // how the blends are grouped.
+  ImageF frame(width, height);
   blendBackToFront(ordered, frame);
+  ImageRGBA8 out = toRGBA8(frame);
   stats.composite_s = MPI_Wtime() - t1;
-  return frame;
+  return out;
 }
 
 }  // namespace sortlast

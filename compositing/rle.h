@@ -1,8 +1,9 @@
 #pragma once
-// Run-length coding of transparent pixels in RGBA8 images, the paper's Fig. 7 format: a run of N
-// pixels with A = 0 becomes one 4-byte pixel whose first three bytes hold N (little-endian, 24
-// bits) and whose fourth byte is 0; every other pixel is copied as is. Runs longer than 2^24 - 1
-// are split. Since A = 0 marks a run, the stream needs no other framing.
+// Run-length coding of transparent pixels, the paper's Fig. 7 format: a run of N pixels with
+// A = 0 becomes one pixel whose first three bytes hold N (little-endian, 24 bits) and whose other
+// bytes are 0; every other pixel is copied as is. Runs longer than 2^24 - 1 are split. Since A = 0
+// marks a run, the stream needs no other framing. Pixels are RGBA8 (4 bytes, the paper's
+// intermediate images) or RGBA16 (8 bytes, four little-endian uint16: partial composites).
 #include <cstdint>
 #include <span>
 #include <stdexcept>
@@ -16,13 +17,14 @@ struct RleError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Appends the encoding of `pixels` (4 bytes each) to `out`.
-void rleEncode(std::span<const uint8_t> pixels, std::vector<uint8_t>& out);
-std::vector<uint8_t> rleEncode(std::span<const uint8_t> pixels);
+// Appends the encoding of `pixels` (`pixel_bytes` = 4 or 8 each) to `out`.
+void rleEncode(std::span<const uint8_t> pixels, std::vector<uint8_t>& out, int pixel_bytes = 4);
+std::vector<uint8_t> rleEncode(std::span<const uint8_t> pixels, int pixel_bytes = 4);
 
-// Decodes exactly `pixel_count` pixels into `out` (4 * pixel_count bytes). Throws RleError on a
-// stream of the wrong length, a zero-length run or a run that overflows the image; never reads or
-// writes out of bounds.
-void rleDecode(std::span<const uint8_t> stream, size_t pixel_count, std::span<uint8_t> out);
+// Decodes exactly `pixel_count` pixels into `out` (pixel_bytes * pixel_count bytes). Throws
+// RleError on a stream of the wrong length, a zero-length run or a run that overflows the image;
+// never reads or writes out of bounds.
+void rleDecode(std::span<const uint8_t> stream, size_t pixel_count, std::span<uint8_t> out,
+               int pixel_bytes = 4);
 
 }  // namespace sortlast

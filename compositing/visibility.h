@@ -4,9 +4,11 @@
 // and the axes are nested like the levels of a kd-tree, so no brick is drawn after one that hides
 // it. The same rule orders the convex rank regions of a kd-split.
 #include <array>
+#include <glm/glm.hpp>
 #include <vector>
 
-#include <glm/glm.hpp>
+#include "common/brick_planes.h"
+#include "common/decomposition.h"
 
 namespace sortlast {
 
@@ -17,5 +19,18 @@ std::vector<int> backToFrontOrder(const std::array<std::vector<double>, 3>& plan
 
 // Slab order along one axis, far to near.
 std::vector<int> slabOrder(const std::vector<double>& planes, double eye);
+
+// Every rank far to near: a traversal of the assignment's split tree that visits, at each cut,
+// the side away from the eye first. Ranks that own nothing come first (they hide nothing).
+std::vector<int> backToFrontRanks(const Assignment& assignment, const BrickPlanes& planes,
+                                  const glm::dvec3& eye);
+
+// What a compositor needs to know of one frame's visibility.
+struct VisibilityOrder {
+  std::vector<int> bricks;  // every brick id, far to near
+  std::vector<int> ranks;   // every rank, far to near (each rank's region is convex)
+};
+VisibilityOrder visibilityOrder(const Assignment& assignment, const BrickPlanes& planes,
+                                const glm::dvec3& eye);
 
 }  // namespace sortlast

@@ -28,7 +28,7 @@ nlohmann::json frameJson(int frame, const std::vector<RankFrameStats>& ranks, do
   j["frame"] = frame;
   double raw = 0, rle = 0;
   for (const char* key : {"render_s", "encode_s", "transfer_s", "peak_rss_mb", "bricks_rendered",
-                          "bricks_skipped"})
+                          "bricks_skipped", "particles_held", "particle_rounds", "bytes_sent"})
     j[key] = nlohmann::json::array();
   for (const RankFrameStats& r : ranks) {
     j["render_s"].push_back(r.render_s);
@@ -37,6 +37,9 @@ nlohmann::json frameJson(int frame, const std::vector<RankFrameStats>& ranks, do
     j["peak_rss_mb"].push_back(r.peak_rss_mb);
     j["bricks_rendered"].push_back(int(r.bricks_rendered));
     j["bricks_skipped"].push_back(int(r.bricks_skipped));
+    j["particles_held"].push_back((long long)r.particles_held);
+    j["particle_rounds"].push_back(int(r.particle_rounds));
+    j["bytes_sent"].push_back((long long)r.bytes_sent);
     raw += r.bytes_raw;
     rle += r.bytes_rle;
   }

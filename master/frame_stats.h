@@ -15,6 +15,9 @@ struct RankFrameStats {
   double bytes_raw = 0, bytes_rle = 0;  // RGBA8 bytes of the rectangles sent, before and after RLE
   double bricks_rendered = 0, bricks_skipped = 0;
   double peak_rss_mb = 0;
+  double particles_held = 0;   // particles this rank's bricks hold, ghosts included
+  double particle_rounds = 0;  // most sample windows (rounds of passes) any of its bricks needed
+  double bytes_sent = 0;       // compositing: bytes this rank sent, message headers included
 };
 
 // Gathers every rank's stats to rank 0 (empty vector elsewhere). Collective.

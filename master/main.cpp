@@ -9,6 +9,7 @@
 #include "common/error.h"
 #include "common/scene.h"
 #include "master/compare.h"
+#include "master/compare_surface.h"
 #include "master/reference_job.h"
 #include "master/render_job.h"
 
@@ -53,6 +54,62 @@ int runCompare(const std::string& a, const std::string& b, int max_diff, long lo
   }
 }
 
+struct SurfaceBounds {
+  long long max_holes = -1, max_extra = -1;  // -1: not checked
+  double max_depth_error = std::nan(""), max_normal_deg = std::nan("");
+  double depth_tolerance = INFINITY;
+  long long max_depth_outliers = -1;
+  bool ignore_edges = false;
+};
+
+int runCompareSurface(const std::string& ref_path, const std::string& test_path,
+                      const SurfaceBounds& b) {
+  try {
+    SurfaceImage ref = readSurfaceImage(ref_path), test = readSurfaceImage(test_path);
+    SurfaceDifference d = compareSurfaces(ref, test, b.ignore_edges, b.depth_tolerance);
+    std::printf(
+        "{\"pixels_hit_both\": %lld, \"holes\": %lld, \"extra_hits\": %lld, "
+        "\"edge_pixels_ignored\": %lld, \"depth_error_max\": %.9g, "
+        "\"depth_error_rms\": %.9g, \"normal_error_max_deg\": %.6g, "
+        "\"normal_error_mean_deg\": %.6g, \"worst_depth_pixel\": [%d, %d], "
+        "\"worst_normal_pixel\": [%d, %d], \"first_hole\": [%d, %d], "
+        "\"first_extra\": [%d, %d], \"depth_outliers\": %lld}\n",
+        d.both, d.holes, d.extra, d.edges_ignored, d.depth_max, d.depth_rms, d.normal_max_deg,
+        d.normal_mean_deg, d.worst_depth_x, d.worst_depth_y, d.worst_normal_x, d.worst_normal_y,
+        d.first_hole_x, d.first_hole_y, d.first_extra_x, d.first_extra_y, d.depth_outliers);
+    bool ok = true;
+    if (b.max_holes >= 0 && d.holes > b.max_holes) {
+      std::printf("FAIL: %lld holes (allowed: %lld); first at pixel (%d,%d)\n", d.holes,
+                  b.max_holes, d.first_hole_x, d.first_hole_y);
+      ok = false;
+    }
+    if (b.max_extra >= 0 && d.extra > b.max_extra) {
+      std::printf("FAIL: %lld extra hits (allowed: %lld); first at pixel (%d,%d)\n", d.extra,
+                  b.max_extra, d.first_extra_x, d.first_extra_y);
+      ok = false;
+    }
+    if (!std::isnan(b.max_depth_error) && d.depth_max > b.max_depth_error) {
+      std::printf("FAIL: depth error %.9g > allowed %.9g at pixel (%d,%d)\n", d.depth_max,
+                  b.max_depth_error, d.worst_depth_x, d.worst_depth_y);
+      ok = false;
+    }
+    if (b.max_depth_outliers >= 0 && d.depth_outliers > b.max_depth_outliers) {
+      std::printf("FAIL: %lld pixels with depth error over %.9g (allowed: %lld)\n",
+                  d.depth_outliers, b.depth_tolerance, b.max_depth_outliers);
+      ok = false;
+    }
+    if (!std::isnan(b.max_normal_deg) && d.normal_max_deg > b.max_normal_deg) {
+      std::printf("FAIL: normal error %.6g deg > allowed %.6g deg at pixel (%d,%d)\n",
+                  d.normal_max_deg, b.max_normal_deg, d.worst_normal_x, d.worst_normal_y);
+      ok = false;
+    }
+    return ok ? 0 : 1;
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "sortlast: error: %s\n", e.what());
+    return 2;
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -63,6 +120,8 @@ int main(int argc, char** argv) {
   auto* render = app.add_subcommand("render", "Render a scene (run under mpirun -np N)");
   addSceneOptions(render, render_opts);
   render->add_option("--stats", render_opts.stats, "Write per-frame timings and byte counts as JSON");
+  render->add_option("--surface-out", render_opts.surface_out,
+                     "Also write the particle surface (t, nx, ny, nz per pixel) as EXR");
 
   RenderOptions ref_opts;
   ref_opts.output = "reference.png";
@@ -70,6 +129,9 @@ int main(int argc, char** argv) {
   auto* reference = app.add_subcommand("reference", "Render a scene with the CPU reference integrator");
   addSceneOptions(reference, ref_opts);
   reference->add_option("--threads", threads, "Worker threads (default: all cores)");
+  std::string surface_out;
+  reference->add_option("--surface-out", surface_out,
+                        "Also write the metaball surface (t, nx, ny, nz) as EXR (particle scenes)");
 
   std::string img_a, img_b, diff_out;
   int max_diff = -1;
@@ -83,6 +145,27 @@ int main(int argc, char** argv) {
   compare->add_option("--min-psnr", min_psnr, "Fail if PSNR is lower (dB)");
   compare->add_option("--diff", diff_out, "Write a difference image (x16)");
 
+  std::string surf_ref, surf_test;
+  SurfaceBounds surf_bounds;
+  auto* compare_surface = app.add_subcommand(
+      "compare-surface", "Compare two surface images (EXR t, nx, ny, nz): holes, depth, normals");
+  compare_surface->add_option("reference", surf_ref, "Reference surface (.exr)")->required();
+  compare_surface->add_option("test", surf_test, "Surface to check (.exr)")->required();
+  compare_surface->add_option("--max-holes", surf_bounds.max_holes,
+                              "Fail if more pixels hit in the reference are missed");
+  compare_surface->add_option("--max-extra", surf_bounds.max_extra,
+                              "Fail if more pixels are hit that the reference misses");
+  compare_surface->add_option("--max-depth-error", surf_bounds.max_depth_error,
+                              "Fail if a depth differs by more (world units)");
+  compare_surface->add_option("--max-normal-deg", surf_bounds.max_normal_deg,
+                              "Fail if a normal differs by more (degrees)");
+  compare_surface->add_option("--depth-tolerance", surf_bounds.depth_tolerance,
+                              "Depth errors above this count as outliers (world units)");
+  compare_surface->add_option("--max-depth-outliers", surf_bounds.max_depth_outliers,
+                              "Fail if more pixels exceed --depth-tolerance");
+  compare_surface->add_flag("--ignore-edges", surf_bounds.ignore_edges,
+                            "Leave out silhouette pixels (a 4-neighbour differs in the reference)");
+
   auto* keys = app.add_subcommand("keys", "Print every scene key with its default (Markdown)");
 
   CLI11_PARSE(app, argc, argv);
@@ -92,7 +175,8 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (*compare) return runCompare(img_a, img_b, max_diff, allow_pixels, min_psnr, diff_out);
-  if (*reference) return runReferenceJob(ref_opts, threads);
+  if (*compare_surface) return runCompareSurface(surf_ref, surf_test, surf_bounds);
+  if (*reference) return runReferenceJob(ref_opts, threads, surface_out);
 
   MPI_Init(&argc, &argv);
   int code = runRenderJob(render_opts, MPI_COMM_WORLD);

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <thread>
 
+#include "common/error.h"
+
 namespace sortlast {
 
 double WholeVolume::at(const glm::dvec3& u) const {
@@ -27,21 +29,27 @@ double WholeVolume::at(const glm::dvec3& u) const {
   return c0 * (1 - f[2]) + c1 * f[2];
 }
 
-ImageF renderReference(const WholeVolume& vol, const TransferFunction& tf, const Camera& cam,
-                       double step, int threads) {
+namespace {
+
+// One implementation for both overloads: with no stop (nullptr) every step below reduces to the
+// volume-only arithmetic exactly (min(t1, inf) = t1; adding a zero surface changes no bit).
+ImageF integrate(const WholeVolume& vol, const TransferFunction& tf, const Camera& cam, double step,
+                 int threads, const SurfaceImage* stop, const ImageF* stop_colour) {
   ImageF img(cam.width, cam.height);
   Box3 box = vol.grid.worldBox();
   std::atomic<int> next_row{0};
   auto worker = [&] {
     for (int y; (y = next_row++) < cam.height;) {
       for (int x = 0; x < cam.width; ++x) {
+        size_t pixel = size_t(y) * cam.width + x;
         glm::dvec3 o = cam.position, d = cam.rayDirection(x, y);
         double t0, t1;
         double rgb[3] = {0, 0, 0}, transmit = 1.0;
         if (intersectRayBox(o, d, box, t0, t1)) {
           t0 = std::max(t0, 0.0);
-          long long n = std::max(1LL, (long long)std::ceil((t1 - t0) / step));
-          double h = (t1 - t0) / double(n);
+          if (stop && stop->hit(pixel)) t1 = std::min(t1, double(stop->t[pixel]));
+          long long n = t1 > t0 ? std::max(1LL, (long long)std::ceil((t1 - t0) / step)) : 0;
+          double h = n > 0 ? (t1 - t0) / double(n) : 0.0;
           for (long long i = 0; i < n && transmit > 1e-15; ++i) {
             double v = vol.at(vol.grid.indexOfWorld(o + (t0 + (i + 0.5) * h) * d));
             double a = 1.0 - std::exp(-tf.extinction(v) * h);
@@ -51,9 +59,15 @@ ImageF renderReference(const WholeVolume& vol, const TransferFunction& tf, const
             transmit *= 1.0 - a;
           }
         }
-        float* p = &img.px[(size_t(y) * cam.width + x) * 4];
+        double alpha = 1.0 - transmit;
+        if (stop && stop->hit(pixel)) {
+          const float* s = &stop_colour->px[4 * pixel];
+          for (int k = 0; k < 3; ++k) rgb[k] += transmit * s[k];
+          alpha = 1.0 - transmit * (1.0 - s[3]);
+        }
+        float* p = &img.px[pixel * 4];
         for (int k = 0; k < 3; ++k) p[k] = float(rgb[k]);
-        p[3] = float(1.0 - transmit);
+        p[3] = float(alpha);
       }
     }
   };
@@ -61,6 +75,25 @@ ImageF renderReference(const WholeVolume& vol, const TransferFunction& tf, const
   for (int t = 0; t < std::max(1, threads); ++t) pool.emplace_back(worker);
   for (auto& t : pool) t.join();
   return img;
+}
+
+}  // namespace
+
+ImageF renderReference(const WholeVolume& vol, const TransferFunction& tf, const Camera& cam,
+                       double step, int threads) {
+  return integrate(vol, tf, cam, step, threads, nullptr, nullptr);
+}
+
+ImageF renderReference(const WholeVolume& vol, const TransferFunction& tf, const Camera& cam,
+                       double step, int threads, const SurfaceImage& stop,
+                       const ImageF& stop_colour) {
+  if (stop.width != cam.width || stop.height != cam.height || stop_colour.width != cam.width ||
+      stop_colour.height != cam.height)
+    throw InputError("reference: the surface images (" + std::to_string(stop.width) + "x" +
+                     std::to_string(stop.height) + ", colour " + std::to_string(stop_colour.width) +
+                     "x" + std::to_string(stop_colour.height) + ") are not the camera's size (" +
+                     std::to_string(cam.width) + "x" + std::to_string(cam.height) + ")");
+  return integrate(vol, tf, cam, step, threads, &stop, &stop_colour);
 }
 
 }  // namespace sortlast

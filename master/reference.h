@@ -9,6 +9,7 @@
 #include "common/camera.h"
 #include "common/grid.h"
 #include "common/image.h"
+#include "common/surface_image.h"
 #include "common/transfer_function.h"
 
 namespace sortlast {
@@ -21,5 +22,14 @@ struct WholeVolume {
 
 ImageF renderReference(const WholeVolume& vol, const TransferFunction& tf, const Camera& cam,
                        double step, int threads);
+
+// Mixed scenes: an opaque surface (metaballs) in the volume. Per pixel the integral runs only for
+// t < stop.t (the same unit-ray distance the surface reference reports; +inf: no surface) and
+// `stop_colour` (premultiplied; opaque where hit, zero at misses) is composited behind what the
+// volume left: rgb += transmittance * surface rgb, alpha = 1 - transmittance * (1 - surface alpha).
+// Without a surface in a pixel the result is bit-identical to the overload above. Throws
+// InputError if either image is not the camera's size.
+ImageF renderReference(const WholeVolume& vol, const TransferFunction& tf, const Camera& cam,
+                       double step, int threads, const SurfaceImage& stop, const ImageF& stop_colour);
 
 }  // namespace sortlast

@@ -1,5 +1,5 @@
-// The frame loop, read top-down: scene -> bricks -> load -> GL -> for each frame: order, render,
-// encode, composite, write.
+// The frame loop, read top-down: scene -> brick grid -> load (particles, volume) -> GL -> for each
+// frame: render each brick, encode, composite in visibility order, write.
 #include "master/render_job.h"
 
 #include <cmath>
@@ -9,17 +9,19 @@
 #include <memory>
 
 #include "common/brick.h"
+#include "common/brick_planes.h"
 #include "common/decomposition.h"
 #include "common/scene.h"
 #include "compositing/compositor.h"
 #include "compositing/rle.h"
 #include "compositing/visibility.h"
+#include "master/brick_renderer.h"
 #include "master/collective.h"
 #include "master/frame_stats.h"
 #include "master/progress.h"
+#include "master/particle_loading.h"
+#include "master/surface_gather.h"
 #include "master/volume_loading.h"
-#include "worker/gl_context.h"
-#include "worker/slicing_renderer.h"
 
 namespace sortlast {
 
@@ -33,16 +35,17 @@ std::string frameFileName(const std::string& out, int frame, int frames) {
 
 namespace {
 
-// The camera must be outside the volume: slicing draws planes in front of the eye only, and the
-// paper's method has no notion of a viewer inside the data.
-void checkCameras(const std::vector<Camera>& cams, const GridGeometry& grid) {
-  Box3 box = grid.worldBox();
+// The camera must be outside the scene's box: slicing draws planes in front of the eye only, the
+// metaball billboards must lie in front of it, and neither method has a notion of a viewer inside
+// the data.
+void checkCameras(const std::vector<Camera>& cams, const Box3& box) {
   for (size_t i = 0; i < cams.size(); ++i) {
     const glm::dvec3& p = cams[i].position;
     if (box.contains(p)) {
       char msg[512];
       std::snprintf(msg, sizeof msg,
-                    "camera.position (%g, %g, %g)%s is inside the volume, whose box is "
+                    "camera.position (%g, %g, %g)%s is inside the scene, whose box (the volume, "
+                    "and the particles grown by their influence radius) is "
                     "[%g, %g] x [%g, %g] x [%g, %g]; move the camera outside it",
                     p.x, p.y, p.z, cams.size() > 1 ? (" of orbit frame " + std::to_string(i)).c_str() : "",
                     box.lo.x, box.hi.x, box.lo.y, box.hi.y, box.lo.z, box.hi.z);
@@ -51,7 +54,7 @@ void checkCameras(const std::vector<Camera>& cams, const GridGeometry& grid) {
   }
 }
 
-// Near and far planes enclosing the whole volume, shared by every brick of a frame so that all
+// Near and far planes enclosing the whole scene, shared by every brick of a frame so that all
 // bricks rasterise with the same transform.
 std::pair<double, double> depthRange(const Camera& cam, const Box3& box) {
   double tmin = 1e300, tmax = -1e300;
@@ -65,18 +68,9 @@ std::pair<double, double> depthRange(const Camera& cam, const Box3& box) {
   return {near_plane, std::max(tmax * 1.01, near_plane * 2.0)};
 }
 
-std::array<std::vector<double>, 3> brickPlanes(const std::vector<Brick>& bricks, int d) {
-  std::array<std::vector<double>, 3> planes;
-  for (int a = 0; a < 3; ++a) {
-    for (int i = 0; i < d; ++i) {
-      glm::ivec3 cell(0);
-      cell[a] = i;
-      planes[a].push_back(bricks[cell.x + d * (cell.y + d * cell.z)].world.lo[a]);
-    }
-    planes[a].push_back(bricks.back().world.hi[a]);
-  }
-  return planes;
-}
+Box3 grow(const Box3& b, double by) { return {b.lo - by, b.hi + by}; }
+Box3 unite(const Box3& a, const Box3& b) { return {glm::min(a.lo, b.lo), glm::max(a.hi, b.hi)}; }
+bool isEmpty(const Box3& b) { return b.lo.x > b.hi.x; }
 
 // Fault injection for the tests: a rank that throws (the others must stop cleanly) or dies (mpirun
 // must end the job). Inert unless the variables are set.
@@ -86,6 +80,17 @@ void injectTestFault(int rank) {
   if (is_me("SORTLAST_TEST_CRASH_RANK")) std::abort();
 }
 
+// What every rank knows about the scene's layout before any data is read.
+struct Layout {
+  Scene scene;
+  std::vector<Brick> volume_bricks;  // empty without a volume
+  BrickPlanes planes;                // the brick grid (volume and particles share it)
+  Assignment assignment;
+  Box3 bounds;                       // the scene's box: cameras frame it and stay outside it
+  Box3 particle_domain;              // particle centres grown by h (empty: no particles)
+  std::vector<Camera> cameras;
+};
+
 }  // namespace
 
 int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
@@ -93,82 +98,134 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
   try {
-    // Scene, decomposition and cameras: every rank parses the same input, so they agree.
-    Scene scene;
-    std::vector<Brick> bricks;
-    Assignment assignment;
-    std::vector<Camera> cameras;
+    // Scene and volume geometry: every rank parses the same input, so they agree.
+    Layout L;
     collectively(comm, [&] {
-      scene = loadScene(opts.scene, opts.overrides);
-      validateVolume(scene.volume);
-      bricks = makeBricks(scene.volume.grid, scene.bricks_per_axis);
-      assignment = assignBricks(scene.bricks_per_axis, size);
-      cameras = scene.frameCameras();
-      checkCameras(cameras, scene.volume.grid);
+      L.scene = loadScene(opts.scene, opts.overrides);
+      if (L.scene.hasVolume()) {
+        validateVolume(L.scene.volume);
+        L.volume_bricks = makeBricks(L.scene.volume.grid, L.scene.bricks_per_axis);
+      }
     });
-    const std::vector<int> mine = assignment.bricksOf(rank);
+    const Scene& scene = L.scene;
+    const int d = scene.bricks_per_axis;
+    const bool has_particles = scene.particles.enabled();
+    const double h = scene.particles.influenceRadius();
 
-    // Each rank reads its own bricks only.
-    auto samples = loadOwnBricks(scene.volume, bricks, mine, assignment, comm);
-    auto [data_min, data_max] = globalRange(samples, comm);
+    // Particles: rank 0 loads them; their extent shapes the brick grid and the camera.
+    RootParticles root;
+    if (has_particles) root = loadParticlesOnRoot(scene.particles, comm);
+    L.particle_domain = root.total > 0 ? grow(root.bounds, h) : Box3{glm::dvec3(1), glm::dvec3(-1)};
+    collectively(comm, [&] {
+      if (scene.hasVolume()) {
+        L.planes = volumeBrickPlanes(L.volume_bricks, d);
+        L.bounds = scene.volume.grid.worldBox();
+        if (!isEmpty(L.particle_domain)) {
+          L.planes = coverBox(L.planes, L.particle_domain);
+          L.bounds = unite(L.bounds, L.particle_domain);
+        }
+      } else {
+        // No volume and no particle at all: an empty (transparent) frame of a unit box.
+        L.bounds = isEmpty(L.particle_domain) ? Box3{glm::dvec3(-0.5), glm::dvec3(0.5)} : L.particle_domain;
+        L.planes = uniformBrickPlanes(L.bounds, d);
+      }
+      L.assignment = assignBricks(d, size);
+      L.cameras = scene.frameCameras(L.bounds);
+      checkCameras(L.cameras, L.bounds);
+    });
+    const std::vector<int> mine = L.assignment.bricksOf(rank);
+    auto cellOf = [&](int id) { return glm::ivec3(id % d, (id / d) % d, id / (d * d)); };
+
+    // Each rank gets its region's particles plus ghosts within h, and its own bricks' samples.
+    std::vector<glm::vec3> my_particles;
+    if (has_particles) {
+      std::vector<Box3> regions;
+      for (int r = 0; r < size; ++r) regions.push_back(cellRangeBox(L.planes, L.assignment.region[size_t(r)]));
+      my_particles = scatterParticles(root, regions, h, comm);
+      root.set = {};  // rank 0 keeps only the count
+    }
+    std::vector<std::vector<float>> samples;
     TransferFunction tf;
-    collectively(comm, [&] {
-      tf = scene.transfer.build(data_min, data_max, scene.volume.grid.minSpacing());
-    });
+    if (scene.hasVolume()) {
+      samples = loadOwnBricks(scene.volume, L.volume_bricks, mine, L.assignment, comm);
+      auto [data_min, data_max] = globalRange(samples, comm);
+      collectively(comm, [&] {
+        tf = scene.transfer.build(data_min, data_max, scene.volume.grid.minSpacing());
+      });
+    }
 
-    std::unique_ptr<GlContext> ctx;
-    std::unique_ptr<SlicingRenderer> renderer;
+    std::unique_ptr<BrickRenderer> renderer;
     std::vector<int> handles;
+    double particles_held = 0;
     collectively(comm, [&] {
-      ctx = createGlContext(scene.backend);
-      renderer = std::make_unique<SlicingRenderer>(*ctx, scene.camera.width, scene.camera.height,
-                                                   scene.block_cells);
-      renderer->setTransferFunction(tf, scene.transfer.table_size);
+      renderer = std::make_unique<BrickRenderer>(scene.backend, scene.camera.width, scene.camera.height);
+      if (scene.hasVolume()) renderer->enableVolume(tf, scene.transfer.table_size, scene.block_cells);
+      if (has_particles) renderer->enableParticles(metaballSettings(scene.particles));
       for (size_t i = 0; i < mine.size(); ++i) {
-        handles.push_back(renderer->addBrick(bricks[mine[i]], scene.volume.grid, samples[i]));
-        std::vector<float>().swap(samples[i]);  // the texture holds the data now
+        Box3 clip = brickBox(L.planes, cellOf(mine[i]));
+        std::vector<glm::vec3> near = has_particles ? particlesNear(my_particles, clip, h) : std::vector<glm::vec3>();
+        particles_held += double(near.size());
+        const Brick* vb = scene.hasVolume() ? &L.volume_bricks[size_t(mine[i])] : nullptr;
+        handles.push_back(renderer->addBrick(vb, &scene.volume.grid, vb ? &samples[i] : nullptr, clip,
+                                             has_particles ? &near : nullptr));
+        if (vb) std::vector<float>().swap(samples[i]);  // the texture holds the data now
       }
     });
     if (rank == 0 && !opts.quiet)
-      std::fprintf(stderr, "sortlast: %d rank(s), %d^3 bricks, %dx%d, %zu frame(s), %s\n", size,
-                   scene.bricks_per_axis, scene.camera.width, scene.camera.height, cameras.size(),
-                   ctx->description().c_str());
+      std::fprintf(stderr, "sortlast: %d rank(s), %d^3 bricks, %dx%d, %zu frame(s)%s, %s\n", size, d,
+                   scene.camera.width, scene.camera.height, L.cameras.size(),
+                   has_particles ? (", " + std::to_string(root.total) + " particles").c_str() : "",
+                   renderer->description().c_str());
 
-    auto compositor = makeCompositor(scene.strategy);
-    auto planes = brickPlanes(bricks, scene.bricks_per_axis);
+    auto compositor = makeCompositor(scene.strategy, scene.radix);
+    const bool want_surface = has_particles && !opts.surface_out.empty();
     nlohmann::json stats_json = nlohmann::json::array();
-    Progress progress(int(cameras.size()), opts.quiet);
-    for (int f = 0; f < int(cameras.size()); ++f) {
-      const Camera& cam = cameras[f];
+    Progress progress(int(L.cameras.size()), opts.quiet);
+    for (int f = 0; f < int(L.cameras.size()); ++f) {
+      const Camera& cam = L.cameras[f];
       double t_frame = MPI_Wtime();
-      auto [near_plane, far_plane] = depthRange(cam, scene.volume.grid.worldBox());
+      // Billboards reach sqrt(3) h beyond a particle: the depth range holds them too.
+      auto [near_plane, far_plane] = depthRange(cam, has_particles ? grow(L.bounds, h) : L.bounds);
       RankFrameStats st;
+      st.particles_held = particles_held;
       std::vector<BrickImage> images;
+      std::vector<SurfacePiece> surfaces;
       collectively(comm, [&] {
         injectTestFault(rank);
         for (size_t i = 0; i < mine.size(); ++i) {
           double t0 = MPI_Wtime();
-          RenderedBrick rb = renderer->render(handles[i], cam, scene.sampleSpacingWorld(),
-                                              near_plane, far_plane);
+          BrickFrame bf = renderer->render(handles[i], cam, scene.sampleSpacingWorld(), near_plane,
+                                           far_plane, want_surface);
           double t1 = MPI_Wtime();
-          BrickImage img{mine[i], rb.rect, {}};
-          if (!rb.rect.empty()) rleEncode(rb.pixels.px, img.rle);
+          BrickImage img{mine[i], bf.rect, {}};
+          if (!bf.rect.empty()) rleEncode(bf.pixels.px, img.rle);
           st.render_s += t1 - t0;
           st.encode_s += MPI_Wtime() - t1;
-          st.bytes_raw += double(rb.rect.area()) * 4;
+          st.bytes_raw += double(bf.rect.area()) * 4;
           st.bytes_rle += double(img.rle.size());
-          (rb.rect.empty() ? st.bricks_skipped : st.bricks_rendered) += 1;
+          st.particle_rounds = std::max(st.particle_rounds, double(bf.particle_rounds));
+          (bf.rect.empty() ? st.bricks_skipped : st.bricks_rendered) += 1;
           images.push_back(std::move(img));
+          if (want_surface) surfaces.push_back({bf.rect, std::move(bf.surface)});
         }
       });
       CompositeStats cs;
       ImageRGBA8 frame;
+      const int frames = int(L.cameras.size());
       collectively(comm, [&] {
-        frame = compositor->composite(std::move(images), backToFrontOrder(planes, cam.position),
+        frame = compositor->composite(std::move(images),
+                                      visibilityOrder(L.assignment, L.planes, cam.position),
                                       cam.width, cam.height, comm, cs);
-        if (rank == 0) writeImage(frameFileName(opts.output, f, int(cameras.size())), frame, scene.background);
+        if (rank == 0) writeImage(frameFileName(opts.output, f, frames), frame, scene.background);
       });
+      if (want_surface) {
+        SurfaceImage surface = gatherSurface(surfaces, cam.width, cam.height, comm);
+        collectively(comm, [&] {
+          if (rank == 0) writeSurfaceImage(frameFileName(opts.surface_out, f, frames), surface);
+        });
+      }
       st.transfer_s = cs.transfer_s;
+      st.bytes_sent = cs.bytes_sent;
       st.peak_rss_mb = peakRssMiB();
       auto all = gatherStats(st, comm);
       if (rank == 0) {
@@ -179,10 +236,11 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
     if (rank == 0 && !opts.stats.empty()) {
       std::ofstream out(opts.stats);
       out << nlohmann::json{{"ranks", size},
-                            {"bricks_per_axis", scene.bricks_per_axis},
+                            {"bricks_per_axis", d},
                             {"width", scene.camera.width},
                             {"height", scene.camera.height},
-                            {"renderer", ctx->description()},
+                            {"renderer", renderer->description()},
+                            {"particles", root.total},
                             {"frames", stats_json}}
                  .dump(1)
           << "\n";

@@ -12,6 +12,7 @@ struct RenderOptions {
   std::vector<std::string> overrides;  // key.path=value
   std::string output = "sortlast.png";
   std::string stats;                   // JSON file, or empty
+  std::string surface_out;             // EXR of the particle surface (t, normal), or empty
   bool quiet = false;
 };
 

@@ -73,7 +73,24 @@ using PfnDrawArrays = void(APIENTRYP)(GLenum, GLint, GLsizei);
   X(DeleteBuffers, PFNGLDELETEBUFFERSPROC)                      \
   X(VertexAttribPointer, PFNGLVERTEXATTRIBPOINTERPROC)          \
   X(EnableVertexAttribArray, PFNGLENABLEVERTEXATTRIBARRAYPROC)  \
-  X(DrawArrays, PfnDrawArrays)
+  X(DrawArrays, PfnDrawArrays)                                  \
+  X(ColorMask, PFNGLCOLORMASKPROC)                              \
+  X(BlendEquation, PFNGLBLENDEQUATIONPROC)                      \
+  X(DrawArraysInstanced, PFNGLDRAWARRAYSINSTANCEDPROC)          \
+  X(VertexAttribDivisor, PFNGLVERTEXATTRIBDIVISORPROC)          \
+  X(TexStorage2D, PFNGLTEXSTORAGE2DPROC)                        \
+  X(BindImageTexture, PFNGLBINDIMAGETEXTUREPROC)                \
+  X(MemoryBarrier, PFNGLMEMORYBARRIERPROC)                      \
+  X(GenQueries, PFNGLGENQUERIESPROC)                            \
+  X(DeleteQueries, PFNGLDELETEQUERIESPROC)                      \
+  X(BeginQuery, PFNGLBEGINQUERYPROC)                            \
+  X(EndQuery, PFNGLENDQUERYPROC)                                \
+  X(GetQueryObjectuiv, PFNGLGETQUERYOBJECTUIVPROC)              \
+  X(Uniform1ui, PFNGLUNIFORM1UIPROC)                            \
+  X(Uniform4i, PFNGLUNIFORM4IPROC)                              \
+  X(GetTexImage, PFNGLGETTEXIMAGEPROC)                          \
+  X(CopyImageSubData, PFNGLCOPYIMAGESUBDATAPROC)                \
+  X(DrawBuffers, PFNGLDRAWBUFFERSPROC)
 
 struct GlApi {
 #define SORTLAST_GL_MEMBER(name, type) type name = nullptr;

@@ -5,46 +5,11 @@
 #include <string>
 
 #include "compositing/visibility.h"
+#include "worker/gl_program.h"
 #include "worker/slice_geometry.h"
 #include "worker/slicing_shaders.h"
 
 namespace sortlast {
-
-namespace {
-
-unsigned compile(const GlApi& gl, GLenum type, const char* src) {
-  unsigned s = gl.CreateShader(type);
-  gl.ShaderSource(s, 1, &src, nullptr);
-  gl.CompileShader(s);
-  int ok = 0;
-  gl.GetShaderiv(s, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[4096];
-    gl.GetShaderInfoLog(s, sizeof log, nullptr, log);
-    throw std::runtime_error(std::string("GLSL compile error: ") + log);
-  }
-  return s;
-}
-
-unsigned link(const GlApi& gl, const char* vs, const char* fs) {
-  unsigned p = gl.CreateProgram();
-  unsigned v = compile(gl, GL_VERTEX_SHADER, vs), f = compile(gl, GL_FRAGMENT_SHADER, fs);
-  gl.AttachShader(p, v);
-  gl.AttachShader(p, f);
-  gl.LinkProgram(p);
-  gl.DeleteShader(v);
-  gl.DeleteShader(f);
-  int ok = 0;
-  gl.GetProgramiv(p, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[4096];
-    gl.GetProgramInfoLog(p, sizeof log, nullptr, log);
-    throw std::runtime_error(std::string("GLSL link error: ") + log);
-  }
-  return p;
-}
-
-}  // namespace
 
 SlicingRenderer::SlicingRenderer(const GlContext& ctx, int width, int height, int block_cells)
     : gl_(ctx.gl()), width_(width), height_(height), block_cells_(std::max(1, block_cells)) {
@@ -59,7 +24,7 @@ SlicingRenderer::SlicingRenderer(const GlContext& ctx, int width, int height, in
   if (gl_.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     throw std::runtime_error("OpenGL: float framebuffer of " + std::to_string(width) + " x " +
                              std::to_string(height) + " is not complete");
-  program_ = link(gl_, shaders::kSliceVertex, shaders::kSliceFragment);
+  program_ = linkProgram(gl_, shaders::kSliceVertex, shaders::kSliceFragment);
   gl_.GenVertexArrays(1, &vao_);
   gl_.BindVertexArray(vao_);
   gl_.GenBuffers(1, &vbo_);
@@ -152,7 +117,8 @@ bool SlicingRenderer::visible(const Block& b) const {
 }
 
 RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spacing,
-                                      double near_plane, double far_plane) {
+                                      double near_plane, double far_plane,
+                                      const SurfaceLayer* surface) {
   const GpuBrick& b = bricks_.at(size_t(handle));
   RenderedBrick out;
   glm::dvec3 eye = cam.position, fwd = cam.forward();
@@ -168,8 +134,9 @@ RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spac
     std::vector<float> t = sliceTriangles(blk.world, eye, fwd, spacing, near_plane * 1.001);
     tris.insert(tris.end(), t.begin(), t.end());
   }
-  if (tris.empty()) return out;
-  Rect r = screenRectOf(cam, bound);
+  Rect r = tris.empty() ? Rect{} : screenRectOf(cam, bound);
+  const bool has_surface = surface && !surface->rect.empty();
+  if (has_surface) r = r.empty() ? surface->rect : unite(r, surface->rect);
   if (r.empty()) return out;
 
   gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
@@ -178,7 +145,12 @@ RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spac
   gl_.Scissor(r.x, r.y, r.w, r.h);
   gl_.ClearColor(0, 0, 0, 0);
   gl_.Clear(GL_COLOR_BUFFER_BIT);
-  {
+  if (has_surface) {
+    const Rect& s = surface->rect;
+    gl_.CopyImageSubData(surface->colour_texture, GL_TEXTURE_2D, 0, s.x, s.y, 0, colour_, GL_TEXTURE_2D, 0,
+                         s.x, s.y, 0, s.w, s.h, 1);
+  }
+  if (!tris.empty()) {
     gl_.Enable(GL_BLEND);
     gl_.BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // premultiplied "over", back to front
     gl_.UseProgram(program_);
@@ -196,6 +168,14 @@ RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spac
                   float(-tf_.rangeLo() / range));
     double n = tf_table_size_;
     gl_.Uniform2f(gl_.GetUniformLocation(program_, "u_table_map"), float((n - 1) / n), float(0.5 / n));
+    gl_.Uniform1i(gl_.GetUniformLocation(program_, "u_surface"), 2);
+    gl_.Uniform1i(gl_.GetUniformLocation(program_, "u_has_surface"), has_surface ? 1 : 0);
+    if (has_surface) {
+      const Rect& sr = surface->rect;
+      gl_.Uniform4i(gl_.GetUniformLocation(program_, "u_surface_rect"), sr.x, sr.y, sr.w, sr.h);
+      gl_.ActiveTexture(GL_TEXTURE2);
+      gl_.BindTexture(GL_TEXTURE_2D, surface->surface_texture);
+    }
     gl_.ActiveTexture(GL_TEXTURE0);
     gl_.BindTexture(GL_TEXTURE_3D, b.texture);
     gl_.ActiveTexture(GL_TEXTURE1);

@@ -25,6 +25,15 @@ struct RenderedBrick {
   ImageRGBA8 pixels;   // rect.w x rect.h
 };
 
+// An opaque surface already rendered in the same brick (worker/metaball_renderer.h): its colour
+// (RGBA32F, premultiplied) and (t, normal) textures, valid over `rect`. Slices behind it are not
+// drawn, and what is drawn is blended over it, so the brick image holds both in the right order.
+struct SurfaceLayer {
+  unsigned colour_texture = 0;
+  unsigned surface_texture = 0;
+  Rect rect;
+};
+
 class SlicingRenderer {
  public:
   SlicingRenderer(const GlContext& ctx, int width, int height, int block_cells = 64);
@@ -40,7 +49,7 @@ class SlicingRenderer {
   // Renders one brick for `cam`; `spacing` is the world distance between slice planes and
   // [near_plane, far_plane] must enclose the whole volume (the same for all bricks of a frame).
   RenderedBrick render(int handle, const Camera& cam, double spacing, double near_plane,
-                       double far_plane);
+                       double far_plane, const SurfaceLayer* surface = nullptr);
 
  private:
   struct Block {

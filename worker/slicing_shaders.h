@@ -26,8 +26,17 @@ uniform vec3 u_forward;
 uniform float u_spacing;
 uniform vec2 u_value_map;   // normalised value = v * x + y
 uniform vec2 u_table_map;   // table coordinate = normalised * x + y (texel centres at the ends)
+uniform sampler2D u_surface;  // particle surface (t, normal) per pixel, t = 1e30 on a miss
+uniform int u_has_surface;
+uniform ivec4 u_surface_rect; // x, y, w, h where u_surface is valid (stale elsewhere)
 out vec4 frag;
 void main() {
+  // An opaque particle surface in this brick ends the ray: nothing behind it is drawn.
+  ivec2 px = ivec2(gl_FragCoord.xy);
+  if (u_has_surface != 0 && all(greaterThanEqual(px, u_surface_rect.xy)) &&
+      all(lessThan(px, u_surface_rect.xy + u_surface_rect.zw)) &&
+      length(v_world - u_eye) >= texelFetch(u_surface, px, 0).x)
+    discard;
   float v = texture(u_volume, v_world * u_tex_scale + u_tex_offset).r;
   float x = clamp(v * u_value_map.x + u_value_map.y, 0.0, 1.0);
   vec4 e = texture(u_table, x * u_table_map.x + u_table_map.y);

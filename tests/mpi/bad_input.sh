@@ -37,7 +37,7 @@ PY
 expect_error "NaN in float data" "NaN at voxel [3, 4, 5]" \
   --set volume.file="$WORK/nan.raw" --set "volume.dims=[16,16,16]" --set volume.type=float32
 expect_error "zero-size image" "image.width and image.height must be in [1, 32768]" --set image.width=0
-expect_error "camera inside the volume" "is inside the volume" --set "camera.position=[5,-3,2]"
+expect_error "camera inside the volume" "is inside the scene" --set "camera.position=[5,-3,2]"
 expect_error "unknown backend" "expected osmesa or egl" --set render.backend=vulkan
 expect_error "bricks finer than the grid" "bricks per axis need at least" \
   --set "volume.dims=[4,4,4]" --set bricks.per_axis=4

@@ -276,5 +276,37 @@ TEST(Rle, RejectsOutputSpanTooSmall) {
   EXPECT_THROW(rleDecode(std::vector<uint8_t>{3, 0, 0, 0}, 3, out), RleError);
 }
 
+// RGBA16 pixels (partial composites): 8 bytes each, alpha in the last two; a pixel is transparent
+// only when both alpha bytes are 0, and a run marker is N in 24 bits then five zero bytes.
+TEST(Rle, Rgba16PixelsRoundTripAndFormat) {
+  std::vector<uint8_t> px = {
+      0, 0, 0, 0, 0, 0, 0, 0,  // transparent
+      0, 0, 0, 0, 0, 0, 0, 0,  // transparent
+      1, 0, 0, 0, 0, 0, 1, 0,  // alpha 1: visible though its high byte is 0
+      0, 0, 0, 0, 0, 0, 0, 1,  // alpha 256: visible though its low byte is 0
+      0, 0, 0, 0, 0, 0, 0, 0,  // transparent
+  };
+  std::vector<uint8_t> enc = rleEncode(px, 8);
+  EXPECT_EQ(enc, (std::vector<uint8_t>{2, 0, 0, 0, 0, 0, 0, 0,    // run of 2
+                                       1, 0, 0, 0, 0, 0, 1, 0,    // copied
+                                       0, 0, 0, 0, 0, 0, 0, 1,    // copied
+                                       1, 0, 0, 0, 0, 0, 0, 0}));  // run of 1
+  std::vector<uint8_t> out(px.size(), 0xAB);
+  rleDecode(enc, 5, out, 8);
+  EXPECT_EQ(out, px);
+  // Random images widened to 16 bits (v -> 257 v) round-trip too.
+  std::mt19937 rng(99);
+  for (size_t n : {1, 2, 17, 500}) {
+    std::vector<uint8_t> img;
+    for (uint8_t v : randomImage(n, rng)) img.insert(img.end(), {v, v});
+    std::vector<uint8_t> back(img.size(), 0xAB);
+    rleDecode(rleEncode(img, 8), n, back, 8);
+    EXPECT_EQ(back, img) << n;
+  }
+  std::vector<uint8_t> small(7);
+  EXPECT_THROW(rleDecode(std::vector<uint8_t>(12, 1), 1, small, 8), RleError);  // not a multiple of 8
+  EXPECT_THROW(rleEncode(px, 3), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace sortlast

@@ -83,7 +83,7 @@ TEST(Scene, BuiltInDefaults) {
   EXPECT_FALSE(s.transfer.range.has_value());
   EXPECT_FALSE(s.transfer.unit_length.has_value());
   EXPECT_EQ(s.transfer.points.size(), TransferFunction::preset("default").size());
-  EXPECT_EQ(s.frameCameras().size(), 1u);
+  EXPECT_EQ(s.frameCameras(s.volume.grid.worldBox()).size(), 1u);
 }
 
 TEST(Scene, SetOverrides) {
@@ -92,7 +92,7 @@ TEST(Scene, SetOverrides) {
                            "transfer.points=[[0,0,0,0,0],[1,1,0.5,0.25,0.75]]"});
   EXPECT_EQ(s.volume.grid.dims, glm::ivec3(64, 32, 16));
   EXPECT_EQ(s.orbit_frames, 8);
-  EXPECT_EQ(s.frameCameras().size(), 8u);
+  EXPECT_EQ(s.frameCameras(s.volume.grid.worldBox()).size(), 8u);
   EXPECT_EQ(s.camera.width, 100);
   EXPECT_EQ(s.camera.height, 512);  // untouched keys keep their defaults
   EXPECT_EQ(s.backend, "egl");
@@ -165,6 +165,20 @@ TEST(Scene, InvalidValuesThrow) {
   inputErrorOf([] { loadScene("", {"image.width=wide"}); });
   inputErrorOf([] { loadScene("", {"compositing.strategy=binary_swap"}); });
   inputErrorOf([] { loadScene("", {"image.width"}); });  // no '='
+}
+
+TEST(Scene, CompositingStrategies) {
+  for (const char* name : {"direct", "binary-swap", "radix-k"})
+    EXPECT_EQ(loadScene("", {std::string("compositing.strategy=") + name}).strategy, name);
+  EXPECT_EQ(loadScene("", {}).radix, std::stoi(tableDefault("compositing.radix")));
+  EXPECT_EQ(loadScene("", {"compositing.radix=2"}).radix, 2);
+  EXPECT_EQ(loadScene("", {"compositing.radix=7"}).radix, 7);
+  std::string msg = inputErrorOf([] { loadScene("", {"compositing.strategy=tree"}); });
+  EXPECT_NE(msg.find("compositing.strategy"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("tree"), std::string::npos) << msg;
+  msg = inputErrorOf([] { loadScene("", {"compositing.radix=1"}); });
+  EXPECT_NE(msg.find("compositing.radix"), std::string::npos) << msg;
+  inputErrorOf([] { loadScene("", {"compositing.radix=two"}); });
 }
 
 TEST_F(SceneFiles, InvalidValueInFileThrows) {

@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "common/box.h"
+#include "common/brick_planes.h"
+#include "common/decomposition.h"
 #include "compositing/visibility.h"
 
 namespace sortlast {
@@ -167,6 +169,88 @@ TEST(Visibility, SlabOrderHandCases) {
   // One slab.
   EXPECT_EQ(slabOrder({0.0, 1.0}, 0.5), (std::vector<int>{0}));
   EXPECT_EQ(slabOrder({0.0, 1.0}, -3.0), (std::vector<int>{0}));
+}
+
+// The rank order (a traversal of the kd-split tree) against ray casting through the rank regions,
+// for every rank count 1-8 and d = 1-4, eyes around, on and inside irregular grids.
+TEST(Visibility, RankOrderAgreesWithRays) {
+  std::mt19937 rng(14);
+  for (int d = 1; d <= 4; ++d) {
+    Planes planes;
+    std::uniform_real_distribution<double> gap(0.2, 2.0);
+    for (int a = 0; a < 3; ++a) {
+      planes[a].push_back(-3.0 + a);
+      for (int i = 0; i < d; ++i) planes[a].push_back(planes[a].back() + gap(rng));
+    }
+    for (int P = 1; P <= 8; ++P) {
+      SCOPED_TRACE("d " + std::to_string(d) + " P " + std::to_string(P));
+      Assignment as = assignBricks(d, P);
+      std::vector<Box3> boxes;
+      for (int r = 0; r < P; ++r) boxes.push_back(cellRangeBox(planes, as.region[size_t(r)]));
+      Box3 all = cellRangeBox(planes, {{0, 0, 0}, {d - 1, d - 1, d - 1}});
+      for (int e = 0; e < 60; ++e) {
+        std::uniform_real_distribution<double> u(-0.5, 1.5);
+        glm::dvec3 eye = all.lo + glm::dvec3(u(rng), u(rng), u(rng)) * all.extent();
+        if (e % 5 == 0) eye[e % 3] = planes[size_t(e % 3)][size_t(d / 2)];  // on a plane
+        std::vector<int> order = backToFrontRanks(as, planes, eye);
+        ASSERT_EQ(order.size(), size_t(P));
+        std::vector<int> pos(size_t(P), -1);
+        for (int i = 0; i < P; ++i) {
+          ASSERT_TRUE(order[size_t(i)] >= 0 && order[size_t(i)] < P &&
+                      pos[size_t(order[size_t(i)])] < 0);
+          pos[size_t(order[size_t(i)])] = i;
+        }
+        std::normal_distribution<double> g;
+        for (int ray = 0; ray < 300; ++ray) {
+          glm::dvec3 dir = glm::normalize(glm::dvec3(g(rng), g(rng), g(rng)));
+          std::vector<std::pair<double, int>> hits;
+          for (int r = 0; r < P; ++r) {
+            double t0, t1;
+            if (as.region[size_t(r)].count() == 0 ||
+                !intersectRayBox(eye, dir, boxes[size_t(r)], t0, t1))
+              continue;
+            double entry = std::max(t0, 0.0);
+            if (t1 - entry > 1e-9) hits.push_back({entry, r});
+          }
+          std::sort(hits.begin(), hits.end());
+          for (size_t i = 0; i + 1 < hits.size(); ++i)
+            if (hits[i + 1].first - hits[i].first > 1e-9)
+              ASSERT_LT(pos[size_t(hits[i + 1].second)], pos[size_t(hits[i].second)])
+                  << "rank " << hits[i + 1].second << " is farther along a ray than rank "
+                  << hits[i].second << " but comes later";
+        }
+      }
+    }
+  }
+}
+
+TEST(Visibility, SplitTreeLeavesAreTheRegions) {
+  for (int d = 1; d <= 4; ++d)
+    for (int P = 1; P <= 8; ++P) {
+      Assignment as = assignBricks(d, P);
+      ASSERT_FALSE(as.tree.empty());
+      EXPECT_EQ(as.tree[0].first_rank, 0);
+      EXPECT_EQ(as.tree[0].ranks, P);
+      std::vector<int> leaf_of(size_t(P), 0);
+      for (const KdNode& n : as.tree) {
+        if (n.axis >= 0) {
+          const KdNode &lo = as.tree[size_t(n.lower)], &hi = as.tree[size_t(n.upper)];
+          EXPECT_EQ(lo.first_rank, n.first_rank);
+          EXPECT_EQ(lo.ranks, n.ranks / 2);
+          EXPECT_EQ(hi.first_rank, n.first_rank + n.ranks / 2);
+          EXPECT_EQ(lo.cells.hi[n.axis] + 1, n.cut);
+          EXPECT_EQ(hi.cells.lo[n.axis], n.cut);
+          continue;
+        }
+        for (int r = n.first_rank; r < n.first_rank + n.ranks; ++r) ++leaf_of[size_t(r)];
+        const IndexBox& reg = as.region[size_t(n.first_rank)];
+        EXPECT_EQ(reg.lo, n.cells.lo);
+        EXPECT_EQ(reg.hi, n.cells.hi);
+        for (int r = n.first_rank + 1; r < n.first_rank + n.ranks; ++r)
+          EXPECT_EQ(as.region[size_t(r)].count(), 0);
+      }
+      for (int r = 0; r < P; ++r) EXPECT_EQ(leaf_of[size_t(r)], 1) << "rank " << r;
+    }
 }
 
 }  // namespace

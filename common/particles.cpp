@@ -1,0 +1,183 @@
+// Loading particle centres: format choice, the raw and CSV readers, and the checks every format
+// shares (count, finite positions). VTK files are read in vtk_particles.cpp, procedural sets are
+// made in procedural_particles.cpp.
+#include "common/particles.h"
+
+#include <bit>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string_view>
+
+#include "common/error.h"
+
+namespace sortlast {
+
+namespace {
+
+constexpr long long kDefaultProceduralCount = 4096;
+
+std::string formatOf(const ParticleDesc& d) {
+  if (d.format != "auto") {
+    if (d.format != "vtk" && d.format != "raw" && d.format != "csv")
+      throw InputError("particles.format: unknown format '" + d.format +
+                       "' (known: auto, vtk, raw, csv)");
+    return d.format;
+  }
+  std::string ext = std::filesystem::path(d.file).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".vtk" || ext == ".vtp" || ext == ".vtu") return "vtk";
+  if (ext == ".csv") return "csv";
+  return "raw";
+}
+
+// Little-endian float32 x,y,z triples, no header.
+std::vector<glm::vec3> readRaw(const std::string& file, long long declared,
+                               const std::string& hint) {
+  std::error_code ec;
+  auto size = static_cast<long long>(std::filesystem::file_size(file, ec));
+  if (ec) throw InputError("particles.file " + file + ": cannot read its size");
+  if (size % 12 != 0)
+    throw InputError("particles.file " + file + ": raw file has " + std::to_string(size) +
+                     " bytes, not a multiple of 12 (x, y, z as float32)" + hint);
+  if (declared >= 0 && size != declared * 12)
+    throw InputError("particles.file " + file + ": raw file has " + std::to_string(size) +
+                     " bytes = " + std::to_string(size / 12) +
+                     " particles, but particles.count is " + std::to_string(declared) + " (" +
+                     std::to_string(declared * 12) + " bytes)");
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError("particles.file " + file + ": cannot open");
+  std::vector<unsigned char> bytes(static_cast<size_t>(size));
+  in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(size));
+  if (!in) throw InputError("particles.file " + file + ": read failed (truncated?)");
+  std::vector<glm::vec3> out(static_cast<size_t>(size / 12));
+  for (size_t i = 0; i < out.size(); ++i)
+    for (int a = 0; a < 3; ++a) {
+      unsigned char b[4];
+      for (int k = 0; k < 4; ++k)
+        b[k] = bytes[12 * i + 4 * a + (std::endian::native == std::endian::little ? k : 3 - k)];
+      std::memcpy(&out[i][a], b, 4);
+    }
+  return out;
+}
+
+std::string trim(std::string_view s) {
+  size_t b = s.find_first_not_of(" \t\r"), e = s.find_last_not_of(" \t\r");
+  return b == std::string_view::npos ? "" : std::string(s.substr(b, e - b + 1));
+}
+
+bool parseNumber(const std::string& field, double& v) {
+  const char* first = field.data();
+  const char* last = first + field.size();
+  if (first != last && *first == '+') ++first;  // from_chars rejects a leading '+'
+  auto [p, ec] = std::from_chars(first, last, v);
+  return ec == std::errc() && p == last && first != last;
+}
+
+// x,y,z per line; extra columns ignored; `#` starts a comment; blank lines skipped; the first
+// data line may be a header (its first field is not a number).
+std::vector<glm::vec3> readCsv(const std::string& file) {
+  std::ifstream in(file);
+  if (!in) throw InputError("particles.file " + file + ": cannot open");
+  std::vector<glm::vec3> out;
+  std::string line;
+  bool first_data_line = true;
+  for (long long n = 1; std::getline(in, line); ++n) {
+    std::string text = trim(std::string_view(line).substr(0, line.find('#')));
+    if (text.empty()) continue;
+    std::vector<std::string> fields;
+    for (size_t start = 0;;) {
+      size_t comma = text.find(',', start);
+      fields.push_back(trim(std::string_view(text).substr(start, comma - start)));
+      if (comma == std::string::npos || fields.size() == 3) break;
+      start = comma + 1;
+    }
+    double xyz[3];
+    bool ok = fields.size() == 3;
+    for (int a = 0; ok && a < 3; ++a) ok = parseNumber(fields[size_t(a)], xyz[a]);
+    double ignored;
+    if (!ok && first_data_line && !parseNumber(fields[0], ignored)) {
+      first_data_line = false;  // a header such as "x,y,z"
+      continue;
+    }
+    first_data_line = false;
+    if (!ok)
+      throw InputError("particles.file " + file + " line " + std::to_string(n) +
+                       ": expected x,y,z numbers, got '" + text + "'");
+    glm::vec3 p{float(xyz[0]), float(xyz[1]), float(xyz[2])};
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      throw InputError("particles.file " + file + " line " + std::to_string(n) +
+                       ": NaN or infinite (as float32) position at particle " +
+                       std::to_string(out.size()));
+    out.push_back(p);
+  }
+  return out;
+}
+
+void checkFinite(const std::vector<glm::vec3>& ps, const std::string& file) {
+  for (size_t i = 0; i < ps.size(); ++i) {
+    const glm::vec3& p = ps[i];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      throw InputError(
+          "particles.file " + file + ": " +
+          (std::isnan(p.x) || std::isnan(p.y) || std::isnan(p.z) ? "NaN" : "infinite") +
+          " position at particle " + std::to_string(i));
+  }
+}
+
+}  // namespace
+
+Box3 ParticleSet::bounds() const {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  Box3 b{glm::dvec3(inf), glm::dvec3(-inf)};
+  for (const glm::vec3& p : positions) {
+    b.lo = glm::min(b.lo, glm::dvec3(p));
+    b.hi = glm::max(b.hi, glm::dvec3(p));
+  }
+  return b;
+}
+
+ParticleSet loadParticles(const ParticleDesc& d) {
+  if (d.file.empty()) {
+    if (d.procedural == "none") return {};
+    return proceduralParticles(d.procedural, d.count < 0 ? kDefaultProceduralCount : d.count,
+                               d.spacing);
+  }
+  std::string format = formatOf(d);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(d.file, ec))
+    throw InputError("particles.file " + d.file + ": no such file");
+  ParticleSet s;
+  if (format == "raw")
+    s.positions = readRaw(d.file, d.count,
+                          d.format == "auto" ? "; read as raw because of its extension (set "
+                                               "particles.format for csv or vtk)"
+                                             : "");
+  if (format == "csv") s.positions = readCsv(d.file);
+  if (format == "vtk") s.positions = readVtkParticles(d.file);
+  if (d.count >= 0 && static_cast<long long>(s.positions.size()) != d.count)
+    throw InputError("particles.file " + d.file + ": holds " + std::to_string(s.positions.size()) +
+                     (s.positions.size() == 1 ? " particle" : " particles") +
+                     ", but particles.count is " + std::to_string(d.count));
+  checkFinite(s.positions, d.file);
+  return s;
+}
+
+std::vector<glm::vec3> particlesNear(const std::vector<glm::vec3>& all, const Box3& box,
+                                     double margin) {
+  std::vector<glm::vec3> out;
+  const double m2 = margin * margin;
+  for (const glm::vec3& p : all) {
+    glm::dvec3 q(p);
+    glm::dvec3 d = glm::max(glm::max(box.lo - q, q - box.hi), glm::dvec3(0.0));
+    if (margin >= 0.0 && glm::dot(d, d) <= m2) out.push_back(p);
+  }
+  return out;
+}
+
+}  // namespace sortlast

@@ -1,0 +1,71 @@
+#pragma once
+// Particles rendered as metaballs (Mishima, Tanaka and Sagawa; ../shared/PAPERS.md §2): where the
+// centres come from (a file or a procedural set), the field's constants and the renderer's
+// settings. Rank 0 loads the set and sends each rank the particles near its region
+// (master/particle_loading.h); bricks keep those near them (particlesNear), in global order, so the
+// field a rank sums at a point is the same, in the same order, as on any other rank.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "common/box.h"
+
+namespace sortlast {
+
+struct ParticleDesc {
+  std::string file;                 // empty: procedural (or none)
+  std::string procedural = "none";  // none | layers | splash
+  // auto | vtk | raw | csv (auto: by extension, .vtk/.vtp/.vtu -> vtk, .csv -> csv, else raw)
+  std::string format = "auto";
+  // Procedural: number of particles (-1: 4096). File: the count it must hold (-1: whatever it
+  // holds; a raw file's size must then be a multiple of 12 bytes).
+  long long count = -1;
+  double spacing = 0.3;    // layers / splash: distance between neighbouring particles
+  double radius = 0.1430;  // radius of the surface around a lone particle = h (1 - T)
+  // h, the field's influence radius; unset: radius / (1 - threshold)
+  std::optional<double> influence;
+  double threshold = 0.765625;  // T (the paper's)
+  glm::dvec3 colour{0.85, 0.9, 1.0};
+  // Metaball renderer settings.
+  double step = 0.125;        // sample step along rays, in units of h
+  int max_samples = 96;       // cap on field samples per pixel (per brick)
+  int refine_iterations = 3;  // refinement passes (4 probes around the secant of eq. 5)
+  bool cull = true;           // min/max distance pyramid culling
+  int samples_per_pass = 8;   // window of samples per pass: 4 (the paper) or 8 (half the passes)
+
+  bool enabled() const { return !file.empty() || procedural != "none"; }
+  double influenceRadius() const { return influence ? *influence : radius / (1.0 - threshold); }
+};
+
+struct ParticleSet {
+  std::vector<glm::vec3> positions;
+  Box3 bounds() const;  // of the centres; empty set: lo > hi (lo = +inf, hi = -inf)
+};
+
+// The set `desc` names: its file (format by desc.format) or its procedural set. Throws InputError:
+// file missing or unreadable, raw size not a multiple of 12 bytes, a file whose particle count is
+// not desc.count (when given), NaN or infinite position (naming its index), malformed CSV (naming
+// the line), unknown format or procedural name. A file with no particles gives an empty set.
+ParticleSet loadParticles(const ParticleDesc& desc);
+
+// Procedural sets, in units where neighbouring particles are `spacing` apart, centred at the
+// origin (the centres' bounding box), bit-identical on every machine (an integer hash, no std::
+// distributions, no trigonometry):
+//  "layers": the metaball paper's test scene: layers of 24 x 24 particles stacked up (y up) until
+//            `count` particles (the last layer partial).
+//  "splash": a shallow pool, a crown of particles rising from it in spikes, and droplets flying
+//            off the spikes.
+ParticleSet proceduralParticles(const std::string& name, long long count, double spacing);
+
+// Particles whose centre lies within `margin` of `box` (distance from point to box <= margin), in
+// their original order: field sums must be bit-identical on every rank.
+std::vector<glm::vec3> particlesNear(const std::vector<glm::vec3>& all, const Box3& box,
+                                     double margin);
+
+// Points of a VTK file (legacy .vtk polydata / unstructured grid, XML .vtp / .vtu); what
+// loadParticles uses for format vtk. Only vtk_particles.cpp sees VTK's headers.
+std::vector<glm::vec3> readVtkParticles(const std::string& file);
+
+}  // namespace sortlast

@@ -1,0 +1,210 @@
+#include "compositing/radix_k.h"
+
+#include <algorithm>
+#include <chrono>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+#include "compositing/blend.h"
+#include "compositing/mpi_transport.h"
+#include "compositing/schedule.h"
+
+namespace sortlast {
+
+namespace {
+
+constexpr int kFoldTag = 301, kRoundTag = 310, kGatherTag = 399;  // round t: kRoundTag + t
+
+using Clock = std::chrono::steady_clock;
+
+// Adds the seconds since the last lap to one of two totals.
+class Stopwatch {
+ public:
+  explicit Stopwatch(CompositeStats& stats) : stats_(stats) {}
+  void lapTransfer() { stats_.transfer_s += lap(); }
+  void lapComposite() { stats_.composite_s += lap(); }
+
+ private:
+  double lap() {
+    auto now = Clock::now();
+    double s = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return s;
+  }
+  CompositeStats& stats_;
+  Clock::time_point last_ = Clock::now();
+};
+
+// Who holds which image, and the bounds of what each unit can hold: every rank computes the same
+// from the gathered content rectangles, so sender and receiver agree on which messages exist.
+struct Plan {
+  RadixKSchedule schedule;
+  std::vector<int> rank_at;   // participant position -> rank, far to near
+  std::vector<Rect> content;  // per position: the active rectangle of its own bricks' image
+  Rect whole;                 // union of all content
+
+  int carrier(int unit) const { return rank_at[size_t(schedule.firstPosition(unit))]; }
+  // A rectangle holding every pixel `unit` may hold before `round`.
+  Rect bound(int round, int unit) const {
+    auto [first, last] = schedule.mergedUnits(round, unit);
+    Rect r;
+    for (int p = schedule.firstPosition(first); p <= schedule.lastPosition(last); ++p)
+      r = unionOf(r, content[size_t(p)]);
+    return intersect(r, schedule.region(round, unit, whole));
+  }
+};
+
+class Exchange {
+ public:
+  Exchange(Transport& t, CompositeStats& stats, Stopwatch& watch)
+      : t_(t), stats_(stats), watch_(watch) {}
+  void send(int to, int tag, const BrickImage& part) {
+    std::vector<uint8_t> bytes = packBrickImage(part);
+    stats_.bytes_sent += double(bytes.size());
+    watch_.lapComposite();
+    t_.send(to, tag, std::move(bytes));
+    watch_.lapTransfer();
+  }
+  BrickImage receiveEncoded(int from, int tag) {
+    watch_.lapComposite();
+    std::vector<uint8_t> bytes = t_.receive(from, tag);
+    watch_.lapTransfer();
+    return unpackBrickImage(bytes);
+  }
+  RectImage receive(int from, int tag) { return decodePart(receiveEncoded(from, tag)); }
+  void finish() {
+    watch_.lapComposite();
+    t_.finishSends();
+    watch_.lapTransfer();
+  }
+
+ private:
+  Transport& t_;
+  CompositeStats& stats_;
+  Stopwatch& watch_;
+};
+
+// This rank's bricks, far to near, blended into one image shrunk to its active rectangle.
+RectImage blendOwnBricks(const std::vector<BrickImage>& mine, const std::vector<int>& brick_order) {
+  std::map<int, const BrickImage*> by_id;
+  for (const BrickImage& b : mine) by_id[b.brick_id] = &b;
+  std::vector<const BrickImage*> seq;
+  for (int id : brick_order) {
+    auto it = by_id.find(id);
+    if (it != by_id.end()) seq.push_back(it->second);
+  }
+  if (seq.size() != mine.size() || by_id.size() != mine.size())
+    throw std::runtime_error("radix-k: this rank's brick ids are not in the visibility order");
+  RectImage img = blendBackToFront(seq);
+  Rect active = activeRect(img, img.rect);
+  return active == img.rect ? img : crop(img, active);
+}
+
+}  // namespace
+
+RadixK::RadixK(int k) : k_(k) {
+  if (k < 2) throw std::invalid_argument("radix-k: k must be >= 2, got " + std::to_string(k));
+}
+
+ImageRGBA8 RadixK::composite(std::vector<BrickImage> mine, const VisibilityOrder& order, int width,
+                             int height, MPI_Comm comm, CompositeStats& stats) {
+  MpiTransport transport(comm);
+  return radixKComposite(std::move(mine), order, width, height, k_, transport, stats);
+}
+
+ImageRGBA8 radixKComposite(std::vector<BrickImage> mine, const VisibilityOrder& order, int width,
+                           int height, int k, Transport& transport, CompositeStats& stats) {
+  Stopwatch watch(stats);
+  Exchange ex(transport, stats, watch);
+  const int rank = transport.rank(), ranks = transport.size();
+  if (int(order.ranks.size()) != ranks)
+    throw std::invalid_argument("radix-k: the rank order holds " +
+                                std::to_string(order.ranks.size()) + " ranks, the communicator " +
+                                std::to_string(ranks));
+
+  // 1. Own bricks, then everyone's content rectangle.
+  RectImage image = blendOwnBricks(mine, order.bricks);
+  const Rect& c = image.rect;
+  watch.lapComposite();
+  std::vector<int> rects = transport.allgather({c.x, c.y, c.w, c.h});
+  watch.lapTransfer();
+
+  // 2. The participants: ranks with something to show, far to near.
+  Plan plan;
+  int pos = -1;
+  for (int r : order.ranks) {
+    Rect rc{rects[4 * size_t(r)], rects[4 * size_t(r) + 1], rects[4 * size_t(r) + 2],
+            rects[4 * size_t(r) + 3]};
+    if (rc.empty()) continue;
+    if (r == rank) pos = int(plan.rank_at.size());
+    plan.rank_at.push_back(r);
+    plan.content.push_back(rc);
+    plan.whole = unionOf(plan.whole, rc);
+  }
+  const RadixKSchedule& s = plan.schedule = makeRadixKSchedule(int(plan.rank_at.size()), k);
+
+  // 3. Folds: the nearer of each pair sends its whole image to the farther.
+  int unit = -1;  // the unit this rank carries, if any
+  if (pos >= 0 && pos < 2 * s.folds) {
+    if (pos % 2 == 1) {
+      ex.send(plan.rank_at[size_t(pos - 1)], kFoldTag,
+              encodePart(image, image.rect, pos, WireFormat::RGBA16));
+      image = {};
+    } else {
+      RectImage front = ex.receive(plan.rank_at[size_t(pos + 1)], kFoldTag);
+      image = blendBackToFront(std::vector<const RectImage*>{&image, &front});
+      unit = pos / 2;
+    }
+  } else if (pos >= 0) {
+    unit = pos - s.folds;
+  }
+
+  // 4. Rounds: split the group's region, send each partner its part, composite my part.
+  for (int t = 0; t < s.rounds() && unit >= 0; ++t) {
+    const std::vector<int> group = s.group(t, unit);
+    const int me = s.digit(t, unit);
+    const std::vector<Rect> parts = splitRect(s.region(t, unit, plan.whole), int(group.size()));
+    const Rect my_bound = plan.bound(t, unit);
+    for (size_t m = 0; m < group.size(); ++m)
+      if (int(m) != me && !intersect(my_bound, parts[m]).empty())
+        ex.send(plan.carrier(group[m]), kRoundTag + t,
+                encodePart(image, parts[m], unit, WireFormat::RGBA16));
+    std::vector<RectImage> received(group.size());
+    std::vector<const RectImage*> layers;
+    for (size_t m = 0; m < group.size(); ++m) {
+      if (int(m) == me) {
+        received[m] = crop(image, parts[size_t(me)]);
+      } else if (!intersect(plan.bound(t, group[m]), parts[size_t(me)]).empty()) {
+        received[m] = ex.receive(plan.carrier(group[m]), kRoundTag + t);
+      }
+      layers.push_back(&received[m]);
+    }
+    image = blendBackToFront(layers);
+    ex.finish();
+  }
+
+  // 5. Every unit's part to rank 0.
+  // The parts are final: rounded to RGBA8 where they are, which is what rank 0 would do.
+  BrickImage last;
+  if (unit >= 0 && !plan.bound(s.rounds(), unit).empty()) {
+    last = encodePart(image, s.region(s.rounds(), unit, plan.whole), unit, WireFormat::RGBA8);
+    if (rank != 0) ex.send(0, kGatherTag, last);
+  }
+  ImageRGBA8 frame;
+  if (rank == 0) {
+    frame = ImageRGBA8(width, height);
+    for (int u = 0; u < s.units(); ++u) {
+      if (plan.bound(s.rounds(), u).empty()) continue;
+      if (plan.carrier(u) == 0)
+        pastePart(last, frame);
+      else
+        pastePart(ex.receiveEncoded(plan.carrier(u), kGatherTag), frame);
+    }
+  }
+  ex.finish();
+  watch.lapComposite();
+  return frame;
+}
+
+}  // namespace sortlast

@@ -1,0 +1,120 @@
+#include "compositing/rect_image.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include "compositing/rle.h"
+
+namespace sortlast {
+
+namespace {
+
+// Premultiplied float to RGBA16, keeping colour <= alpha (so A = 0 implies RGB = 0).
+void toRGBA16(const float* in, uint8_t* out) {
+  auto q = [](float v) { return uint16_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 65535.0f)); };
+  uint16_t v[4];
+  v[3] = q(in[3]);
+  for (int c = 0; c < 3; ++c) v[c] = std::min(q(in[c]), v[3]);
+  for (int c = 0; c < 4; ++c) {
+    out[2 * c] = uint8_t(v[c] & 0xff);
+    out[2 * c + 1] = uint8_t(v[c] >> 8);
+  }
+}
+
+float fromRGBA16(const uint8_t* in) {
+  return float(unsigned(in[0]) | unsigned(in[1]) << 8) / 65535.0f;
+}
+
+}  // namespace
+
+Rect intersect(const Rect& a, const Rect& b) {
+  int x0 = std::max(a.x, b.x), y0 = std::max(a.y, b.y);
+  int x1 = std::min(a.x + a.w, b.x + b.w), y1 = std::min(a.y + a.h, b.y + b.h);
+  if (a.empty() || b.empty() || x1 <= x0 || y1 <= y0) return {};
+  return {x0, y0, x1 - x0, y1 - y0};
+}
+
+Rect unionOf(const Rect& a, const Rect& b) {
+  if (a.empty()) return b.empty() ? Rect{} : b;
+  if (b.empty()) return a;
+  return unite(a, b);
+}
+
+Rect activeRect(const RectImage& img, const Rect& within) {
+  const Rect r = intersect(img.rect, within);
+  int x0 = r.x + r.w, x1 = r.x - 1, y0 = r.y + r.h, y1 = r.y - 1;
+  for (int y = r.y; y < r.y + r.h; ++y) {
+    const float* row = img.at(r.x, y);
+    int first = -1, last = -1;
+    for (int x = 0; x < r.w; ++x)
+      if (row[4 * x + 3] > 0.0f) {
+        if (first < 0) first = x;
+        last = x;
+      }
+    if (first < 0) continue;
+    x0 = std::min(x0, r.x + first);
+    x1 = std::max(x1, r.x + last);
+    y0 = std::min(y0, y);
+    y1 = y;
+  }
+  if (x1 < x0) return {};
+  return {x0, y0, x1 - x0 + 1, y1 - y0 + 1};
+}
+
+RectImage crop(const RectImage& img, const Rect& r) {
+  RectImage out(intersect(img.rect, r));
+  for (int y = out.rect.y; y < out.rect.y + out.rect.h; ++y)
+    std::memcpy(out.at(out.rect.x, y), img.at(out.rect.x, y),
+                size_t(out.rect.w) * 4 * sizeof(float));
+  return out;
+}
+
+BrickImage encodePart(const RectImage& img, const Rect& part, int id, WireFormat format) {
+  BrickImage b;
+  b.brick_id = id;
+  b.rect = activeRect(img, part);
+  if (b.rect.empty()) return b;
+  const size_t bytes = size_t(format);
+  std::vector<uint8_t> px(size_t(b.rect.area()) * bytes);
+  uint8_t* o = px.data();
+  for (int y = b.rect.y; y < b.rect.y + b.rect.h; ++y) {
+    const float* row = img.at(b.rect.x, y);
+    for (int x = 0; x < b.rect.w; ++x, o += bytes)
+      if (format == WireFormat::RGBA8)
+        toRGBA8(row + 4 * x, o);
+      else
+        toRGBA16(row + 4 * x, o);
+  }
+  b.rle = rleEncode(px, int(bytes));
+  return b;
+}
+
+RectImage decodePart(const BrickImage& b) {
+  if (b.rect.empty()) {
+    if (!b.rle.empty()) throw RleError("image part: empty rectangle with a non-empty stream");
+    return {};
+  }
+  std::vector<uint8_t> px(size_t(b.rect.area()) * 8);
+  rleDecode(b.rle, size_t(b.rect.area()), px, 8);
+  RectImage out(b.rect);
+  for (size_t i = 0; i < out.px.size(); ++i) out.px[i] = fromRGBA16(&px[2 * i]);
+  return out;
+}
+
+void pastePart(const BrickImage& b, ImageRGBA8& frame) {
+  const Rect& r = b.rect;
+  if (r.empty()) {
+    if (!b.rle.empty()) throw RleError("image part: empty rectangle with a non-empty stream");
+    return;
+  }
+  if (r.x < 0 || r.y < 0 || r.x + r.w > frame.width || r.y + r.h > frame.height)
+    throw RleError("image part: rectangle outside the frame");
+  std::vector<uint8_t> px(size_t(r.area()) * 4);
+  rleDecode(b.rle, size_t(r.area()), px);
+  for (int y = 0; y < r.h; ++y)
+    std::memcpy(frame.at(r.x, r.y + y), &px[size_t(y) * r.w * 4], size_t(r.w) * 4);
+}
+
+}  // namespace sortlast

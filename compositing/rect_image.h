@@ -1,0 +1,52 @@
+#pragma once
+// Image operations of the swap strategies, apart from blending (IceT's layout): a partial
+// composite held as a float image of one rectangle of the frame; cropping it, finding its active
+// (not transparent) pixels, and packaging a part of it for the wire (rectangle + RLE stream).
+//
+// Partial composites travel as RGBA16 (four little-endian uint16 per pixel): blending in float
+// and rounding only to 1/65535 between rounds keeps every grouping of the blends within a few
+// thousandths of an 8-bit step of the exact result, so every strategy rounds the frame to the
+// same RGBA8 value within 1 (RGBA8 partials would add up to half a step per round). The finished
+// parts sent to rank 0 are final values and travel as RGBA8.
+#include <cstdint>
+#include <vector>
+
+#include "common/camera.h"
+#include "common/image.h"
+#include "compositing/brick_image.h"
+
+namespace sortlast {
+
+struct RectImage {
+  Rect rect;              // in frame pixels; empty: no pixels
+  std::vector<float> px;  // rect.w * rect.h premultiplied RGBA pixels, row 0 first
+  RectImage() = default;
+  explicit RectImage(const Rect& r) : rect(r), px(size_t(r.area()) * 4, 0.0f) {}  // transparent
+  // Pixel (x, y) in frame coordinates.
+  float* at(int x, int y) { return &px[(size_t(y - rect.y) * rect.w + size_t(x - rect.x)) * 4]; }
+  const float* at(int x, int y) const {
+    return &px[(size_t(y - rect.y) * rect.w + size_t(x - rect.x)) * 4];
+  }
+};
+
+Rect intersect(const Rect& a, const Rect& b);  // an empty rectangle if they do not overlap
+Rect unionOf(const Rect& a, const Rect& b);    // bounding rectangle; empty operands are ignored
+
+// Bounding rectangle of the pixels with A > 0 inside `within` (empty if there are none).
+Rect activeRect(const RectImage& img, const Rect& within);
+// The pixels of `img` inside `r` (which is clipped to img.rect).
+RectImage crop(const RectImage& img, const Rect& r);
+
+enum class WireFormat { RGBA8 = 4, RGBA16 = 8 };  // bytes per pixel
+
+// `img`'s pixels inside `part`, shrunk to their active rectangle, rounded to `format` and
+// RLE-encoded; `id` goes into the brick id field. A transparent part gives an empty rectangle and
+// no bytes.
+BrickImage encodePart(const RectImage& img, const Rect& part, int id, WireFormat format);
+// Decodes an RGBA16 part. Throws RleError if malformed.
+RectImage decodePart(const BrickImage& b);
+// Decodes an RGBA8 part into `frame` (a plain copy: parts do not overlap). Throws RleError if
+// malformed or outside the frame.
+void pastePart(const BrickImage& b, ImageRGBA8& frame);
+
+}  // namespace sortlast

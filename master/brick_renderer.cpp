@@ -1,0 +1,77 @@
+#include "master/brick_renderer.h"
+
+namespace sortlast {
+
+MetaballSettings metaballSettings(const ParticleDesc& desc) {
+  MetaballSettings s;
+  s.h = desc.influenceRadius();
+  s.threshold = desc.threshold;
+  s.step = desc.step * s.h;
+  s.max_samples = desc.max_samples;
+  s.refine_iterations = desc.refine_iterations;
+  s.cull = desc.cull;
+  s.samples_per_pass = desc.samples_per_pass;
+  s.colour = desc.colour;
+  return s;
+}
+
+BrickRenderer::BrickRenderer(const std::string& backend, int width, int height)
+    : ctx_(createGlContext(backend)), width_(width), height_(height) {}
+
+void BrickRenderer::enableVolume(const TransferFunction& tf, int table_size, int block_cells) {
+  slicing_ = std::make_unique<SlicingRenderer>(*ctx_, width_, height_, block_cells);
+  slicing_->setTransferFunction(tf, table_size);
+}
+
+void BrickRenderer::enableParticles(const MetaballSettings& settings) {
+  metaballs_ = std::make_unique<MetaballRenderer>(*ctx_, width_, height_, settings);
+}
+
+int BrickRenderer::addBrick(const Brick* volume_brick, const GridGeometry* grid,
+                            const std::vector<float>* samples, const Box3& particle_clip,
+                            const std::vector<glm::vec3>* particles) {
+  Handles h;
+  if (volume_brick && slicing_) h.volume = slicing_->addBrick(*volume_brick, *grid, *samples);
+  if (particles && metaballs_) h.particles = metaballs_->addBrick(particle_clip, *particles);
+  bricks_.push_back(h);
+  return int(bricks_.size()) - 1;
+}
+
+BrickFrame BrickRenderer::render(int handle, const Camera& cam, double slice_spacing,
+                                 double near_plane, double far_plane, bool want_surface) {
+  const Handles& h = bricks_.at(size_t(handle));
+  BrickFrame out;
+  SurfaceBrick surface;
+  if (h.particles >= 0) {
+    surface = metaballs_->render(h.particles, cam, near_plane, far_plane, want_surface);
+    out.particle_rounds = surface.rounds;
+    out.surface = std::move(surface.surface);
+  }
+  if (h.volume < 0) {
+    out.rect = surface.rect;
+    out.pixels = std::move(surface.pixels);
+    return out;
+  }
+  SurfaceLayer layer;
+  if (!surface.rect.empty())
+    layer = {metaballs_->colourTexture(), metaballs_->surfaceTexture(), surface.rect};
+  RenderedBrick rb = slicing_->render(h.volume, cam, slice_spacing, near_plane, far_plane,
+                                      surface.rect.empty() ? nullptr : &layer);
+  // The surface floats cover the particle rectangle; re-cut them to the brick image's rectangle.
+  if (!out.surface.empty() && !(rb.rect == surface.rect)) {
+    std::vector<float> cut(size_t(rb.rect.area()) * 4, 0.0f);
+    for (size_t i = 0; i < cut.size(); i += 4) cut[i] = 1e30f;
+    for (int y = 0; y < surface.rect.h; ++y)
+      for (int x = 0; x < surface.rect.w; ++x) {
+        size_t src = 4 * (size_t(y) * surface.rect.w + x);
+        size_t dst = 4 * (size_t(y + surface.rect.y - rb.rect.y) * rb.rect.w + (x + surface.rect.x - rb.rect.x));
+        for (int c = 0; c < 4; ++c) cut[dst + c] = out.surface[src + c];
+      }
+    out.surface = std::move(cut);
+  }
+  out.rect = rb.rect;
+  out.pixels = std::move(rb.pixels);
+  return out;
+}
+
+}  // namespace sortlast

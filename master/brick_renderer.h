@@ -1,0 +1,56 @@
+#pragma once
+// One rank's renderers, behind one call per brick: the volume part (3D-texture slicing) and the
+// particle part (metaball ray caster) of a brick become one premultiplied brick image. In a brick
+// holding both, the particle surface is drawn first and ends the volume's rays, so the image is
+// correctly ordered inside the brick; between bricks the compositor's visibility order does it.
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "common/brick.h"
+#include "common/particles.h"
+#include "common/transfer_function.h"
+#include "worker/gl_context.h"
+#include "worker/metaball_renderer.h"
+#include "worker/slicing_renderer.h"
+
+namespace sortlast {
+
+struct BrickFrame {
+  Rect rect;
+  ImageRGBA8 pixels;
+  std::vector<float> surface;  // (t, nx, ny, nz) per pixel of rect, when asked for and there are particles
+  int particle_rounds = 0;
+};
+
+class BrickRenderer {
+ public:
+  BrickRenderer(const std::string& backend, int width, int height);
+  std::string description() const { return ctx_->description(); }
+
+  void enableVolume(const TransferFunction& tf, int table_size, int block_cells);
+  void enableParticles(const MetaballSettings& settings);
+
+  // A brick: its volume samples (stored box; null: no volume) and its particles with ghosts
+  // (null: no particles), clipped to `particle_clip`. Returns a handle for render().
+  int addBrick(const Brick* volume_brick, const GridGeometry* grid, const std::vector<float>* samples,
+               const Box3& particle_clip, const std::vector<glm::vec3>* particles);
+
+  BrickFrame render(int handle, const Camera& cam, double slice_spacing, double near_plane,
+                    double far_plane, bool want_surface);
+
+ private:
+  struct Handles {
+    int volume = -1, particles = -1;
+  };
+  std::unique_ptr<GlContext> ctx_;
+  int width_, height_;
+  std::unique_ptr<SlicingRenderer> slicing_;
+  std::unique_ptr<MetaballRenderer> metaballs_;
+  std::vector<Handles> bricks_;
+};
+
+// The metaball renderer's settings for a scene's particle keys.
+MetaballSettings metaballSettings(const ParticleDesc& desc);
+
+}  // namespace sortlast

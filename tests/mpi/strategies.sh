@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# Binary-swap and radix-k give direct send's frame within 1/255 on 1-8 ranks, on a 257x131 frame
+# (no multiple of any rank count), with ranks that own only empty bricks (27 bricks: the sharp band
+# leaves corner bricks empty) and with more ranks than bricks (1 brick). A rank with nothing to
+# show sends nothing: checked on the per-rank bytes_sent of --stats.
+# Usage: strategies.sh SORTLAST DATA_DIR
+source "$(dirname "$0")/lib.sh" "$1"
+data=$2
+scene=(render "$data/neghip.yaml" -q --set image.width=257 --set image.height=131)
+
+# Renders with NP ranks into $WORK/NAME.png and NAME.json.
+render() {
+  local name=$1 np=$2; shift 2
+  run_np "$np" "${scene[@]}" -o "$WORK/$name.png" --stats "$WORK/$name.json" "$@" || fail "render $name"
+}
+# NAME's frame within 1/255 of REF's.
+same() {
+  "$SORTLAST" compare "$WORK/$1.png" "$WORK/$2.png" --max-diff 1 >/dev/null ||
+    fail "$1 differs from $2: $("$SORTLAST" compare "$WORK/$1.png" "$WORK/$2.png")"
+}
+# Checks that every rank that rendered no brick sent no byte; prints how many such ranks there were.
+quiet_ranks() {
+  python3 - "$WORK/$1.json" <<'PY' || fail "a rank with nothing to show sent bytes in $1"
+import json, sys
+s = json.load(open(sys.argv[1]))
+empty = 0
+for f in s["frames"]:
+    assert len(f["bytes_sent"]) == s["ranks"], f
+    for r in range(s["ranks"]):
+        if f["bricks_rendered"][r] == 0:
+            empty += 1
+            assert f["bytes_sent"][r] == 0, (r, f["bytes_sent"], f["bricks_rendered"])
+print(empty)
+PY
+}
+
+d3=(--set bricks.per_axis=3)
+render direct_d3 1 "${d3[@]}"
+empty_seen=0
+for np in 1 2 3 4 5 6 7 8; do
+  render bswap_np$np "$np" "${d3[@]}" --set compositing.strategy=binary-swap
+  same bswap_np$np direct_d3
+  empty_seen=$((empty_seen + $(quiet_ranks bswap_np$np)))
+  # Radix 4: rounds of 3 (P = 3, 6, 7), of 4 (P = 4, 5, 8), folds (P = 5, 7). On 1 and 2 ranks
+  # every radix makes binary-swap's schedule.
+  [ "$np" -ge 3 ] || continue
+  render radixk_np$np "$np" "${d3[@]}" --set compositing.strategy=radix-k --set compositing.radix=4
+  same radixk_np$np direct_d3
+  empty_seen=$((empty_seen + $(quiet_ranks radixk_np$np)))
+done
+[ "$empty_seen" -gt 0 ] || fail "no rank owned only empty bricks: the case went untested"
+
+# More ranks than bricks: one brick; the other ranks own nothing and send nothing.
+d1=(--set bricks.per_axis=1)
+render direct_d1 2 "${d1[@]}"
+[ "$(quiet_ranks direct_d1)" -eq 1 ] || fail "direct send: rank 1 should own nothing"
+render bswap_d1 2 "${d1[@]}" --set compositing.strategy=binary-swap
+render radixk_d1 3 "${d1[@]}" --set compositing.strategy=radix-k --set compositing.radix=3
+same bswap_d1 direct_d1
+same radixk_d1 direct_d1
+[ "$(quiet_ranks bswap_d1)" -eq 1 ] || fail "binary-swap: rank 1 should own nothing"
+[ "$(quiet_ranks radixk_d1)" -eq 2 ] || fail "radix-k: ranks 1 and 2 should own nothing"
+echo "binary-swap and radix-k agree with direct send on 1-8 ranks"

@@ -1,0 +1,301 @@
+// Radix-k and binary-swap compositing (compositing/radix_k.h) with ranks as threads: the same frame
+// as blending every brick image in order into one frame (what direct send does), for 1-8 ranks,
+// k = 2-4, frames whose size is no multiple of the rank count, ranks that own nothing or only
+// transparent bricks (and then send nothing).
+#include "compositing/radix_k.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <condition_variable>
+#include <cstring>
+#include <deque>
+#include <exception>
+#include <map>
+#include <mutex>
+#include <numeric>
+#include <random>
+#include <string>
+#include <thread>
+#include <tuple>
+#include <vector>
+
+#include "compositing/blend.h"
+#include "compositing/rle.h"
+
+namespace sortlast {
+namespace {
+
+// Messages between threads; a receive that waits over 20 s fails the test instead of hanging it.
+struct Mailbox {
+  std::mutex mutex;
+  std::condition_variable arrived;
+  std::map<std::tuple<int, int, int>, std::deque<std::vector<uint8_t>>> queues;  // from, to, tag
+  std::vector<std::map<std::pair<int, int>, int>> sent;  // per rank: (to, tag) -> messages
+};
+
+class ThreadTransport final : public Transport {
+ public:
+  ThreadTransport(Mailbox& box, int rank, int size) : box_(box), rank_(rank), size_(size) {}
+  int rank() const override { return rank_; }
+  int size() const override { return size_; }
+  void send(int to, int tag, std::vector<uint8_t> bytes) override {
+    std::lock_guard lock(box_.mutex);
+    box_.queues[{rank_, to, tag}].push_back(std::move(bytes));
+    ++box_.sent[size_t(rank_)][{to, tag}];
+    box_.arrived.notify_all();
+  }
+  std::vector<uint8_t> receive(int from, int tag) override {
+    std::unique_lock lock(box_.mutex);
+    auto& q = box_.queues[{from, rank_, tag}];
+    if (!box_.arrived.wait_for(lock, std::chrono::seconds(20), [&] { return !q.empty(); }))
+      throw std::runtime_error("rank " + std::to_string(rank_) + " waited in vain for rank " +
+                               std::to_string(from) + " tag " + std::to_string(tag));
+    std::vector<uint8_t> bytes = std::move(q.front());
+    q.pop_front();
+    return bytes;
+  }
+  void finishSends() override {}
+  std::vector<int> allgather(const std::vector<int>& mine) override {
+    std::vector<uint8_t> bytes(mine.size() * sizeof(int));
+    std::memcpy(bytes.data(), mine.data(), bytes.size());
+    for (int r = 0; r < size_; ++r) {
+      std::lock_guard lock(box_.mutex);
+      box_.queues[{rank_, r, -1}].push_back(bytes);
+      box_.arrived.notify_all();
+    }
+    std::vector<int> all;
+    for (int r = 0; r < size_; ++r) {
+      std::vector<uint8_t> b = receive(r, -1);
+      std::vector<int> v(b.size() / sizeof(int));
+      std::memcpy(v.data(), b.data(), b.size());
+      all.insert(all.end(), v.begin(), v.end());
+    }
+    return all;
+  }
+
+ private:
+  Mailbox& box_;
+  int rank_, size_;
+};
+
+struct Case {
+  int width, height, ranks, bricks;
+  unsigned seed;
+  bool disjoint = false;  // brick rectangles side by side, never overlapping
+};
+
+struct Outcome {
+  ImageRGBA8 frame, want;
+  std::vector<CompositeStats> stats;
+  std::vector<bool> transparent;  // per rank: its own bricks show nothing
+  std::vector<std::map<std::pair<int, int>, int>> sent;
+};
+
+// Random brick images (overlapping rectangles, transparent stretches, some wholly transparent or
+// empty), dealt to ranks as runs of the brick order in a random rank order, composited by radix-k
+// on threads; `want` blends them all in order into one frame.
+Outcome run(const Case& c, int k) {
+  std::mt19937 rng(c.seed);
+  std::vector<BrickImage> bricks;
+  for (int id = 0; id < c.bricks; ++id) {
+    BrickImage b;
+    b.brick_id = id;
+    int x0 = int(rng() % unsigned(c.width)), y0 = int(rng() % unsigned(c.height));
+    int x1 = x0 + int(rng() % unsigned(c.width - x0)) + 1,
+        y1 = y0 + int(rng() % unsigned(c.height - y0)) + 1;
+    if (c.disjoint) {  // column `id` of `bricks` columns
+      x0 = c.width * id / c.bricks;
+      x1 = c.width * (id + 1) / c.bricks;
+    }
+    int kind = int(rng() % 6);
+    if (kind == 0) {  // nothing on screen
+      bricks.push_back(b);
+      continue;
+    }
+    b.rect = {x0, y0, x1 - x0, y1 - y0};
+    std::vector<uint8_t> px(size_t(b.rect.area()) * 4, 0);
+    for (size_t i = 0; kind != 1 && i < size_t(b.rect.area()); ++i) {  // kind 1: all transparent
+      if (rng() % 3 == 0) continue;
+      int a = rng() % 4 == 0 ? 255 : int(rng() % 256);
+      px[4 * i + 3] = uint8_t(a);
+      for (int ch = 0; ch < 3; ++ch) px[4 * i + ch] = uint8_t(rng() % unsigned(a + 1));
+    }
+    b.rle = rleEncode(px);
+    bricks.push_back(b);
+  }
+  VisibilityOrder order;
+  order.bricks.resize(size_t(c.bricks));
+  std::iota(order.bricks.begin(), order.bricks.end(), 0);
+  order.ranks.resize(size_t(c.ranks));
+  std::iota(order.ranks.begin(), order.ranks.end(), 0);
+  std::shuffle(order.ranks.begin(), order.ranks.end(), rng);
+  // Cut the brick order into one run per rank (some empty), in rank order.
+  std::vector<int> cuts = {0, c.bricks};
+  for (int i = 1; i < c.ranks; ++i) cuts.push_back(int(rng() % unsigned(c.bricks + 1)));
+  std::sort(cuts.begin(), cuts.end());
+  std::vector<std::vector<BrickImage>> mine(size_t(c.ranks));
+  Outcome out;
+  out.transparent.assign(size_t(c.ranks), true);
+  for (int i = 0; i < c.ranks; ++i)
+    for (int id = cuts[size_t(i)]; id < cuts[size_t(i) + 1]; ++id) {
+      const int r = order.ranks[size_t(i)];
+      mine[size_t(r)].push_back(bricks[size_t(id)]);
+      std::vector<uint8_t> px(size_t(bricks[size_t(id)].rect.area()) * 4);
+      rleDecode(bricks[size_t(id)].rle, size_t(bricks[size_t(id)].rect.area()), px);
+      for (size_t p = 3; p < px.size(); p += 4)
+        out.transparent[size_t(r)] = out.transparent[size_t(r)] && px[p] == 0;
+    }
+  // Each rank gets its bricks in a scrambled order: the compositor must order them itself.
+  for (auto& m : mine) std::shuffle(m.begin(), m.end(), rng);
+
+  ImageF want(c.width, c.height);  // what direct send does: blend in float, round once
+  std::vector<const BrickImage*> all;
+  for (const BrickImage& b : bricks) all.push_back(&b);
+  blendBackToFront(all, want);
+  out.want = toRGBA8(want);
+
+  Mailbox box;
+  box.sent.resize(size_t(c.ranks));
+  out.stats.resize(size_t(c.ranks));
+  std::vector<ImageRGBA8> frames(size_t(c.ranks));
+  std::vector<std::string> errors(size_t(c.ranks));
+  std::vector<std::thread> threads;
+  for (int r = 0; r < c.ranks; ++r)
+    threads.emplace_back([&, r] {
+      try {
+        ThreadTransport t(box, r, c.ranks);
+        frames[size_t(r)] =
+            radixKComposite(mine[size_t(r)], order, c.width, c.height, k, t, out.stats[size_t(r)]);
+      } catch (const std::exception& e) {
+        errors[size_t(r)] = e.what();
+      }
+    });
+  for (auto& t : threads) t.join();
+  for (int r = 0; r < c.ranks; ++r) EXPECT_EQ(errors[size_t(r)], "") << "rank " << r;
+  for (int r = 1; r < c.ranks; ++r)
+    EXPECT_EQ(frames[size_t(r)].width, 0) << "rank " << r << " returned a frame";
+  out.frame = std::move(frames[0]);
+  out.sent = box.sent;
+  return out;
+}
+
+int maxDiff(const ImageRGBA8& a, const ImageRGBA8& b, int& at) {
+  int worst = 0;
+  at = -1;
+  for (size_t i = 0; i < a.px.size(); ++i) {
+    int d = std::abs(int(a.px[i]) - int(b.px[i]));
+    if (d > worst) {
+      worst = d;
+      at = int(i / 4);
+    }
+  }
+  return worst;
+}
+
+TEST(RectImage, PartsRoundTripThroughTheWire) {
+  RectImage img(Rect{10, 20, 7, 5});
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  // Visible pixels only in x 12..14, y 21..22; the rest transparent.
+  for (int y = 21; y <= 22; ++y)
+    for (int x = 12; x <= 14; ++x) {
+      float* p = img.at(x, y);
+      p[3] = u(rng);
+      for (int c = 0; c < 3; ++c) p[c] = u(rng) * p[3];
+    }
+  EXPECT_EQ(activeRect(img, img.rect), (Rect{12, 21, 3, 2}));
+  EXPECT_EQ(activeRect(img, Rect{14, 0, 100, 100}), (Rect{14, 21, 1, 2}));
+  EXPECT_TRUE(activeRect(img, Rect{15, 0, 100, 100}).empty());
+  RectImage c = crop(img, Rect{13, 0, 100, 22});
+  EXPECT_EQ(c.rect, (Rect{13, 20, 4, 2}));
+  EXPECT_EQ(c.at(14, 21)[3], img.at(14, 21)[3]);
+
+  BrickImage part = encodePart(img, Rect{0, 0, 14, 100}, 42, WireFormat::RGBA16);
+  EXPECT_EQ(part.brick_id, 42);
+  EXPECT_EQ(part.rect, (Rect{12, 21, 2, 2}));  // only the active rectangle travels
+  RectImage back = decodePart(unpackBrickImage(packBrickImage(part)));
+  ASSERT_EQ(back.rect, part.rect);
+  for (int y = 21; y <= 22; ++y)
+    for (int x = 12; x <= 13; ++x)
+      for (int ch = 0; ch < 4; ++ch)
+        EXPECT_NEAR(back.at(x, y)[ch], img.at(x, y)[ch], 0.5f / 65535.0f);
+
+  BrickImage none = encodePart(img, Rect{0, 0, 12, 100}, 1, WireFormat::RGBA16);  // transparent
+  EXPECT_TRUE(none.rect.empty());
+  EXPECT_TRUE(none.rle.empty());
+  EXPECT_TRUE(decodePart(none).rect.empty());
+
+  ImageRGBA8 frame(30, 30);
+  pastePart(encodePart(img, img.rect, 0, WireFormat::RGBA8), frame);
+  uint8_t want[4];
+  toRGBA8(img.at(13, 22), want);
+  for (int ch = 0; ch < 4; ++ch) EXPECT_EQ(frame.at(13, 22)[ch], want[ch]);
+  EXPECT_EQ(frame.at(11, 22)[3], 0);
+  ImageRGBA8 tiny(5, 5);
+  EXPECT_THROW(pastePart(encodePart(img, img.rect, 0, WireFormat::RGBA8), tiny), RleError);
+}
+
+// Every case of a property: k = 2-4, 1-8 ranks, a few seeds; frame sizes are no multiple of the
+// rank count. `check` gets the largest difference from blending in order, where it is, and how many
+// of how many pixels differ at all.
+template <class Check>
+void forEveryCase(int max_bricks, bool disjoint, Check&& check) {
+  for (int k = 2; k <= 4; ++k)
+    for (int ranks = 1; ranks <= 8; ++ranks)
+      for (unsigned seed = 0; seed < 4; ++seed) {
+        Case c{37 + int(seed) * 20,
+               23 + int(seed) * 3,
+               ranks,
+               int(2 + (seed * 7 + unsigned(ranks)) % unsigned(max_bricks - 1)),
+               100 * seed + unsigned(ranks),
+               disjoint};
+        SCOPED_TRACE("k " + std::to_string(k) + " ranks " + std::to_string(ranks) + " bricks " +
+                     std::to_string(c.bricks) + " frame " + std::to_string(c.width) + "x" +
+                     std::to_string(c.height) + " seed " + std::to_string(seed));
+        Outcome o = run(c, k);
+        EXPECT_EQ(o.frame.width, c.width);
+        EXPECT_EQ(o.frame.height, c.height);
+        if (o.frame.px.size() != o.want.px.size()) continue;
+        int at = -1, worst = maxDiff(o.frame, o.want, at);
+        long long n_differ = 0;
+        for (size_t i = 0; i < o.frame.px.size(); i += 4)
+          n_differ += !std::equal(&o.frame.px[i], &o.frame.px[i] + 4, &o.want.px[i]);
+        check(worst,
+              "worst pixel " + std::to_string(at % c.width) + "," + std::to_string(at / c.width),
+              n_differ, (long long)o.frame.px.size() / 4);
+        // A rank whose own bricks show nothing takes no part: it sends no byte.
+        for (int r = 0; r < ranks; ++r)
+          if (o.transparent[size_t(r)]) {
+            EXPECT_EQ(o.stats[size_t(r)].bytes_sent, 0.0)
+                << "rank " << r << " shows nothing but sent";
+            EXPECT_TRUE(o.sent[size_t(r)].empty()) << "rank " << r << " shows nothing but sent";
+          }
+      }
+}
+
+// Up to 10 random semi-transparent layers over a pixel. "over" is associative, and partial
+// composites travel at 16 bits: the frame rounds to the same RGBA8 values within 1, and almost
+// every pixel exactly.
+TEST(RadixK, SameFrameAsBlendingInOrder) {
+  long long differ = 0, pixels = 0;
+  forEveryCase(10, false,
+               [&](int worst, const std::string& where, long long n_differ, long long n) {
+                 EXPECT_LE(worst, 1) << where;
+                 differ += n_differ;
+                 pixels += n;
+               });
+  EXPECT_LT(double(differ), 1e-3 * double(pixels))
+      << differ << " of " << pixels << " pixels differ";
+}
+
+// Where no two images overlap, no blend rounds at all: the frames are identical.
+TEST(RadixK, DisjointImagesGiveTheIdenticalFrame) {
+  forEveryCase(10, true, [](int worst, const std::string& where, long long, long long) {
+    EXPECT_EQ(worst, 0) << where;
+  });
+}
+
+}  // namespace
+}  // namespace sortlast

@@ -1,0 +1,90 @@
+#pragma once
+// The metaball ray caster of Mishima, Tanaka and Sagawa (../shared/PAPERS.md §2), in OpenGL 4.5
+// core, one brick at a time. A brick holds the particles inside its clip box plus ghost copies of
+// those within h of it; rays are clipped to the box, so bricks composite like volume bricks and
+// the surface has no seam or double layer at brick faces.
+//
+// Per brick and frame:
+//   1. init: each pixel's ray interval in the clip box.
+//   2. repeat (one window of 8 (or the paper's 4) samples per round, until no pixel searches):
+//        advance  — billboards, MIN blending: where the next window starts (eqs. 1-4);
+//        window   — the window's [first, last] sample per pixel, reduced into a min/max pyramid;
+//        potential— billboards, additive blending: F at the samples (eq. 7, §4.2), particles
+//                   whose distance range misses their tile's window culled (§4.3);
+//        step     — first sample with I = sqrt(F) - T >= 0 ends the search (eq. 8).
+//   3. refine: `refine_iterations` passes of 4 probes around the secant estimate (eqs. 5-6).
+//   4. shade: gradient of F at the final t; opaque premultiplied RGBA, plus t and the normal.
+#include <vector>
+
+#include "common/box.h"
+#include "common/camera.h"
+#include "common/image.h"
+#include "worker/gl_context.h"
+
+namespace sortlast {
+
+struct MetaballSettings {
+  double h = 0.61;              // influence radius (world units)
+  double threshold = 0.765625;  // T
+  double step = 0.61 / 8;       // sample step w (world units)
+  int max_samples = 96;         // cap on samples per pixel and brick
+  int samples_per_pass = 8;     // window length: 4 (the paper, one RGBA target) or 8 (two)
+  int refine_iterations = 3;
+  bool cull = true;
+  glm::dvec3 colour{0.85, 0.9, 1.0};
+};
+
+struct SurfaceBrick {
+  Rect rect;                    // empty: no particle can show in this brick
+  ImageRGBA8 pixels;            // rect.w x rect.h, alpha 1 on the surface, 0 elsewhere
+  std::vector<float> surface;   // if asked for: rect.w x rect.h x (t, nx, ny, nz); t = 1e30 on a miss
+  int rounds = 0;               // windows sampled (for stats)
+};
+
+class MetaballRenderer {
+ public:
+  MetaballRenderer(const GlContext& ctx, int width, int height, const MetaballSettings& settings);
+  ~MetaballRenderer();
+  MetaballRenderer(const MetaballRenderer&) = delete;
+  MetaballRenderer& operator=(const MetaballRenderer&) = delete;
+
+  // `particles`: the brick's own particles and its ghosts, in global order (the field is summed
+  // in this order, so every decomposition adds the same numbers in the same order).
+  int addBrick(const Box3& clip, const std::vector<glm::vec3>& particles);
+
+  // [near_plane, far_plane] must hold every particle's billboard (the same for all bricks).
+  SurfaceBrick render(int handle, const Camera& cam, double near_plane, double far_plane,
+                      bool want_surface = false);
+
+  // After render(): a texture of (t, nx, ny, nz) per pixel over the last brick's rectangle
+  // (t = 1e30 where it missed), for a volume renderer to end its rays at the surface.
+  unsigned surfaceTexture() const { return surface_; }
+  // After render(): the shaded colour (RGBA32F, premultiplied, alpha 1 on the surface).
+  unsigned colourTexture() const { return colour_; }
+
+ private:
+  struct GpuBrick {
+    Box3 clip;
+    Box3 bound;        // clip box cut down to where the particles' field can be non-zero
+    unsigned vbo = 0;
+    int count = 0;
+  };
+  void setCommonUniforms(unsigned program, const Camera& cam, const GpuBrick& b) const;
+  void fullscreen(unsigned program);
+  void buildPyramid(const Rect& r);
+  void drawBillboards(unsigned program, const GpuBrick& b, const glm::mat4& vp, const Rect& r,
+                      float cull_pad);
+  void attach(unsigned texture, int level = 0);
+
+  const GlApi& gl_;
+  int width_, height_, levels_;
+  MetaballSettings s_;
+  unsigned fbo_ = 0, vao_ = 0, empty_vao_ = 0, query_ = 0;
+  unsigned state_ = 0, hit_ = 0, next_ = 0, pot_ = 0, pot2_ = 0, pyramid_ = 0, colour_ = 0, surface_ = 0;
+  unsigned advance_ = 0, potential_ = 0, init_ = 0, window_ = 0, step_ = 0, secant_ = 0,
+           bracket_ = 0, bracket_base_ = 0, shade_ = 0, reduce_ = 0;
+  std::vector<GpuBrick> bricks_;
+  std::vector<float> readback_;
+};
+
+}  // namespace sortlast
