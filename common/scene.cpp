@@ -351,6 +351,12 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
                      s.strategy + "'");
   s.radix = r.as<int>("compositing.radix");
   if (s.radix < 2) throw InputError("scene key 'compositing.radix': must be >= 2");
+  s.precision = r.as<std::string>("compositing.precision");
+  if (s.precision != "float" && s.precision != "rgba8")
+    throw InputError("scene key 'compositing.precision': expected float or rgba8, got '" +
+                     s.precision + "'");
+  s.overlap = r.as<bool>("compositing.overlap");
+  s.rle = r.as<bool>("compositing.rle");
   s.reference_step = r.as<double>("reference.step");
   if (!(s.reference_step > 0.0 && s.reference_step <= 1.0))
     throw InputError("scene key 'reference.step': must be in (0, 1] voxels");

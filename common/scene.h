@@ -48,6 +48,9 @@ struct Scene {
   int block_cells = 64;         // empty-space skipping granularity
   std::string strategy = "direct";  // direct | binary-swap | radix-k
   int radix = 4;                    // radix-k: partners per round
+  std::string precision = "float";  // float | rgba8: how partial composites are held
+  bool overlap = true;              // direct send: send while the next brick renders
+  bool rle = true;                  // run-length code image messages
   double reference_step = 0.0625;  // reference integrator step, in voxel units
 
   bool hasVolume() const { return !volume.file.empty() || volume.procedural != "none"; }

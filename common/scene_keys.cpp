@@ -117,6 +117,20 @@ const std::vector<SceneKey>& sceneKeys() {
       {"compositing.radix", "4",
        "k of `radix-k`: the most partners per round (>= 2; 2 is binary-swap; a round uses fewer "
        "where the rank count has no factor that large)."},
+      {"compositing.precision", "float",
+       "`float`: blend in float and round to 8 bits once per frame (swap strategies send partial "
+       "composites at 16 bits), so every strategy and rank count gives the same frame within "
+       "1/255; an `.exr` output then holds the unrounded frame. `rgba8`: the paper's 8-bit "
+       "intermediate images (direct send rounds after every blend, swap strategies send 8-bit "
+       "partials): fewer bytes, up to half a step of error per blend or round."},
+      {"compositing.overlap", "true",
+       "Direct send: each brick image is sent as soon as it is rendered, while the next brick "
+       "renders, and rank 0 blends images as their visibility order allows. false: all images are "
+       "sent after the last brick (to measure what overlap gains). The swap strategies need all "
+       "of a rank's bricks first and ignore it."},
+      {"compositing.rle", "true",
+       "Run-length code transparent runs in every image message (the paper's Fig. 7). false: every "
+       "pixel travels (to measure what RLE saves)."},
       {"reference.step", "0.0625",
        "Step of the CPU reference integrator, in units of the smallest voxel spacing."},
   };

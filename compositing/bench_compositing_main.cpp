@@ -15,8 +15,19 @@
 // interface), so the compositors are measured unchanged. Every message the strategies send is a
 // packed BrickImage (six int32 then RLE bytes), so a received message's w * h are its pixels.
 //
+// Real layers: `sortlast render --dump-layers DIR` writes one frame's brick images and their
+// visibility order; with `--layers DIR` every rank takes a contiguous run of that order (one
+// convex group of bricks, as a kd-split gives) instead of a synthetic disc, and the frame size is
+// the dump's.
+//
+// Variants: each strategy runs with float and/or RGBA8 precision and RLE on and/or off
+// (compositing.precision / compositing.rle); synthetic layers are re-encoded without RLE for
+// "off".
+//
 // Usage: mpirun -np N bench_compositing [--sizes 512,1024] [--reps 7] [--warmup 2]
-//                                       [--strategies direct,binary-swap,radix-k:4] [--header]
+//                                       [--strategies direct,binary-swap,radix-k:4]
+//                                       [--precisions float,rgba8] [--rle on,off]
+//                                       [--layers DIR] [--header]
 #include <mpi.h>
 
 #include <algorithm>
@@ -26,6 +37,7 @@
 #include <cstdlib>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <random>
 #include <sstream>
 #include <string>
@@ -105,6 +117,38 @@ BrickImage makeLayer(int rank, int w, int h) {
   return b;
 }
 
+// A dump of one rendered frame (sortlast render --dump-layers): frame size, brick order far to
+// near, and each brick's packed image.
+struct Dump {
+  int width = 0, height = 0;
+  std::vector<int> order;
+};
+
+Dump readDump(const std::string& dir) {
+  Dump d;
+  std::ifstream in(dir + "/order.txt");
+  if (!(in >> d.width >> d.height)) throw std::runtime_error("cannot read " + dir + "/order.txt");
+  for (int id; in >> id;) d.order.push_back(id);
+  return d;
+}
+
+BrickImage readBrick(const std::string& dir, int id) {
+  std::ifstream in(dir + "/brick_" + std::to_string(id) + ".bin", std::ios::binary);
+  std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.good() && !in.eof()) throw std::runtime_error("cannot read brick " + std::to_string(id));
+  return unpackBrickImage(bytes);
+}
+
+// The same image with RLE off: decoded and re-encoded with runs of 1.
+BrickImage withoutRle(const BrickImage& b) {
+  BrickImage out{b.brick_id, b.rect, {}};
+  if (b.rect.empty()) return out;
+  std::vector<uint8_t> px(size_t(b.rect.area()) * 4);
+  rleDecode(b.rle, size_t(b.rect.area()), px);
+  rleEncode(px, out.rle, 4, 1);
+  return out;
+}
+
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   size_t n = v.size();
@@ -120,6 +164,8 @@ int main(int argc, char** argv) {
   MPI_Comm_size(MPI_COMM_WORLD, &ranks);
   std::vector<std::string> sizes = {"512", "1024"};
   std::vector<std::string> strategies = {"direct", "binary-swap", "radix-k:4"};
+  std::vector<std::string> precisions = {"float"}, rles = {"on"};
+  std::string layers_dir;
   int reps = 7, warmup = 2;
   bool header = false;
   for (int i = 1; i < argc; ++i) {
@@ -135,6 +181,9 @@ int main(int argc, char** argv) {
     else if (a == "--strategies") strategies = split(next());
     else if (a == "--reps") reps = std::max(1, std::stoi(next()));
     else if (a == "--warmup") warmup = std::max(0, std::stoi(next()));
+    else if (a == "--precisions") precisions = split(next());
+    else if (a == "--rle") rles = split(next());
+    else if (a == "--layers") layers_dir = next();
     else if (a == "--header") header = true;
     else {
       if (rank == 0) std::fprintf(stderr, "bench_compositing: unknown option %s\n", a.c_str());
@@ -142,18 +191,35 @@ int main(int argc, char** argv) {
     }
   }
   if (rank == 0 && header)
-    std::printf("strategy,radix,ranks,width,height,seconds,bytes_sent,messages,pixels_composited,"
-                "memcpy_s\n");
+    std::printf("strategy,radix,precision,rle,layers,ranks,width,height,seconds,bytes_sent,messages,"
+                "pixels_composited,memcpy_s\n");
 
-  // Far to near: a seeded permutation of the ranks (one brick per rank, brick id = rank).
+  // Far to near: a seeded permutation of the ranks (one brick per rank, brick id = rank), or the
+  // dump's brick order cut into one contiguous run per rank.
   VisibilityOrder order;
-  for (int r = 0; r < ranks; ++r) order.ranks.push_back(r);
-  std::shuffle(order.ranks.begin(), order.ranks.end(), std::mt19937(42));
-  order.bricks = order.ranks;
+  Dump dump;
+  std::vector<BrickImage> dumped;  // this rank's run
+  if (!layers_dir.empty()) {
+    dump = readDump(layers_dir);
+    sizes = {std::to_string(dump.width)};
+    order.bricks = dump.order;
+    for (int r = 0; r < ranks; ++r) order.ranks.push_back(r);
+    const size_t n = dump.order.size();
+    for (size_t i = n * size_t(rank) / size_t(ranks); i < n * size_t(rank + 1) / size_t(ranks); ++i)
+      dumped.push_back(readBrick(layers_dir, dump.order[i]));
+  } else {
+    for (int r = 0; r < ranks; ++r) order.ranks.push_back(r);
+    std::shuffle(order.ranks.begin(), order.ranks.end(), std::mt19937(42));
+    order.bricks = order.ranks;
+  }
 
   for (const std::string& size : sizes) {
-    const int w = std::stoi(size), h = w;
-    const BrickImage layer = makeLayer(rank, w, h);
+    const int w = layers_dir.empty() ? std::stoi(size) : dump.width;
+    const int h = layers_dir.empty() ? w : dump.height;
+    const std::vector<BrickImage> layer =
+        layers_dir.empty() ? std::vector<BrickImage>{makeLayer(rank, w, h)} : dumped;
+    std::vector<BrickImage> layer_raw;
+    for (const BrickImage& b : layer) layer_raw.push_back(withoutRle(b));
 
     // memcpy of the frame's RGBA8 bytes x ranks (rank 0 only; the others wait at the barrier).
     double memcpy_s = 0;
@@ -174,7 +240,9 @@ int main(int argc, char** argv) {
 
     ImageRGBA8 first_frame;  // rank 0: the first strategy's frame, to check the others against
     std::string first_name;
-    for (const std::string& spec : strategies) {
+    for (const std::string& spec : strategies)
+    for (const std::string& precision : precisions)
+    for (const std::string& rle : rles) {
       std::string name = spec;
       int radix = 2;
       if (auto c = spec.find(':'); c != std::string::npos) {
@@ -182,11 +250,15 @@ int main(int argc, char** argv) {
         radix = std::stoi(spec.substr(c + 1));
       }
       if (name == "binary-swap") radix = 2;
-      auto compositor = makeCompositor(name, radix);
+      CompositeOptions opts;
+      opts.precision = precision == "rgba8" ? Precision::RGBA8 : Precision::Float;
+      opts.rle = rle != "off";
+      auto compositor = makeCompositor(name, radix, opts);
+      const std::string label = spec + "/" + precision + "/rle-" + rle;
       std::vector<double> times;
       double counts[3] = {0, 0, 0};
       for (int i = 0; i < warmup + reps; ++i) {
-        std::vector<BrickImage> mine{layer};
+        std::vector<BrickImage> mine = opts.rle ? layer : layer_raw;
         CompositeStats cs;
         g_messages = g_bytes = g_pixels = 0;
         MPI_Barrier(MPI_COMM_WORLD);
@@ -203,20 +275,21 @@ int main(int argc, char** argv) {
         if (rank == 0 && i == 0) {
           if (first_frame.px.empty()) {
             first_frame = frame;
-            first_name = spec;
+            first_name = label;
           } else {
             int worst = 0;
             for (size_t p = 0; p < frame.px.size() && p < first_frame.px.size(); ++p)
               worst = std::max(worst, std::abs(int(frame.px[p]) - int(first_frame.px[p])));
             std::fprintf(stderr, "bench_compositing: %dx%d %s vs %s: largest difference %d/255%s\n",
-                         w, h, spec.c_str(), first_name.c_str(), worst,
+                         w, h, label.c_str(), first_name.c_str(), worst,
                          frame.px.size() == first_frame.px.size() ? "" : " (sizes differ!)");
           }
         }
       }
       if (rank == 0) {
-        std::printf("%s,%s,%d,%d,%d,%.6g,%.0f,%.0f,%.0f,%.6g\n", name.c_str(),
-                    name == "direct" ? "" : std::to_string(radix).c_str(), ranks, w, h,
+        std::printf("%s,%s,%s,%s,%s,%d,%d,%d,%.6g,%.0f,%.0f,%.0f,%.6g\n", name.c_str(),
+                    name == "direct" ? "" : std::to_string(radix).c_str(), precision.c_str(),
+                    rle.c_str(), layers_dir.empty() ? "synthetic" : "real", ranks, w, h,
                     median(times), counts[1], counts[0], counts[2], memcpy_s);
         std::fflush(stdout);
       }

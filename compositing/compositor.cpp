@@ -8,10 +8,18 @@
 
 namespace sortlast {
 
-std::unique_ptr<Compositor> makeCompositor(const std::string& strategy, int radix) {
-  if (strategy == "direct") return std::make_unique<DirectSend>();
-  if (strategy == "binary-swap") return std::make_unique<RadixK>(2);
-  if (strategy == "radix-k") return std::make_unique<RadixK>(radix);
+ImageRGBA8 Compositor::composite(std::vector<BrickImage> mine, const VisibilityOrder& order,
+                                 int width, int height, MPI_Comm comm, CompositeStats& stats) {
+  begin(FrameSetup{&order, int(mine.size()), width, height, comm});
+  for (BrickImage& b : mine) add(std::move(b));
+  return finish(stats);
+}
+
+std::unique_ptr<Compositor> makeCompositor(const std::string& strategy, int radix,
+                                           const CompositeOptions& options) {
+  if (strategy == "direct") return std::make_unique<DirectSend>(options);
+  if (strategy == "binary-swap") return std::make_unique<RadixK>(2, options);
+  if (strategy == "radix-k") return std::make_unique<RadixK>(radix, options);
   throw std::invalid_argument("unknown compositing strategy '" + strategy + "'");
 }
 

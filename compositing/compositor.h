@@ -2,6 +2,10 @@
 // A compositing strategy: takes each rank's encoded brick images and leaves the finished frame on
 // rank 0. One strategy per file behind this one interface (IceT's layout); the blending itself is
 // in blend.h and knows nothing of MPI.
+//
+// A frame is begin(), then add() for each of this rank's brick images as soon as it is rendered,
+// then finish(). A strategy that can overlap its messages with rendering (direct send) starts
+// sending in add(); the swap strategies need every brick of a rank first and do all in finish().
 #include <mpi.h>
 
 #include <memory>
@@ -20,16 +24,58 @@ struct CompositeStats {
   double bytes_sent = 0.0;   // bytes this rank sent, message headers included
 };
 
+// How partial results are held. Float: blend in float, round to RGBA8 once per frame (partial
+// composites travel at 16 bits), so every strategy and rank count gives the same frame within
+// 1/255. RGBA8: the paper's intermediate images; direct send rounds after every blend, the swap
+// strategies send their partial composites as RGBA8 (fewer bytes, up to half a step of error
+// per round).
+enum class Precision { Float, RGBA8 };
+
+struct CompositeOptions {
+  Precision precision = Precision::Float;
+  // Direct send: send each brick image as soon as it is rendered and let rank 0 blend images as
+  // their visibility order allows. False: everything is sent after the last brick (for measuring
+  // what overlap gains).
+  bool overlap = true;
+  // Rank 0 also wants the frame unrounded (EXR output): the swap strategies then gather their
+  // final parts at 16 bits instead of 8.
+  bool float_frame = false;
+  // Run-length coding of transparent runs (the paper's Fig. 7) on every message; false: each
+  // pixel travels (for measuring what RLE gains).
+  bool rle = true;
+};
+
+// This rank's part of one frame.
+struct FrameSetup {
+  const VisibilityOrder* order = nullptr;  // every brick and every rank, back to front
+  int brick_count = 0;                     // bricks this rank will add()
+  int width = 0, height = 0;
+  MPI_Comm comm = MPI_COMM_NULL;
+};
+
 class Compositor {
  public:
   virtual ~Compositor() = default;
-  // `mine`: this rank's brick images. `order`: every brick and every rank, back to front. Returns
-  // the frame on rank 0 and an empty image elsewhere. Collective over `comm`.
-  virtual ImageRGBA8 composite(std::vector<BrickImage> mine, const VisibilityOrder& order,
-                               int width, int height, MPI_Comm comm, CompositeStats& stats) = 0;
+  virtual void begin(const FrameSetup& setup) = 0;
+  // One of this rank's brick images, in any order.
+  virtual void add(BrickImage image) = 0;
+  // Called over and over while this rank waits for the others to finish rendering: a chance to
+  // take and blend what has arrived. Never throws (errors are reported by finish()).
+  virtual void progress() {}
+  // Collective over the communicator. Returns the frame on rank 0 and an empty image elsewhere;
+  // with options.float_frame, rank 0's `float_frame` (if given) gets the frame before rounding.
+  virtual ImageRGBA8 finish(CompositeStats& stats, ImageF* float_frame = nullptr) = 0;
+  // The frame failed on some rank before finish(). Called on every rank: completes or drains the
+  // messages already under way, so every rank can stop without a message left unmatched.
+  virtual void abandon() = 0;
+
+  // begin, add each of `mine`, finish.
+  ImageRGBA8 composite(std::vector<BrickImage> mine, const VisibilityOrder& order, int width,
+                       int height, MPI_Comm comm, CompositeStats& stats);
 };
 
 // `strategy`: direct | binary-swap | radix-k (with `radix` partners per round, >= 2).
-std::unique_ptr<Compositor> makeCompositor(const std::string& strategy, int radix);
+std::unique_ptr<Compositor> makeCompositor(const std::string& strategy, int radix,
+                                           const CompositeOptions& options = {});
 
 }  // namespace sortlast

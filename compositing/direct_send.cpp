@@ -1,6 +1,5 @@
 #include "compositing/direct_send.h"
 
-#include <map>
 #include <stdexcept>
 
 #include "compositing/blend.h"
@@ -9,55 +8,194 @@ namespace sortlast {
 
 namespace {
 constexpr int kBrickTag = 101;
+// A message standing in for a brick image that a failed rank will never render (abandon()).
+constexpr int kNoImage = -1;
+}  // namespace
+
+DirectSend::~DirectSend() {
+  // Sends still running here would be erroneous to leave; finish() and abandon() complete them.
+  if (!requests_.empty()) MPI_Waitall(int(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE);
 }
 
-ImageRGBA8 DirectSend::composite(std::vector<BrickImage> mine, const VisibilityOrder& visibility,
-                                 int width, int height, MPI_Comm comm, CompositeStats& stats) {
-  const std::vector<int>& order = visibility.bricks;
-  int rank = 0;
-  MPI_Comm_rank(comm, &rank);
+void DirectSend::begin(const FrameSetup& setup) {
+  setup_ = setup;
+  MPI_Comm_rank(setup.comm, &rank_);
+  stats_ = {};
+  packed_.clear();
+  requests_.clear();
+  held_.clear();
+  sent_ = 0;
+  pending_.clear();
+  next_ = 0;
+  received_ = 0;
+  error_.clear();
+  if (rank_ != 0) return;
+  const size_t n = setup.order->bricks.size();
+  seen_.assign(n, false);
+  expected_ = int(n) - setup.brick_count;
+  if (opt_.precision == Precision::Float)
+    frame_f_ = ImageF(setup.width, setup.height);
+  else
+    frame_8_ = ImageRGBA8(setup.width, setup.height);
+}
+
+void DirectSend::send(const BrickImage& image) {
   double t0 = MPI_Wtime();
-  if (rank != 0) {
-    std::vector<std::vector<uint8_t>> packed;
-    std::vector<MPI_Request> req(mine.size());
-    for (size_t i = 0; i < mine.size(); ++i) {
-      packed.push_back(packBrickImage(mine[i]));
-      stats.bytes_sent += double(packed.back().size());
-      MPI_Isend(packed.back().data(), int(packed.back().size()), MPI_BYTE, 0, kBrickTag, comm,
-                &req[i]);
-    }
-    MPI_Waitall(int(req.size()), req.data(), MPI_STATUSES_IGNORE);
-    stats.transfer_s = MPI_Wtime() - t0;
+  packed_.push_back(std::make_unique<std::vector<uint8_t>>(packBrickImage(image)));
+  const std::vector<uint8_t>& bytes = *packed_.back();
+  stats_.bytes_sent += double(bytes.size());
+  requests_.emplace_back();
+  MPI_Isend(bytes.data(), int(bytes.size()), MPI_BYTE, 0, kBrickTag, setup_.comm, &requests_.back());
+  ++sent_;
+  stats_.transfer_s += MPI_Wtime() - t0;
+}
+
+void DirectSend::waitSends() {
+  double t0 = MPI_Wtime();
+  MPI_Waitall(int(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE);
+  requests_.clear();
+  packed_.clear();
+  stats_.transfer_s += MPI_Wtime() - t0;
+}
+
+bool DirectSend::takeMessage(bool wait) {
+  double t0 = MPI_Wtime();
+  MPI_Status st;
+  int there = 0;
+  if (wait) {
+    MPI_Probe(MPI_ANY_SOURCE, kBrickTag, setup_.comm, &st);
+    there = 1;
+  } else {
+    MPI_Iprobe(MPI_ANY_SOURCE, kBrickTag, setup_.comm, &there, &st);
+  }
+  if (!there) {
+    stats_.transfer_s += MPI_Wtime() - t0;
+    return false;
+  }
+  int bytes = 0;
+  MPI_Get_count(&st, MPI_BYTE, &bytes);
+  buffer_.resize(size_t(bytes));
+  MPI_Recv(buffer_.data(), bytes, MPI_BYTE, st.MPI_SOURCE, kBrickTag, setup_.comm, MPI_STATUS_IGNORE);
+  ++received_;
+  stats_.transfer_s += MPI_Wtime() - t0;
+  try {
+    accept(unpackBrickImage(buffer_), st.MPI_SOURCE);
+  } catch (const std::exception& e) {
+    // Keep receiving: every rank's sends must complete before anyone can stop.
+    if (error_.empty()) error_ = e.what();
+  }
+  return true;
+}
+
+void DirectSend::accept(BrickImage b, int source) {
+  const int id = b.brick_id;
+  if (id < 0 || size_t(id) >= seen_.size() || seen_[size_t(id)])
+    throw std::runtime_error("direct send: unexpected brick id " + std::to_string(id) +
+                             " from rank " + std::to_string(source));
+  seen_[size_t(id)] = true;
+  pending_[id] = std::move(b);
+}
+
+void DirectSend::blendReady() {
+  if (!error_.empty()) return;
+  double t0 = MPI_Wtime();
+  const std::vector<int>& order = setup_.order->bricks;
+  // A malformed image is reported once every message is in (finish()), never thrown from here:
+  // the other ranks' sends must complete first.
+  try {
+    blendInOrder(order);
+  } catch (const std::exception& e) {
+    error_ = e.what();
+  }
+  stats_.composite_s += MPI_Wtime() - t0;
+}
+
+void DirectSend::blendInOrder(const std::vector<int>& order) {
+  while (next_ < order.size()) {
+    auto it = pending_.find(order[next_]);
+    if (it == pending_.end()) break;
+    // One image at a time in order: the same sequence of blends as blending all at the end.
+    std::vector<const BrickImage*> one{&it->second};
+    if (opt_.precision == Precision::Float)
+      blendBackToFront(one, frame_f_);
+    else
+      blendBackToFront(one, frame_8_);
+    pending_.erase(it);
+    ++next_;
+  }
+}
+
+void DirectSend::add(BrickImage image) {
+  if (rank_ != 0) {
+    if (opt_.overlap)
+      send(image);
+    else
+      held_.push_back(std::move(image));
+    return;
+  }
+  try {
+    accept(std::move(image), 0);
+  } catch (const std::exception& e) {
+    if (error_.empty()) error_ = e.what();
+  }
+  progress();
+}
+
+void DirectSend::progress() {
+  if (rank_ != 0 || !opt_.overlap) return;
+  while (takeMessage(false)) {}
+  blendReady();
+}
+
+ImageRGBA8 DirectSend::finish(CompositeStats& stats, ImageF* float_frame) {
+  if (rank_ != 0) {
+    for (const BrickImage& b : held_) send(b);
+    held_.clear();
+    waitSends();
+    stats = stats_;
     return {};
   }
-  std::map<int, BrickImage> by_id;
-  for (BrickImage& b : mine) by_id[b.brick_id] = std::move(b);
-  size_t expected = order.size();
-  std::vector<uint8_t> buf;
-  while (by_id.size() < expected) {
+  while (received_ < expected_) {
+    takeMessage(true);
+    if (opt_.overlap) blendReady();
+  }
+  blendReady();
+  if (error_.empty() && next_ != setup_.order->bricks.size())
+    error_ = "direct send: " + std::to_string(setup_.order->bricks.size() - next_) +
+             " brick image(s) missing after every rank sent its share";
+  if (!error_.empty()) throw std::runtime_error(error_);
+  ImageRGBA8 out;
+  double t0 = MPI_Wtime();
+  if (opt_.precision == Precision::Float) {
+    out = toRGBA8(frame_f_);
+    if (float_frame) *float_frame = std::move(frame_f_);
+  } else {
+    if (float_frame) *float_frame = toFloat(frame_8_);
+    out = std::move(frame_8_);
+  }
+  stats_.composite_s += MPI_Wtime() - t0;
+  stats = stats_;
+  return out;
+}
+
+void DirectSend::abandon() {
+  if (rank_ != 0) {
+    // Stand-ins for the images this rank will not send, so rank 0 can count its messages.
+    held_.clear();
+    while (sent_ < setup_.brick_count) send(BrickImage{kNoImage, {}, {}});
+    waitSends();
+    return;
+  }
+  // Drain: every other rank sends exactly its brick count, real or stand-in.
+  while (received_ < expected_) {
     MPI_Status st;
-    MPI_Probe(MPI_ANY_SOURCE, kBrickTag, comm, &st);
+    MPI_Probe(MPI_ANY_SOURCE, kBrickTag, setup_.comm, &st);
     int bytes = 0;
     MPI_Get_count(&st, MPI_BYTE, &bytes);
-    buf.resize(size_t(bytes));
-    MPI_Recv(buf.data(), bytes, MPI_BYTE, st.MPI_SOURCE, kBrickTag, comm, MPI_STATUS_IGNORE);
-    BrickImage b = unpackBrickImage(buf);
-    if (b.brick_id < 0 || size_t(b.brick_id) >= expected || by_id.count(b.brick_id))
-      throw std::runtime_error("direct send: unexpected brick id " + std::to_string(b.brick_id) +
-                               " from rank " + std::to_string(st.MPI_SOURCE));
-    by_id[b.brick_id] = std::move(b);
+    buffer_.resize(size_t(bytes));
+    MPI_Recv(buffer_.data(), bytes, MPI_BYTE, st.MPI_SOURCE, kBrickTag, setup_.comm, MPI_STATUS_IGNORE);
+    ++received_;
   }
-  double t1 = MPI_Wtime();
-  stats.transfer_s = t1 - t0;
-  std::vector<const BrickImage*> ordered;
-  for (int id : order) ordered.push_back(&by_id.at(id));
-  // Blended in float and rounded once, like the swap strategies: the frame does not depend on
-  // how the blends are grouped.
-  ImageF frame(width, height);
-  blendBackToFront(ordered, frame);
-  ImageRGBA8 out = toRGBA8(frame);
-  stats.composite_s = MPI_Wtime() - t1;
-  return out;
 }
 
 }  // namespace sortlast

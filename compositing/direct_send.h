@@ -1,15 +1,59 @@
 #pragma once
 // Direct send (the paper's scheme): every rank sends each brick image to rank 0, which blends all
-// of them in visibility order (in float, rounded to RGBA8 once). Simple and exact, but rank 0
-// receives everything: it does not scale.
+// of them in visibility order. Simple and exact, but rank 0 receives everything: it does not
+// scale.
+//
+// Overlap: a worker starts sending a brick's image (non-blocking) as soon as it is rendered and
+// goes on to the next brick; rank 0, between its own bricks and then while waiting, takes what has
+// arrived and blends every image whose turn has come (all images behind it in the visibility
+// order already blended), so little is left to do when the last image arrives.
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
 #include "compositing/compositor.h"
 
 namespace sortlast {
 
 class DirectSend final : public Compositor {
  public:
-  ImageRGBA8 composite(std::vector<BrickImage> mine, const VisibilityOrder& order, int width,
-                       int height, MPI_Comm comm, CompositeStats& stats) override;
+  explicit DirectSend(const CompositeOptions& options) : opt_(options) {}
+  ~DirectSend() override;
+  void begin(const FrameSetup& setup) override;
+  void add(BrickImage image) override;
+  void progress() override;
+  ImageRGBA8 finish(CompositeStats& stats, ImageF* float_frame) override;
+  void abandon() override;
+
+ private:
+  // Worker side.
+  void send(const BrickImage& image);
+  void waitSends();
+  // Rank 0.
+  bool takeMessage(bool wait);  // receives one message if one is there (or until one is)
+  void accept(BrickImage image, int source);
+  void blendReady();            // blends images in order while the next one is at hand
+  void blendInOrder(const std::vector<int>& order);
+
+  CompositeOptions opt_;
+  FrameSetup setup_;
+  int rank_ = 0;
+  CompositeStats stats_;
+  // Worker side: packed messages stay alive until their sends complete.
+  std::vector<std::unique_ptr<std::vector<uint8_t>>> packed_;
+  std::vector<MPI_Request> requests_;
+  std::vector<BrickImage> held_;  // without overlap: sent in finish()
+  int sent_ = 0;
+  // Rank 0.
+  std::map<int, BrickImage> pending_;  // received (or own), not yet blended
+  std::vector<bool> seen_;             // per brick id
+  size_t next_ = 0;                    // position in the visibility order of the next blend
+  int expected_ = 0, received_ = 0;    // messages from other ranks
+  std::string error_;                  // first malformed message; reported after draining
+  ImageF frame_f_;
+  ImageRGBA8 frame_8_;
+  std::vector<uint8_t> buffer_;
 };
 
 }  // namespace sortlast

@@ -72,7 +72,9 @@ class Exchange {
     watch_.lapTransfer();
     return unpackBrickImage(bytes);
   }
-  RectImage receive(int from, int tag) { return decodePart(receiveEncoded(from, tag)); }
+  RectImage receive(int from, int tag, WireFormat format) {
+    return decodePart(receiveEncoded(from, tag), format);
+  }
   void finish() {
     watch_.lapComposite();
     t_.finishSends();
@@ -103,18 +105,28 @@ RectImage blendOwnBricks(const std::vector<BrickImage>& mine, const std::vector<
 
 }  // namespace
 
-RadixK::RadixK(int k) : k_(k) {
+RadixK::RadixK(int k, const CompositeOptions& options) : k_(k), opt_(options) {
   if (k < 2) throw std::invalid_argument("radix-k: k must be >= 2, got " + std::to_string(k));
 }
 
-ImageRGBA8 RadixK::composite(std::vector<BrickImage> mine, const VisibilityOrder& order, int width,
-                             int height, MPI_Comm comm, CompositeStats& stats) {
-  MpiTransport transport(comm);
-  return radixKComposite(std::move(mine), order, width, height, k_, transport, stats);
+void RadixK::begin(const FrameSetup& setup) {
+  setup_ = setup;
+  mine_.clear();
+}
+
+ImageRGBA8 RadixK::finish(CompositeStats& stats, ImageF* float_frame) {
+  MpiTransport transport(setup_.comm);
+  stats = {};
+  return radixKComposite(std::move(mine_), *setup_.order, setup_.width, setup_.height, k_,
+                         transport, stats, opt_, float_frame);
 }
 
 ImageRGBA8 radixKComposite(std::vector<BrickImage> mine, const VisibilityOrder& order, int width,
-                           int height, int k, Transport& transport, CompositeStats& stats) {
+                           int height, int k, Transport& transport, CompositeStats& stats,
+                           const CompositeOptions& options, ImageF* float_frame) {
+  // Partial composites travel at 16 bits unless the scene asks for the paper's RGBA8.
+  const WireFormat partials =
+      options.precision == Precision::RGBA8 ? WireFormat::RGBA8 : WireFormat::RGBA16;
   Stopwatch watch(stats);
   Exchange ex(transport, stats, watch);
   const int rank = transport.rank(), ranks = transport.size();
@@ -149,10 +161,10 @@ ImageRGBA8 radixKComposite(std::vector<BrickImage> mine, const VisibilityOrder& 
   if (pos >= 0 && pos < 2 * s.folds) {
     if (pos % 2 == 1) {
       ex.send(plan.rank_at[size_t(pos - 1)], kFoldTag,
-              encodePart(image, image.rect, pos, WireFormat::RGBA16));
+              encodePart(image, image.rect, pos, partials, options.rle));
       image = {};
     } else {
-      RectImage front = ex.receive(plan.rank_at[size_t(pos + 1)], kFoldTag);
+      RectImage front = ex.receive(plan.rank_at[size_t(pos + 1)], kFoldTag, partials);
       image = blendBackToFront(std::vector<const RectImage*>{&image, &front});
       unit = pos / 2;
     }
@@ -169,14 +181,14 @@ ImageRGBA8 radixKComposite(std::vector<BrickImage> mine, const VisibilityOrder& 
     for (size_t m = 0; m < group.size(); ++m)
       if (int(m) != me && !intersect(my_bound, parts[m]).empty())
         ex.send(plan.carrier(group[m]), kRoundTag + t,
-                encodePart(image, parts[m], unit, WireFormat::RGBA16));
+                encodePart(image, parts[m], unit, partials, options.rle));
     std::vector<RectImage> received(group.size());
     std::vector<const RectImage*> layers;
     for (size_t m = 0; m < group.size(); ++m) {
       if (int(m) == me) {
         received[m] = crop(image, parts[size_t(me)]);
       } else if (!intersect(plan.bound(t, group[m]), parts[size_t(me)]).empty()) {
-        received[m] = ex.receive(plan.carrier(group[m]), kRoundTag + t);
+        received[m] = ex.receive(plan.carrier(group[m]), kRoundTag + t, partials);
       }
       layers.push_back(&received[m]);
     }
@@ -184,22 +196,30 @@ ImageRGBA8 radixKComposite(std::vector<BrickImage> mine, const VisibilityOrder& 
     ex.finish();
   }
 
-  // 5. Every unit's part to rank 0.
-  // The parts are final: rounded to RGBA8 where they are, which is what rank 0 would do.
+  // 5. Every unit's part to rank 0. The parts are final: rounded to RGBA8 where they are, which
+  // is what rank 0 would do, unless rank 0 wants the frame unrounded.
+  const WireFormat finals = options.float_frame ? WireFormat::RGBA16 : WireFormat::RGBA8;
   BrickImage last;
   if (unit >= 0 && !plan.bound(s.rounds(), unit).empty()) {
-    last = encodePart(image, s.region(s.rounds(), unit, plan.whole), unit, WireFormat::RGBA8);
+    last = encodePart(image, s.region(s.rounds(), unit, plan.whole), unit, finals, options.rle);
     if (rank != 0) ex.send(0, kGatherTag, last);
   }
   ImageRGBA8 frame;
   if (rank == 0) {
+    ImageF exact(options.float_frame ? width : 0, options.float_frame ? height : 0);
     frame = ImageRGBA8(width, height);
     for (int u = 0; u < s.units(); ++u) {
       if (plan.bound(s.rounds(), u).empty()) continue;
-      if (plan.carrier(u) == 0)
-        pastePart(last, frame);
+      const BrickImage part =
+          plan.carrier(u) == 0 ? std::move(last) : ex.receiveEncoded(plan.carrier(u), kGatherTag);
+      if (options.float_frame)
+        pastePart(decodePart(part, finals), exact);
       else
-        pastePart(ex.receiveEncoded(plan.carrier(u), kGatherTag), frame);
+        pastePart(part, frame);
+    }
+    if (options.float_frame) {
+      frame = toRGBA8(exact);
+      if (float_frame) *float_frame = std::move(exact);
     }
   }
   ex.finish();

@@ -11,18 +11,27 @@
 
 namespace sortlast {
 
+// Every brick of a rank must be in before its local composite, so add() only collects and the
+// whole strategy runs in finish(): nothing to overlap with rendering.
 class RadixK final : public Compositor {
  public:
-  explicit RadixK(int k);  // k >= 2
-  ImageRGBA8 composite(std::vector<BrickImage> mine, const VisibilityOrder& order, int width,
-                       int height, MPI_Comm comm, CompositeStats& stats) override;
+  RadixK(int k, const CompositeOptions& options);  // k >= 2
+  void begin(const FrameSetup& setup) override;
+  void add(BrickImage image) override { mine_.push_back(std::move(image)); }
+  ImageRGBA8 finish(CompositeStats& stats, ImageF* float_frame) override;
+  void abandon() override { mine_.clear(); }  // nothing was sent before finish()
 
  private:
   int k_;
+  CompositeOptions opt_;
+  FrameSetup setup_;
+  std::vector<BrickImage> mine_;
 };
 
-// The strategy over any transport (MPI in RadixK::composite, threads in the unit tests).
+// The strategy over any transport (MPI in RadixK::finish, threads in the unit tests). With
+// options.float_frame, rank 0's `float_frame` (if given) gets the frame before rounding.
 ImageRGBA8 radixKComposite(std::vector<BrickImage> mine, const VisibilityOrder& order, int width,
-                           int height, int k, Transport& transport, CompositeStats& stats);
+                           int height, int k, Transport& transport, CompositeStats& stats,
+                           const CompositeOptions& options = {}, ImageF* float_frame = nullptr);
 
 }  // namespace sortlast

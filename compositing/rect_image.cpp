@@ -71,7 +71,7 @@ RectImage crop(const RectImage& img, const Rect& r) {
   return out;
 }
 
-BrickImage encodePart(const RectImage& img, const Rect& part, int id, WireFormat format) {
+BrickImage encodePart(const RectImage& img, const Rect& part, int id, WireFormat format, bool rle) {
   BrickImage b;
   b.brick_id = id;
   b.rect = activeRect(img, part);
@@ -87,20 +87,34 @@ BrickImage encodePart(const RectImage& img, const Rect& part, int id, WireFormat
       else
         toRGBA16(row + 4 * x, o);
   }
-  b.rle = rleEncode(px, int(bytes));
+  b.rle = rleEncode(px, int(bytes), rle ? kMaxRun : 1);
   return b;
 }
 
-RectImage decodePart(const BrickImage& b) {
+RectImage decodePart(const BrickImage& b, WireFormat format) {
   if (b.rect.empty()) {
     if (!b.rle.empty()) throw RleError("image part: empty rectangle with a non-empty stream");
     return {};
   }
-  std::vector<uint8_t> px(size_t(b.rect.area()) * 8);
-  rleDecode(b.rle, size_t(b.rect.area()), px, 8);
+  const int bytes = int(format);
+  std::vector<uint8_t> px(size_t(b.rect.area()) * size_t(bytes));
+  rleDecode(b.rle, size_t(b.rect.area()), px, bytes);
   RectImage out(b.rect);
-  for (size_t i = 0; i < out.px.size(); ++i) out.px[i] = fromRGBA16(&px[2 * i]);
+  if (format == WireFormat::RGBA16)
+    for (size_t i = 0; i < out.px.size(); ++i) out.px[i] = fromRGBA16(&px[2 * i]);
+  else
+    for (size_t i = 0; i < out.px.size(); ++i) out.px[i] = px[i] / 255.0f;
   return out;
+}
+
+void pastePart(const RectImage& part, ImageF& frame) {
+  const Rect& r = part.rect;
+  if (r.empty()) return;
+  if (r.x < 0 || r.y < 0 || r.x + r.w > frame.width || r.y + r.h > frame.height)
+    throw RleError("image part: rectangle outside the frame");
+  for (int y = 0; y < r.h; ++y)
+    std::memcpy(&frame.px[(size_t(r.y + y) * frame.width + size_t(r.x)) * 4], part.at(r.x, r.y + y),
+                size_t(r.w) * 4 * sizeof(float));
 }
 
 void pastePart(const BrickImage& b, ImageRGBA8& frame) {

@@ -40,13 +40,16 @@ RectImage crop(const RectImage& img, const Rect& r);
 enum class WireFormat { RGBA8 = 4, RGBA16 = 8 };  // bytes per pixel
 
 // `img`'s pixels inside `part`, shrunk to their active rectangle, rounded to `format` and
-// RLE-encoded; `id` goes into the brick id field. A transparent part gives an empty rectangle and
-// no bytes.
-BrickImage encodePart(const RectImage& img, const Rect& part, int id, WireFormat format);
-// Decodes an RGBA16 part. Throws RleError if malformed.
-RectImage decodePart(const BrickImage& b);
+// RLE-encoded (`rle` false: with runs of 1, as long as the raw pixels); `id` goes into the brick
+// id field. A transparent part gives an empty rectangle and no bytes.
+BrickImage encodePart(const RectImage& img, const Rect& part, int id, WireFormat format,
+                      bool rle = true);
+// Decodes a part sent in `format`. Throws RleError if malformed.
+RectImage decodePart(const BrickImage& b, WireFormat format = WireFormat::RGBA16);
 // Decodes an RGBA8 part into `frame` (a plain copy: parts do not overlap). Throws RleError if
 // malformed or outside the frame.
 void pastePart(const BrickImage& b, ImageRGBA8& frame);
+// Copies a decoded part into a float frame. Throws RleError if it lies outside the frame.
+void pastePart(const RectImage& part, ImageF& frame);
 
 }  // namespace sortlast

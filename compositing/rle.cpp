@@ -17,7 +17,7 @@ bool transparent(const uint8_t* p) {
 }
 
 template <size_t B>
-void encode(std::span<const uint8_t> px, std::vector<uint8_t>& out) {
+void encode(std::span<const uint8_t> px, std::vector<uint8_t>& out, uint32_t max_run) {
   const size_t n = px.size() / B;
   size_t i = 0;
   while (i < n) {
@@ -30,7 +30,7 @@ void encode(std::span<const uint8_t> px, std::vector<uint8_t>& out) {
       continue;
     }
     size_t j = i + 1;
-    while (j < n && transparent<B>(&px[B * j]) && j - i < kMaxRun) ++j;
+    while (j < n && transparent<B>(&px[B * j]) && j - i < max_run) ++j;
     uint32_t run = uint32_t(j - i);
     uint8_t marker[B] = {uint8_t(run & 0xff), uint8_t((run >> 8) & 0xff),
                          uint8_t((run >> 16) & 0xff)};
@@ -73,18 +73,21 @@ void checkPixelBytes(int pixel_bytes) {
 
 }  // namespace
 
-void rleEncode(std::span<const uint8_t> px, std::vector<uint8_t>& out, int pixel_bytes) {
+void rleEncode(std::span<const uint8_t> px, std::vector<uint8_t>& out, int pixel_bytes,
+               uint32_t max_run) {
   checkPixelBytes(pixel_bytes);
+  if (max_run < 1 || max_run > kMaxRun)
+    throw std::invalid_argument("RLE: max_run must be in [1, 2^24 - 1]");
   if (pixel_bytes == 4)
-    encode<4>(px, out);
+    encode<4>(px, out, max_run);
   else
-    encode<8>(px, out);
+    encode<8>(px, out, max_run);
 }
 
-std::vector<uint8_t> rleEncode(std::span<const uint8_t> px, int pixel_bytes) {
+std::vector<uint8_t> rleEncode(std::span<const uint8_t> px, int pixel_bytes, uint32_t max_run) {
   std::vector<uint8_t> out;
   out.reserve(px.size() / 8);
-  rleEncode(px, out, pixel_bytes);
+  rleEncode(px, out, pixel_bytes, max_run);
   return out;
 }
 

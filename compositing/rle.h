@@ -17,9 +17,13 @@ struct RleError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Appends the encoding of `pixels` (`pixel_bytes` = 4 or 8 each) to `out`.
-void rleEncode(std::span<const uint8_t> pixels, std::vector<uint8_t>& out, int pixel_bytes = 4);
-std::vector<uint8_t> rleEncode(std::span<const uint8_t> pixels, int pixel_bytes = 4);
+// Appends the encoding of `pixels` (`pixel_bytes` = 4 or 8 each) to `out`. `max_run` = 1 turns
+// the compression off while keeping the format: each transparent pixel becomes its own marker, so
+// the stream is exactly as long as the raw pixels (what "RLE off" measures).
+void rleEncode(std::span<const uint8_t> pixels, std::vector<uint8_t>& out, int pixel_bytes = 4,
+               uint32_t max_run = kMaxRun);
+std::vector<uint8_t> rleEncode(std::span<const uint8_t> pixels, int pixel_bytes = 4,
+                               uint32_t max_run = kMaxRun);
 
 // Decodes exactly `pixel_count` pixels into `out` (pixel_bytes * pixel_count bytes). Throws
 // RleError on a stream of the wrong length, a zero-length run or a run that overflows the image;

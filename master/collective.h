@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <exception>
 #include <string>
+#include <utility>
 
 #include "common/error.h"
 
@@ -17,8 +18,11 @@ namespace sortlast {
 
 struct JobFailed {};
 
-template <class Step>
-void collectively(MPI_Comm comm, Step&& step) {
+// `while_waiting` runs over and over while this rank waits for the others to finish the step
+// (the failure flag is reduced without blocking), so a rank that is done early can do useful
+// work meanwhile: rank 0 blends brick images that have arrived. It must not throw.
+template <class Step, class Idle>
+void collectively(MPI_Comm comm, Step&& step, Idle&& while_waiting) {
   int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
@@ -31,10 +35,21 @@ void collectively(MPI_Comm comm, Step&& step) {
     message = (size > 1 ? "rank " + std::to_string(rank) + ": " : std::string()) + e.what();
   }
   int mine = message.empty() ? INT_MAX : rank, first = INT_MAX;
-  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm);
+  MPI_Request request;
+  MPI_Iallreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm, &request);
+  for (int done = 0;;) {
+    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+    if (done) break;
+    if (message.empty()) while_waiting();
+  }
   if (first == INT_MAX) return;
   if (rank == first) std::fprintf(stderr, "sortlast: error: %s\n", message.c_str());
   throw JobFailed{};
+}
+
+template <class Step>
+void collectively(MPI_Comm comm, Step&& step) {
+  collectively(comm, std::forward<Step>(step), [] {});
 }
 
 }  // namespace sortlast

@@ -73,11 +73,39 @@ Box3 unite(const Box3& a, const Box3& b) { return {glm::min(a.lo, b.lo), glm::ma
 bool isEmpty(const Box3& b) { return b.lo.x > b.hi.x; }
 
 // Fault injection for the tests: a rank that throws (the others must stop cleanly) or dies (mpirun
-// must end the job). Inert unless the variables are set.
+// must end the job), before its first brick, or after its first brick's image has gone to the
+// compositor (direct send has then started sending it). Inert unless the variables are set.
+bool isTestFaultRank(const char* var, int rank) {
+  const char* v = std::getenv(var);
+  return v && std::atoi(v) == rank;
+}
+
 void injectTestFault(int rank) {
-  auto is_me = [&](const char* var) { const char* v = std::getenv(var); return v && std::atoi(v) == rank; };
-  if (is_me("SORTLAST_TEST_FAIL_RANK")) throw std::runtime_error("injected failure (SORTLAST_TEST_FAIL_RANK)");
-  if (is_me("SORTLAST_TEST_CRASH_RANK")) std::abort();
+  if (isTestFaultRank("SORTLAST_TEST_FAIL_RANK", rank))
+    throw std::runtime_error("injected failure (SORTLAST_TEST_FAIL_RANK)");
+  if (isTestFaultRank("SORTLAST_TEST_CRASH_RANK", rank)) std::abort();
+}
+
+void injectLateTestFault(int rank) {
+  if (isTestFaultRank("SORTLAST_TEST_FAIL_RANK_AFTER_BRICK", rank))
+    throw std::runtime_error("injected failure after a brick (SORTLAST_TEST_FAIL_RANK_AFTER_BRICK)");
+}
+
+// bench_compositing --layers input: the frame size and brick order (order.txt) and each brick's
+// packed image (brick_ID.bin).
+void dumpOrder(const std::string& dir, const Camera& cam, const VisibilityOrder& order) {
+  std::filesystem::create_directories(dir);
+  std::ofstream out(dir + "/order.txt");
+  out << cam.width << " " << cam.height << "\n";
+  for (int id : order.bricks) out << id << "\n";
+  if (!out) throw InputError("cannot write " + dir + "/order.txt");
+}
+
+void dumpLayer(const std::string& dir, const BrickImage& img) {
+  std::vector<uint8_t> bytes = packBrickImage(img);
+  std::ofstream out(dir + "/brick_" + std::to_string(img.brick_id) + ".bin", std::ios::binary);
+  out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+  if (!out) throw InputError("cannot write brick image into " + dir);
 }
 
 // What every rank knows about the scene's layout before any data is read.
@@ -177,7 +205,14 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
                    has_particles ? (", " + std::to_string(root.total) + " particles").c_str() : "",
                    renderer->description().c_str());
 
-    auto compositor = makeCompositor(scene.strategy, scene.radix);
+    // An EXR output holds the frame before rounding; PNG is 8-bit.
+    const bool float_output = std::filesystem::path(opts.output).extension() == ".exr";
+    CompositeOptions copts;
+    copts.precision = scene.precision == "rgba8" ? Precision::RGBA8 : Precision::Float;
+    copts.overlap = scene.overlap;
+    copts.rle = scene.rle;
+    copts.float_frame = float_output;
+    auto compositor = makeCompositor(scene.strategy, scene.radix, copts);
     const bool want_surface = has_particles && !opts.surface_out.empty();
     nlohmann::json stats_json = nlohmann::json::array();
     Progress progress(int(L.cameras.size()), opts.quiet);
@@ -188,35 +223,52 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
       auto [near_plane, far_plane] = depthRange(cam, has_particles ? grow(L.bounds, h) : L.bounds);
       RankFrameStats st;
       st.particles_held = particles_held;
-      std::vector<BrickImage> images;
       std::vector<SurfacePiece> surfaces;
-      collectively(comm, [&] {
-        injectTestFault(rank);
-        for (size_t i = 0; i < mine.size(); ++i) {
-          double t0 = MPI_Wtime();
-          BrickFrame bf = renderer->render(handles[i], cam, scene.sampleSpacingWorld(), near_plane,
-                                           far_plane, want_surface);
-          double t1 = MPI_Wtime();
-          BrickImage img{mine[i], bf.rect, {}};
-          if (!bf.rect.empty()) rleEncode(bf.pixels.px, img.rle);
-          st.render_s += t1 - t0;
-          st.encode_s += MPI_Wtime() - t1;
-          st.bytes_raw += double(bf.rect.area()) * 4;
-          st.bytes_rle += double(img.rle.size());
-          st.particle_rounds = std::max(st.particle_rounds, double(bf.particle_rounds));
-          (bf.rect.empty() ? st.bricks_skipped : st.bricks_rendered) += 1;
-          images.push_back(std::move(img));
-          if (want_surface) surfaces.push_back({bf.rect, std::move(bf.surface)});
-        }
-      });
+      const VisibilityOrder order = visibilityOrder(L.assignment, L.planes, cam.position);
+      // Each brick image goes to the compositor as soon as it is encoded: direct send starts
+      // sending it while the next brick renders.
+      compositor->begin(FrameSetup{&order, int(mine.size()), cam.width, cam.height, comm});
+      if (f == 0 && !opts.dump_layers.empty())  // rank 0 makes the directory first
+        collectively(comm, [&] { if (rank == 0) dumpOrder(opts.dump_layers, cam, order); });
+      try {
+        collectively(comm, [&] {
+          injectTestFault(rank);
+          for (size_t i = 0; i < mine.size(); ++i) {
+            double t0 = MPI_Wtime();
+            BrickFrame bf = renderer->render(handles[i], cam, scene.sampleSpacingWorld(), near_plane,
+                                             far_plane, want_surface);
+            double t1 = MPI_Wtime();
+            BrickImage img{mine[i], bf.rect, {}};
+            if (!bf.rect.empty()) rleEncode(bf.pixels.px, img.rle, 4, scene.rle ? kMaxRun : 1);
+            st.render_s += t1 - t0;
+            st.encode_s += MPI_Wtime() - t1;
+            st.bytes_raw += double(bf.rect.area()) * 4;
+            st.bytes_rle += double(img.rle.size());
+            st.particle_rounds = std::max(st.particle_rounds, double(bf.particle_rounds));
+            (bf.rect.empty() ? st.bricks_skipped : st.bricks_rendered) += 1;
+            if (f == 0 && !opts.dump_layers.empty()) dumpLayer(opts.dump_layers, img);
+            compositor->add(std::move(img));
+            if (want_surface) surfaces.push_back({bf.rect, std::move(bf.surface)});
+            injectLateTestFault(rank);
+          }
+        }, [&] { compositor->progress(); });
+      } catch (const JobFailed&) {
+        compositor->abandon();  // so no rank is left with a send nobody receives
+        throw;
+      }
       CompositeStats cs;
       ImageRGBA8 frame;
+      ImageF frame_f;
       const int frames = int(L.cameras.size());
       collectively(comm, [&] {
-        frame = compositor->composite(std::move(images),
-                                      visibilityOrder(L.assignment, L.planes, cam.position),
-                                      cam.width, cam.height, comm, cs);
-        if (rank == 0) writeImage(frameFileName(opts.output, f, frames), frame, scene.background);
+        frame = compositor->finish(cs, float_output ? &frame_f : nullptr);
+        if (rank == 0) {
+          const std::string file = frameFileName(opts.output, f, frames);
+          if (float_output)
+            writeImage(file, frame_f, scene.background);
+          else
+            writeImage(file, frame, scene.background);
+        }
       });
       if (want_surface) {
         SurfaceImage surface = gatherSurface(surfaces, cam.width, cam.height, comm);

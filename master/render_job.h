@@ -13,6 +13,7 @@ struct RenderOptions {
   std::string output = "sortlast.png";
   std::string stats;                   // JSON file, or empty
   std::string surface_out;             // EXR of the particle surface (t, normal), or empty
+  std::string dump_layers;             // directory for frame 0's brick images, or empty
   bool quiet = false;
 };
 

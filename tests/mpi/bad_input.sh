@@ -43,6 +43,15 @@ expect_error "bricks finer than the grid" "bricks per axis need at least" \
   --set "volume.dims=[4,4,4]" --set bricks.per_axis=4
 SORTLAST_TEST_FAIL_RANK=2 expect_error "one rank fails while rendering" "rank 2: injected failure" \
   --set image.width=64 --set image.height=64
+# After its first brick a rank has images on the way to rank 0 (direct send overlaps sending with
+# rendering; 512^2 brick images are large enough to need the receiver): the others must still
+# drain them and stop. Rank 0 failing late must drain what the others send.
+for r in 2 0; do
+  SORTLAST_TEST_FAIL_RANK_AFTER_BRICK=$r expect_error "rank $r fails after its first brick" \
+    "injected failure after a brick" --set image.width=512 --set image.height=512
+done
+SORTLAST_TEST_FAIL_RANK_AFTER_BRICK=1 expect_error "binary-swap: rank 1 fails after a brick" \
+  "injected failure after a brick" --set compositing.strategy=binary-swap
 rc=0
 SORTLAST_TEST_CRASH_RANK=1 run_np 3 render -q -o "$WORK/out.png" --set image.width=64 \
   --set image.height=64 >/dev/null 2>&1 || rc=$?

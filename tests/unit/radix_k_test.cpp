@@ -88,6 +88,7 @@ struct Case {
 
 struct Outcome {
   ImageRGBA8 frame, want;
+  ImageF frame_f, want_f;  // rank 0's unrounded frame (options.float_frame), blending in float
   std::vector<CompositeStats> stats;
   std::vector<bool> transparent;  // per rank: its own bricks show nothing
   std::vector<std::map<std::pair<int, int>, int>> sent;
@@ -96,7 +97,7 @@ struct Outcome {
 // Random brick images (overlapping rectangles, transparent stretches, some wholly transparent or
 // empty), dealt to ranks as runs of the brick order in a random rank order, composited by radix-k
 // on threads; `want` blends them all in order into one frame.
-Outcome run(const Case& c, int k) {
+Outcome run(const Case& c, int k, const CompositeOptions& options = {}) {
   std::mt19937 rng(c.seed);
   std::vector<BrickImage> bricks;
   for (int id = 0; id < c.bricks; ++id) {
@@ -155,6 +156,7 @@ Outcome run(const Case& c, int k) {
   for (const BrickImage& b : bricks) all.push_back(&b);
   blendBackToFront(all, want);
   out.want = toRGBA8(want);
+  out.want_f = want;
 
   Mailbox box;
   box.sent.resize(size_t(c.ranks));
@@ -167,7 +169,8 @@ Outcome run(const Case& c, int k) {
       try {
         ThreadTransport t(box, r, c.ranks);
         frames[size_t(r)] =
-            radixKComposite(mine[size_t(r)], order, c.width, c.height, k, t, out.stats[size_t(r)]);
+            radixKComposite(mine[size_t(r)], order, c.width, c.height, k, t, out.stats[size_t(r)],
+                            options, r == 0 ? &out.frame_f : nullptr);
       } catch (const std::exception& e) {
         errors[size_t(r)] = e.what();
       }
@@ -241,7 +244,8 @@ TEST(RectImage, PartsRoundTripThroughTheWire) {
 // rank count. `check` gets the largest difference from blending in order, where it is, and how many
 // of how many pixels differ at all.
 template <class Check>
-void forEveryCase(int max_bricks, bool disjoint, Check&& check) {
+void forEveryCase(int max_bricks, bool disjoint, Check&& check, const CompositeOptions& options = {},
+                  std::vector<Outcome>* outcomes = nullptr) {
   for (int k = 2; k <= 4; ++k)
     for (int ranks = 1; ranks <= 8; ++ranks)
       for (unsigned seed = 0; seed < 4; ++seed) {
@@ -254,7 +258,7 @@ void forEveryCase(int max_bricks, bool disjoint, Check&& check) {
         SCOPED_TRACE("k " + std::to_string(k) + " ranks " + std::to_string(ranks) + " bricks " +
                      std::to_string(c.bricks) + " frame " + std::to_string(c.width) + "x" +
                      std::to_string(c.height) + " seed " + std::to_string(seed));
-        Outcome o = run(c, k);
+        Outcome o = run(c, k, options);
         EXPECT_EQ(o.frame.width, c.width);
         EXPECT_EQ(o.frame.height, c.height);
         if (o.frame.px.size() != o.want.px.size()) continue;
@@ -272,7 +276,15 @@ void forEveryCase(int max_bricks, bool disjoint, Check&& check) {
                 << "rank " << r << " shows nothing but sent";
             EXPECT_TRUE(o.sent[size_t(r)].empty()) << "rank " << r << " shows nothing but sent";
           }
+        if (outcomes) outcomes->push_back(std::move(o));
       }
+}
+
+double totalBytes(const std::vector<Outcome>& outcomes) {
+  double bytes = 0;
+  for (const Outcome& o : outcomes)
+    for (const CompositeStats& s : o.stats) bytes += s.bytes_sent;
+  return bytes;
 }
 
 // Up to 10 random semi-transparent layers over a pixel. "over" is associative, and partial
@@ -295,6 +307,53 @@ TEST(RadixK, DisjointImagesGiveTheIdenticalFrame) {
   forEveryCase(10, true, [](int worst, const std::string& where, long long, long long) {
     EXPECT_EQ(worst, 0) << where;
   });
+}
+
+// RLE off changes the bytes on the wire, never the frame.
+TEST(RadixK, RleOffGivesTheSameFrameWithMoreBytes) {
+  std::vector<Outcome> on, off;
+  forEveryCase(10, false, [](int, const std::string&, long long, long long) {}, {}, &on);
+  CompositeOptions raw;
+  raw.rle = false;
+  forEveryCase(10, false, [](int, const std::string&, long long, long long) {}, raw, &off);
+  ASSERT_EQ(on.size(), off.size());
+  for (size_t i = 0; i < on.size(); ++i) EXPECT_EQ(on[i].frame.px, off[i].frame.px) << "case " << i;
+  EXPECT_GT(totalBytes(off), totalBytes(on));
+}
+
+// The paper's RGBA8 partials: half a step of rounding per round, fewer bytes than 16-bit ones.
+TEST(RadixK, Rgba8PartialsStayWithinAFewStepsWithFewerBytes) {
+  std::vector<Outcome> f, b8;
+  forEveryCase(10, false, [](int, const std::string&, long long, long long) {}, {}, &f);
+  CompositeOptions eight;
+  eight.precision = Precision::RGBA8;
+  int worst_all = 0;
+  forEveryCase(10, false,
+               [&](int worst, const std::string& where, long long, long long) {
+                 EXPECT_LE(worst, 3) << where;
+                 worst_all = std::max(worst_all, worst);
+               },
+               eight, &b8);
+  EXPECT_GE(worst_all, 1) << "RGBA8 partials never rounded: the option does nothing";
+  EXPECT_LT(totalBytes(b8), 0.75 * totalBytes(f));
+}
+
+// Asked for the unrounded frame, rank 0 gets the float composite (16-bit parts) and its rounding.
+TEST(RadixK, FloatFrameIsTheUnroundedComposite) {
+  CompositeOptions opt;
+  opt.float_frame = true;
+  std::vector<Outcome> all;
+  forEveryCase(6, false, [](int worst, const std::string& where, long long, long long) {
+    EXPECT_LE(worst, 1) << where;
+  }, opt, &all);
+  for (const Outcome& o : all) {
+    ASSERT_EQ(o.frame_f.px.size(), o.want_f.px.size());
+    float worst = 0;
+    for (size_t i = 0; i < o.frame_f.px.size(); ++i)
+      worst = std::max(worst, std::abs(o.frame_f.px[i] - o.want_f.px[i]));
+    EXPECT_LT(worst, 8.0f / 65535.0f);
+    EXPECT_EQ(toRGBA8(o.frame_f).px, o.frame.px);
+  }
 }
 
 }  // namespace

@@ -309,4 +309,17 @@ TEST(Rle, Rgba16PixelsRoundTripAndFormat) {
 }
 
 }  // namespace
+// max_run = 1: RLE off in the same format; the stream is exactly the raw pixels' length.
+TEST(Rle, RunsOfOneKeepTheFormatAndTheRawLength) {
+  std::vector<uint8_t> px(4 * 50, 0);
+  for (int i = 10; i < 14; ++i) px[4 * i + 3] = 200, px[4 * i] = 100;
+  std::vector<uint8_t> raw = rleEncode(px, 4, 1);
+  EXPECT_EQ(raw.size(), px.size());
+  EXPECT_LT(rleEncode(px).size(), px.size());
+  std::vector<uint8_t> back(px.size());
+  rleDecode(raw, 50, back);
+  EXPECT_EQ(back, px);
+  EXPECT_THROW(rleEncode(px, 4, 0), std::invalid_argument);
+}
+
 }  // namespace sortlast
