@@ -1,5 +1,6 @@
 #include "master/compare.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -49,6 +50,19 @@ ImageRGBA8 differenceImage(const ImageRGBA8& a, const ImageRGBA8& b, int gain) {
     for (int c = 0; c < 3; ++c)
       out.px[i + c] = uint8_t(std::min(255, gain * std::abs(int(a.px[i + c]) - int(b.px[i + c]))));
     out.px[i + 3] = 255;
+  }
+  return out;
+}
+
+ImageRGBA8 opaqueOver(const ImageF& img, const glm::dvec3& background) {
+  ImageRGBA8 out(img.width, img.height);
+  for (size_t i = 0; i < size_t(img.width) * img.height; ++i) {
+    const float* p = &img.px[4 * i];
+    for (int c = 0; c < 3; ++c) {
+      float v = std::clamp(p[c] + (1.0f - p[3]) * float(background[c]), 0.0f, 1.0f);
+      out.px[4 * i + c] = uint8_t(std::lround(v * 255.0f));
+    }
+    out.px[4 * i + 3] = 255;
   }
   return out;
 }

@@ -19,5 +19,8 @@ ImageDifference compareImages(const ImageRGBA8& a, const ImageRGBA8& b);  // thr
 // Pixels where some channel differs by more than `tolerance`.
 long long countPixelsOver(const ImageRGBA8& a, const ImageRGBA8& b, int tolerance);
 ImageRGBA8 differenceImage(const ImageRGBA8& a, const ImageRGBA8& b, int gain);
+// A premultiplied image composited over `background` and rounded, opaque: what a PNG written by
+// writeImage holds, so in-process comparisons agree with comparing the written files.
+ImageRGBA8 opaqueOver(const ImageF& img, const glm::dvec3& background);
 
 }  // namespace sortlast

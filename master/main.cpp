@@ -120,6 +120,9 @@ int main(int argc, char** argv) {
   auto* render = app.add_subcommand("render", "Render a scene (run under mpirun -np N)");
   addSceneOptions(render, render_opts);
   render->add_option("--stats", render_opts.stats, "Write per-frame timings and byte counts as JSON");
+  render->add_flag("--psnr", render_opts.psnr,
+                   "Also measure each frame against the CPU reference (rank 0 loads the whole "
+                   "scene; slow): --stats then holds psnr_db, max_diff and reference_s per frame");
   render->add_option("--dump-layers", render_opts.dump_layers,
                      "Write the first frame's brick images (packed, RLE) and their visibility "
                      "order into this directory, for bench_compositing --layers");

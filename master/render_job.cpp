@@ -17,6 +17,8 @@
 #include "compositing/visibility.h"
 #include "master/brick_renderer.h"
 #include "master/collective.h"
+#include "master/compare.h"
+#include "master/frame_reference.h"
 #include "master/frame_stats.h"
 #include "master/progress.h"
 #include "master/particle_loading.h"
@@ -106,6 +108,19 @@ void dumpLayer(const std::string& dir, const BrickImage& img) {
   std::ofstream out(dir + "/brick_" + std::to_string(img.brick_id) + ".bin", std::ios::binary);
   out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
   if (!out) throw InputError("cannot write brick image into " + dir);
+}
+
+// The frame's distance from the CPU reference, as `sortlast compare` reports it on the two images
+// written over the background: PSNR over RGB and the largest channel difference.
+void addAccuracy(nlohmann::json& j, const ImageRGBA8& frame, const FrameReference& reference,
+                 const Camera& cam, const glm::dvec3& background) {
+  double t0 = MPI_Wtime();
+  ImageDifference d = compareImages(opaqueOver(toFloat(frame), background),
+                                    opaqueOver(reference.render(cam), background));
+  // JSON has no infinity: an image identical to the reference reports null.
+  j["psnr_db"] = std::isfinite(d.psnr_db) ? nlohmann::json(d.psnr_db) : nlohmann::json();
+  j["max_diff"] = d.max_diff;
+  j["reference_s"] = MPI_Wtime() - t0;
 }
 
 // What every rank knows about the scene's layout before any data is read.
@@ -213,6 +228,10 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
     copts.rle = scene.rle;
     copts.float_frame = float_output;
     auto compositor = makeCompositor(scene.strategy, scene.radix, copts);
+    // --psnr: rank 0 holds the whole scene for the CPU reference of every frame.
+    std::unique_ptr<FrameReference> reference;
+    if (opts.psnr)
+      collectively(comm, [&] { if (rank == 0) reference = std::make_unique<FrameReference>(scene, 0); });
     const bool want_surface = has_particles && !opts.surface_out.empty();
     nlohmann::json stats_json = nlohmann::json::array();
     Progress progress(int(L.cameras.size()), opts.quiet);
@@ -281,7 +300,10 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
       st.peak_rss_mb = peakRssMiB();
       auto all = gatherStats(st, comm);
       if (rank == 0) {
-        stats_json.push_back(frameJson(f, all, cs.composite_s, MPI_Wtime() - t_frame));
+        nlohmann::json j = frameJson(f, all, cs.composite_s, MPI_Wtime() - t_frame);
+        // After the frame's time is taken: the reference is a measuring instrument.
+        if (reference) addAccuracy(j, frame, *reference, cam, scene.background);
+        stats_json.push_back(std::move(j));
         progress.frameDone(f);
       }
     }

@@ -14,6 +14,7 @@ struct RenderOptions {
   std::string stats;                   // JSON file, or empty
   std::string surface_out;             // EXR of the particle surface (t, normal), or empty
   std::string dump_layers;             // directory for frame 0's brick images, or empty
+  bool psnr = false;                   // --stats also carries each frame's PSNR vs the reference
   bool quiet = false;
 };
 

@@ -21,7 +21,11 @@ for r in rows:
         r[k] = int(r[k])
     for k in ("seconds", "bytes_sent", "messages", "pixels_composited", "memcpy_s"):
         r[k] = float(r[k]) if r[k] else 0.0
-    r["label"] = r["strategy"] if r["strategy"] == "direct" else f"{r['strategy']} k={r['radix']}"
+    r.setdefault("precision", "float")
+    r.setdefault("rle", "on")
+    r.setdefault("layers", "synthetic")
+    name = r["strategy"] if r["strategy"] == "direct" else f"{r['strategy']} k={r['radix']}"
+    r["label"] = f"{name} {r['precision']} rle-{r['rle']}"
 
 
 def lstsq(X, y):
@@ -111,13 +115,43 @@ md += ["", "Negative coefficients in the unconstrained fit mean the three terms 
        "so read the fits as a description of these runs, not as hardware constants.", "",
        "memcpy_s is the median of one memcpy of width × height × 4 × ranks bytes on rank 0; "
        "× memcpy = seconds / memcpy_s.", "",
-       "| strategy | ranks | image | seconds | predicted (≥ 0 fit) | × memcpy | MB sent | messages | Mpixels |",
-       "|---|---|---|---|---|---|---|---|---|"]
-for r in sorted(rows, key=lambda r: (r["label"], r["width"], r["ranks"])):
+       "| strategy | layers | ranks | image | seconds | predicted (≥ 0 fit) | × memcpy | MB sent | messages | Mpixels |",
+       "|---|---|---|---|---|---|---|---|---|---|"]
+for r in sorted(rows, key=lambda r: (r["label"], r["layers"], r["width"], r["ranks"])):
     mult = r["seconds"] / r["memcpy_s"] if r["memcpy_s"] > 0 else float("nan")
-    md.append(f"| {r['label']} | {r['ranks']} | {r['width']}² | {r['seconds']:.4f} | "
+    md.append(f"| {r['label']} | {r['layers']} | {r['ranks']} | {r['width']}² | {r['seconds']:.4f} | "
               f"{r['predicted']:.4f} | {mult:.0f} | {r['bytes_sent'] / 1e6:.2f} | "
               f"{r['messages']:.0f} | {r['pixels_composited'] / 1e6:.2f} |")
+
+# What each variant costs against float with RLE: the median ratio of seconds and of bytes over
+# every (layers, strategy, ranks, size) measured both ways.
+def ratio_table(field, other, base):
+    out_rows = []
+    for layers in sorted({r["layers"] for r in rows}):
+        for strat in sorted({(r["strategy"], r["radix"]) for r in rows}):
+            t, b = [], []
+            for r in rows:
+                if (r["layers"], r["strategy"], r["radix"]) != (layers, *strat) or r[field] != other:
+                    continue
+                ref = [q for q in rows if (q["layers"], q["strategy"], q["radix"], q["ranks"],
+                        q["width"]) == (layers, *strat, r["ranks"], r["width"]) and q[field] == base
+                       and all(q[k] == r[k] for k in ("precision", "rle") if k != field)]
+                if ref and ref[0]["seconds"] > 0 and ref[0]["bytes_sent"] > 0:
+                    t.append(r["seconds"] / ref[0]["seconds"])
+                    b.append(r["bytes_sent"] / ref[0]["bytes_sent"])
+            if t:
+                t.sort(), b.sort()
+                name = strat[0] if strat[0] == "direct" else f"{strat[0]} k={strat[1]}"
+                out_rows.append(f"| {layers} | {name} | {len(t)} | {t[len(t) // 2]:.2f} "
+                                f"({t[0]:.2f}–{t[-1]:.2f}) | {b[len(b) // 2]:.2f} |")
+    return out_rows
+
+md += ["", "## Variants against float with RLE on", "",
+       "Median (range) of seconds ratio and median bytes ratio over all sizes and rank counts.", "",
+       "RLE off / on:", "", "| layers | strategy | runs | seconds ratio | bytes ratio |",
+       "|---|---|---|---|---|"] + ratio_table("rle", "off", "on")
+md += ["", "RGBA8 / float precision:", "", "| layers | strategy | runs | seconds ratio | bytes ratio |",
+       "|---|---|---|---|---|"] + ratio_table("precision", "rgba8", "float")
 open(os.path.join(out, "fit.md"), "w").write("\n".join(md) + "\n")
 print("\n".join(md))
 

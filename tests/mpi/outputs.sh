@@ -46,4 +46,18 @@ f = json.load(open(sys.argv[1]))["frames"][0]
 assert sum(f["bricks_rendered"]) == 8 and sum(f["bricks_skipped"]) == 56, f
 print("skip ok")
 PY
+# --psnr: each frame's PSNR against the reference, as `compare` reports it on the written files.
+data=$(dirname "$0")/../data
+run_np 3 render -q -o "$WORK/psnr.png" --stats "$WORK/psnr.json" --psnr "$data/neghip.yaml" \
+  || fail "render --psnr"
+"$SORTLAST" reference -q -o "$WORK/psnr_ref.png" "$data/neghip.yaml" || fail "reference"
+want=$("$SORTLAST" compare "$WORK/psnr.png" "$WORK/psnr_ref.png" | sed 's/psnr_db=\([^ ]*\).*/\1/')
+python3 - "$WORK/psnr.json" "$want" <<'PY' || fail "--psnr in stats disagrees with compare"
+import json, sys
+f = json.load(open(sys.argv[1]))["frames"][0]
+want = float(sys.argv[2])
+assert abs(f["psnr_db"] - want) < 0.01, (f["psnr_db"], want)
+assert f["max_diff"] > 0 and f["reference_s"] > 0, f
+print("psnr ok:", f["psnr_db"], "dB")
+PY
 echo "outputs ok"

@@ -1,0 +1,70 @@
+#include "master/frame_reference.h"
+
+#include <algorithm>
+#include <limits>
+#include <thread>
+
+#include "common/error.h"
+#include "common/particles.h"
+#include "common/volume_source.h"
+
+namespace sortlast {
+
+namespace {
+
+// Where the particles' field can be non-zero: their bounds grown by h (empty: lo > hi).
+Box3 reachOf(const MetaballModel& m) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  Box3 b{glm::dvec3(inf), glm::dvec3(-inf)};
+  for (const glm::dvec3& p : m.positions)
+    b.lo = glm::min(b.lo, p - m.h), b.hi = glm::max(b.hi, p + m.h);
+  return b;
+}
+
+}  // namespace
+
+FrameReference::FrameReference(Scene scene, int threads)
+    : colour_(scene.particles.colour),
+      threads_(threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()))) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  bounds_ = {glm::dvec3(inf), glm::dvec3(-inf)};
+  if (scene.particles.enabled()) {
+    MetaballModel m;
+    for (const glm::vec3& p : loadParticles(scene.particles).positions) m.positions.emplace_back(p);
+    m.h = scene.particles.influenceRadius();
+    m.threshold = scene.particles.threshold;
+    bounds_ = reachOf(m);
+    balls_ = std::move(m);
+  }
+  if (scene.hasVolume()) {
+    validateVolume(scene.volume);
+    VolumeInput in{{scene.volume.grid, {}}, {}, 0.0};
+    IndexBox all{{0, 0, 0}, scene.volume.grid.dims - 1};
+    in.vol.samples =
+        scene.volume.isVtk() ? readWholeVtk(scene.volume) : readSamples(scene.volume, all);
+    auto [lo, hi] = std::minmax_element(in.vol.samples.begin(), in.vol.samples.end());
+    in.tf = scene.transfer.build(*lo, *hi, scene.volume.grid.minSpacing());
+    in.step = scene.reference_step * scene.volume.grid.minSpacing();
+    Box3 v = in.vol.grid.worldBox();
+    bounds_ = {glm::min(bounds_.lo, v.lo), glm::max(bounds_.hi, v.hi)};
+    volume_ = std::move(in);
+  }
+}
+
+ImageF FrameReference::render(const Camera& cam, SurfaceImage* surface_out) const {
+  if (volume_ && volume_->vol.grid.worldBox().contains(cam.position))
+    throw InputError("camera.position is inside the volume; move the camera outside it");
+  if (!balls_) {
+    if (!volume_) return ImageF(cam.width, cam.height);
+    return renderReference(volume_->vol, volume_->tf, cam, volume_->step, threads_);
+  }
+  SurfaceImage surface = referenceSurface(*balls_, cam, bounds_, threads_);
+  ImageF colour = shadeSurfaceFloat(surface, cam, colour_);
+  ImageF out = volume_ ? renderReference(volume_->vol, volume_->tf, cam, volume_->step, threads_,
+                                         surface, colour)
+                       : std::move(colour);
+  if (surface_out) *surface_out = std::move(surface);
+  return out;
+}
+
+}  // namespace sortlast

@@ -1,0 +1,48 @@
+#pragma once
+// The CPU reference of a scene's frames: what `sortlast reference` writes and what
+// `render --psnr` measures each frame against. Holds the whole volume and every particle in one
+// process (it is a measuring instrument, not the product).
+//
+// Volume only: the emission-absorption integral. Particles only: the metaball surface, rays
+// clipped to the particles' bounds grown by h. Both: the volume integrated up to the surface, the
+// surface composited behind it.
+#include <optional>
+
+#include "common/box.h"
+#include "common/camera.h"
+#include "common/image.h"
+#include "common/scene.h"
+#include "common/surface_image.h"
+#include "master/metaball_reference.h"
+#include "master/reference.h"
+
+namespace sortlast {
+
+class FrameReference {
+ public:
+  // Loads the scene's data; throws InputError on bad input. `threads` <= 0: all cores.
+  FrameReference(Scene scene, int threads);  // a copy: reading a VTK file fills in its grid
+
+  // The scene's domain: the volume box grown to hold the particles' reach (the render job frames
+  // and bricks the same box).
+  const Box3& bounds() const { return bounds_; }
+  bool hasVolume() const { return volume_.has_value(); }
+  bool hasParticles() const { return balls_.has_value(); }
+
+  // One view, premultiplied. `surface` (scenes with particles): also the surface image.
+  ImageF render(const Camera& cam, SurfaceImage* surface = nullptr) const;
+
+ private:
+  struct VolumeInput {
+    WholeVolume vol;
+    TransferFunction tf;
+    double step = 0.0;  // world units
+  };
+  std::optional<VolumeInput> volume_;
+  std::optional<MetaballModel> balls_;
+  glm::dvec3 colour_{1.0};
+  Box3 bounds_;
+  int threads_ = 1;
+};
+
+}  // namespace sortlast
