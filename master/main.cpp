@@ -23,6 +23,8 @@ void addSceneOptions(CLI::App* cmd, RenderOptions& o) {
   cmd->add_option("--set", o.overrides, "Override a scene key: key.path=value (repeatable)")
       ->allow_extra_args(false);
   cmd->add_flag("-q,--quiet", o.quiet, "No progress lines");
+  cmd->add_option("--frames", o.max_frames, "Only the first N frames of an orbit (0: all)")
+      ->check(CLI::NonNegativeNumber);
 }
 
 int runCompare(const std::string& a, const std::string& b, int max_diff, long long allow_pixels,

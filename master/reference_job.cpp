@@ -34,7 +34,7 @@ int runReferenceJob(const RenderOptions& opts, int threads, const std::string& s
     if (!surface_out.empty() && !reference.hasParticles())
       throw InputError(
           "--surface-out: the scene has no particles, so there is no surface to write");
-    auto cams = scene.frameCameras(reference.bounds());
+    auto cams = firstFrames(scene.frameCameras(reference.bounds()), opts.max_frames);
     int n = int(cams.size());
     Progress progress(n, opts.quiet);
     for (int f = 0; f < n; ++f) {

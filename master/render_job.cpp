@@ -35,6 +35,11 @@ std::string frameFileName(const std::string& out, int frame, int frames) {
   return (p.parent_path() / (p.stem().string() + num + p.extension().string())).string();
 }
 
+std::vector<Camera> firstFrames(std::vector<Camera> cameras, int max_frames) {
+  if (max_frames > 0 && cameras.size() > size_t(max_frames)) cameras.resize(size_t(max_frames));
+  return cameras;
+}
+
 namespace {
 
 // The camera must be outside the scene's box: slicing draws planes in front of the eye only, the
@@ -173,7 +178,7 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
         L.planes = uniformBrickPlanes(L.bounds, d);
       }
       L.assignment = assignBricks(d, size);
-      L.cameras = scene.frameCameras(L.bounds);
+      L.cameras = firstFrames(scene.frameCameras(L.bounds), opts.max_frames);
       checkCameras(L.cameras, L.bounds);
     });
     const std::vector<int> mine = L.assignment.bricksOf(rank);

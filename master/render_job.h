@@ -2,6 +2,8 @@
 // `sortlast render`: the frame loop on every rank.
 #include <mpi.h>
 
+#include "common/camera.h"
+
 #include <string>
 #include <vector>
 
@@ -15,11 +17,15 @@ struct RenderOptions {
   std::string surface_out;             // EXR of the particle surface (t, normal), or empty
   std::string dump_layers;             // directory for frame 0's brick images, or empty
   bool psnr = false;                   // --stats also carries each frame's PSNR vs the reference
+  int max_frames = 0;                  // only the first N of an orbit's frames (0: all)
   bool quiet = false;
 };
 
 // Returns the process exit code (0 on success). Collective over `comm`.
 int runRenderJob(const RenderOptions& opts, MPI_Comm comm);
+
+// The scene's cameras, cut to the first `max_frames` (0: all).
+std::vector<Camera> firstFrames(std::vector<Camera> cameras, int max_frames);
 
 // Output file of frame i: OUT itself for a single frame, OUT with _0000 before the extension
 // for a series.

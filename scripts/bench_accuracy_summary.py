@@ -1,0 +1,96 @@
+"""Summarises scripts/bench-accuracy: OUT/accuracy.md (per data set every setting, its Pareto front
+and the fastest setting at >= 45 dB; the adaptive-sampling table like the paper's Tables 5-6) and
+OUT/accuracy.png (seconds per frame against PSNR, one panel per data set).
+
+Usage: python3 scripts/bench_accuracy_summary.py OUT_DIR
+"""
+import csv
+import glob
+import json
+import os
+import subprocess
+import sys
+
+out = sys.argv[1]
+rows = list(csv.DictReader(open(os.path.join(out, "accuracy.csv"))))
+for r in rows:
+    r["s_per_frame"] = float(r["s_per_frame"])
+    r["psnr_db"] = float(r["psnr_db"])
+    r["family"] = r["setting"].split("_")[0]
+datasets = sorted({r["dataset"] for r in rows}, key=lambda d: ["engine", "neghip", "procedural"].index(d)
+                  if d in ("engine", "neghip", "procedural") else 9)
+
+md = ["# Accuracy against speed\n",
+      "Frame time (1 rank, 512², d = 2, llvmpipe; mean over frames after the first) against PSNR "
+      "versus the CPU reference (mean over the frames). `slicing_sX`: 3D-texture slicing at X "
+      "voxels between slices; `raycast_sX_ertE`: GL ray casting at X voxels, early termination at "
+      "opacity E (1: off); `adaptive_bB_tT`: ray casting the adaptive blocks (B per axis, "
+      "tolerance T %).\n"]
+for ds in datasets:
+    sel = sorted([r for r in rows if r["dataset"] == ds], key=lambda r: r["s_per_frame"])
+    front, best = [], -1.0
+    for r in sel:  # fastest first: a setting is on the front if nothing faster is as accurate
+        if r["psnr_db"] > best:
+            front.append(r)
+            best = r["psnr_db"]
+    ok = [r for r in sel if r["psnr_db"] >= 45.0]
+    md += [f"\n## {ds}\n", "| setting | s/frame | PSNR dB (mean) | PSNR dB (worst frame) | max diff | Pareto |",
+           "|---|---|---|---|---|---|"]
+    for r in sorted(sel, key=lambda r: (r["family"], r["setting"])):
+        md.append(f"| {r['setting']} | {r['s_per_frame']:.3f} | {r['psnr_db']:.1f} | "
+                  f"{float(r['psnr_min_db']):.1f} | {r['max_diff']} | {'yes' if r in front else ''} |")
+    md.append("")
+    md.append("Pareto front (fastest first): " +
+              ", ".join(f"{r['setting']} ({r['s_per_frame']:.3f} s, {r['psnr_db']:.1f} dB)" for r in front))
+    md.append("")
+    md.append("Fastest at >= 45 dB: " + (f"**{ok[0]['setting']}** ({ok[0]['s_per_frame']:.3f} s, "
+                                          f"{ok[0]['psnr_db']:.1f} dB)" if ok else "none reaches 45 dB"))
+
+# The paper's Tables 5-6: data left and preprocessing time per tolerance and block count.
+stats = sorted(glob.glob(os.path.join(out, "stats", "*__adaptive-stats_*.json")))
+if stats:
+    md += ["\n## Adaptive sampling: data left and preprocessing (the paper's Tables 5-6)\n",
+           "| data set | blocks | tolerance % | data left % | preprocessing s | frame s (ray cast, 0.5 voxel) | PSNR dB |",
+           "|---|---|---|---|---|---|---|"]
+    timing = {(r["dataset"], r["setting"]): r for r in rows}
+    for p in stats:
+        ds, rest = os.path.basename(p)[:-5].split("__adaptive-stats_")
+        b, t = rest.split("_")
+        j = json.load(open(p))
+        left = j.get("data_left_percent", j.get("data_left_pct", float("nan")))
+        pre = j.get("preprocess_s", j.get("preprocessing_s", float("nan")))
+        r = timing.get((ds, f"adaptive_{b}_{t}"))
+        md.append(f"| {ds} | {b[1:]} | {t[1:]} | {left:.1f} | {pre:.3f} | "
+                  f"{r['s_per_frame']:.3f} | {r['psnr_db']:.1f} |" if r else
+                  f"| {ds} | {b[1:]} | {t[1:]} | {left:.1f} | {pre:.3f} | | |")
+open(os.path.join(out, "accuracy.md"), "w").write("\n".join(md) + "\n")
+print("\n".join(md))
+
+# Chart: one panel per data set, one point series per family.
+families = sorted({r["family"] for r in rows})
+panels = []
+for ds in datasets:
+    series = []
+    for fam in families:
+        dat = os.path.join(out, f"acc_{ds}_{fam}.dat")
+        pts = [r for r in rows if r["dataset"] == ds and r["family"] == fam]
+        if not pts:
+            continue
+        with open(dat, "w") as f:
+            for r in sorted(pts, key=lambda r: r["s_per_frame"]):
+                f.write(f"{r['s_per_frame']} {r['psnr_db']} \"{r['setting'].split('_', 1)[1]}\"\n")
+        series.append(f'"{dat}" using 1:2 with points pt 7 ps 1.3 title "{fam}", '
+                      f'"{dat}" using 1:2:3 with labels offset 0,0.8 font ",7" notitle')
+    panels.append((ds, series))
+png = os.path.join(out, "accuracy.png")
+script = [f'set terminal pngcairo size {420 * max(1, len(panels))},460 font ",10"', f'set output "{png}"',
+          f'set multiplot layout 1,{max(1, len(panels))} title "Frame time vs PSNR against the CPU reference (512^2, 1 rank, llvmpipe)"',
+          'set xlabel "seconds per frame"', 'set ylabel "PSNR (dB)"', "set grid", "set key bottom right",
+          "set logscale x"]
+for ds, series in panels:
+    script += [f'set title "{ds}"', "plot 45 with lines dashtype 2 lc rgb 'gray' title '45 dB', " + ", ".join(series)]
+script.append("unset multiplot")
+subprocess.run(["gnuplot"], input="\n".join(script), text=True, check=True)
+for f in glob.glob(os.path.join(out, "acc_*.dat")):
+    os.remove(f)
+print(f"wrote {out}/accuracy.md and {png}", file=sys.stderr)
