@@ -51,7 +51,8 @@ class DirectSend final : public Compositor {
   size_t next_ = 0;                    // position in the visibility order of the next blend
   int expected_ = 0, received_ = 0;    // messages from other ranks
   std::string error_;                  // first malformed message; reported after draining
-  ImageF frame_f_;
+  ImageF frame_f_;                     // kept between frames (see begin())
+  Rect dirty_;                         // the part of frame_f_ this frame has blended into
   ImageRGBA8 frame_8_;
   std::vector<uint8_t> buffer_;
 };

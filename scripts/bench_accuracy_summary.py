@@ -58,7 +58,7 @@ if stats:
         b, t = rest.split("_")
         j = json.load(open(p))
         left = j.get("data_left_percent", j.get("data_left_pct", float("nan")))
-        pre = j.get("preprocess_s", j.get("preprocessing_s", float("nan")))
+        pre = j.get("preprocess_s_best", float("nan"))
         r = timing.get((ds, f"adaptive_{b}_{t}"))
         md.append(f"| {ds} | {b[1:]} | {t[1:]} | {left:.1f} | {pre:.3f} | "
                   f"{r['s_per_frame']:.3f} | {r['psnr_db']:.1f} |" if r else

@@ -89,7 +89,7 @@ set yrange [0:*]
 set xrange [0.5:8.5]
 set title "strong: procedural 256^3"
 plot {", ".join(plots[0][1])}
-set title "weak: procedural [128 P, 128, 128]"
+set title "weak: procedural [128 P, 128, 128] over one box"
 plot {", ".join(plots[1][1])}
 unset multiplot
 """
