@@ -345,6 +345,12 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     throw InputError("scene key 'render.sample_spacing': must be in [0.01, 100] voxels");
   s.block_cells = r.as<int>("render.block_cells");
   if (s.block_cells < 1) throw InputError("scene key 'render.block_cells': must be >= 1");
+  s.volume_method = r.as<std::string>("render.method");
+  if (s.volume_method != "slicing" && s.volume_method != "raycast")
+    throw InputError("scene key 'render.method': expected slicing or raycast, got '" + s.volume_method + "'");
+  s.ert_threshold = r.as<double>("render.ert_threshold");
+  if (!(s.ert_threshold > 0.0 && s.ert_threshold <= 1.0))
+    throw InputError("scene key 'render.ert_threshold': must be in (0, 1] (1: no early termination)");
   s.strategy = r.as<std::string>("compositing.strategy");
   if (s.strategy != "direct" && s.strategy != "binary-swap" && s.strategy != "radix-k")
     throw InputError("scene key 'compositing.strategy': expected direct, binary-swap or radix-k, got '" +
@@ -357,9 +363,24 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
                      s.precision + "'");
   s.overlap = r.as<bool>("compositing.overlap");
   s.rle = r.as<bool>("compositing.rle");
+  s.adaptive_tolerance = r.as<double>("adaptive.tolerance");
+  if (!(s.adaptive_tolerance >= 0.0 && s.adaptive_tolerance <= 100.0))
+    throw InputError("scene key 'adaptive.tolerance': must be in [0, 100] percent");
+  s.adaptive_tolerance /= 100.0;
+  s.adaptive_blocks = r.as<int>("adaptive.blocks");
+  if (s.adaptive_blocks < 1 || s.adaptive_blocks > 256 || (s.adaptive_blocks & (s.adaptive_blocks - 1)))
+    throw InputError("scene key 'adaptive.blocks': must be a power of two in [1, 256], got " +
+                     std::to_string(s.adaptive_blocks));
+  s.adaptive_steps = r.as<std::string>("adaptive.steps");
+  if (s.adaptive_steps != "own" && s.adaptive_steps != "fine")
+    throw InputError("scene key 'adaptive.steps': expected own or fine, got '" + s.adaptive_steps + "'");
   s.reference_step = r.as<double>("reference.step");
   if (!(s.reference_step > 0.0 && s.reference_step <= 1.0))
     throw InputError("scene key 'reference.step': must be in (0, 1] voxels");
+  s.reference_field = r.as<std::string>("reference.field");
+  if (s.reference_field != "original" && s.reference_field != "adaptive")
+    throw InputError("scene key 'reference.field': expected original or adaptive, got '" +
+                     s.reference_field + "'");
   return s;
 }
 

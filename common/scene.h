@@ -46,12 +46,18 @@ struct Scene {
   std::string backend = "osmesa";
   double sample_spacing = 1.0;  // in units of the smallest voxel spacing
   int block_cells = 64;         // empty-space skipping granularity
+  std::string volume_method = "slicing";  // slicing | raycast
+  double ert_threshold = 0.99;            // ray casting: early ray termination opacity
+  double adaptive_tolerance = 0.0;  // adaptive sampling: relative L2 error per block, fraction; 0: off
+  int adaptive_blocks = 8;          // adaptive sampling: b, blocks per axis of the whole volume
+  std::string adaptive_steps = "own";  // own: a block's samples along rays at its resolution | fine
   std::string strategy = "direct";  // direct | binary-swap | radix-k
   int radix = 4;                    // radix-k: partners per round
   std::string precision = "float";  // float | rgba8: how partial composites are held
   bool overlap = true;              // direct send: send while the next brick renders
   bool rle = true;                  // run-length code image messages
   double reference_step = 0.0625;  // reference integrator step, in voxel units
+  std::string reference_field = "original";  // original | adaptive: what the reference integrates
 
   bool hasVolume() const { return !volume.file.empty() || volume.procedural != "none"; }
 

@@ -104,10 +104,40 @@ const std::vector<SceneKey>& sceneKeys() {
        "OpenGL backend: `osmesa` (software) or `egl` (surfaceless platform, or the device "
        "platform on an NVIDIA GPU)."},
       {"render.sample_spacing", "1.0",
-       "Distance between slices, in units of the smallest voxel spacing (the paper: 1)."},
+       "Distance between slices (ray casting: between samples along each ray), in units of "
+       "the smallest voxel spacing (the paper: 1)."},
       {"render.block_cells", "64",
        "Empty-space skipping: bricks are cut into blocks of this many cells per axis, and blocks "
        "whose values all map to zero opacity are not drawn."},
+      {"render.method", "slicing",
+       "Volume renderer: `slicing` (3D-texture slicing, the paper's) or `raycast` (a GL ray caster "
+       "per brick, front to back on samples `render.sample_spacing` apart along each ray, with "
+       "early ray termination and empty blocks jumped along the ray)."},
+      {"render.ert_threshold", "0.99",
+       "Ray casting: a ray stops once its opacity reaches this, in (0, 1]; 1: never early. It "
+       "stops only inside a brick (bricks behind still render), and changes a pixel by at most "
+       "1 - threshold."},
+      {"adaptive.tolerance", "0",
+       "Adaptive sampling (the paper's section 4.2), in percent: each block of the volume is stored at the "
+       "coarsest resolution (halved step by step, a coarse sample the mean of the fine cells "
+       "around it) whose error stays within this: the block's squared error against the original "
+       "(the paper's eq. 3) at most (tolerance/100)^2 x its sum of squared values, i.e. an RMS "
+       "error of at most this percent of its RMS value. 0: off (the original samples; the "
+       "preprocessing at 0 is lossless). In [0, 100]. See `sortlast adaptive-stats`. Above 0 "
+       "the volume is rendered from the blocks, each sampled at its own resolution along the rays "
+       "(needs `render.method: raycast`; its blocks replace `render.block_cells`), and every rank "
+       "reads the whole volume to build them."},
+      {"adaptive.blocks", "8",
+       "Adaptive sampling: b, the blocks per axis of the whole volume (the paper: 4, 8, 16); a "
+       "power of two in [1, 256]. Blocks have the smallest power-of-two size s with b x s >= the "
+       "cells per axis, so there may be fewer than b per axis; they do not depend on "
+       "`bricks.per_axis`."},
+      {"adaptive.steps", "own",
+       "Adaptive sampling, along the rays: `own` (a block at level L, whose samples are 2^L cells "
+       "apart, is rendered at its own resolution: every 2^L-th sample of the ray lattice, each "
+       "standing for 2^L steps) or `fine` (every block at every step: the adaptive field's "
+       "accuracy at the full sampling cost, to tell what the data reduction costs from what the "
+       "fewer samples cost)."},
       {"compositing.strategy", "direct",
        "How brick images reach rank 0: `direct` (every brick image to rank 0, which blends them "
        "all), `binary-swap` (each rank blends its own bricks, then pairs of ranks swap halves of "
@@ -133,6 +163,11 @@ const std::vector<SceneKey>& sceneKeys() {
        "pixel travels (to measure what RLE saves)."},
       {"reference.step", "0.0625",
        "Step of the CPU reference integrator, in units of the smallest voxel spacing."},
+      {"reference.field", "original",
+       "The field the CPU reference integrates (`sortlast reference`, `render --psnr`): "
+       "`original` (the volume's samples, trilinear) or `adaptive` (the adaptive-sampling field "
+       "of `adaptive.tolerance` and `adaptive.blocks`, exactly as the ray caster's adaptive blocks "
+       "hold it: to measure the renderer apart from what adaptive sampling itself costs)."},
   };
   return keys;
 }

@@ -1,6 +1,18 @@
 #include "master/brick_renderer.h"
 
+#include <stdexcept>
+
+#include "common/scene.h"
+
 namespace sortlast {
+
+VolumeMethod volumeMethod(const Scene& scene) {
+  VolumeMethod m;
+  m.raycast = scene.volume_method == "raycast";
+  m.raycast_settings.ert_threshold = scene.ert_threshold;
+  m.raycast_settings.own_resolution_steps = scene.adaptive_steps == "own";
+  return m;
+}
 
 MetaballSettings metaballSettings(const ParticleDesc& desc) {
   MetaballSettings s;
@@ -18,9 +30,13 @@ MetaballSettings metaballSettings(const ParticleDesc& desc) {
 BrickRenderer::BrickRenderer(const std::string& backend, int width, int height)
     : ctx_(createGlContext(backend)), width_(width), height_(height) {}
 
-void BrickRenderer::enableVolume(const TransferFunction& tf, int table_size, int block_cells) {
-  slicing_ = std::make_unique<SlicingRenderer>(*ctx_, width_, height_, block_cells);
-  slicing_->setTransferFunction(tf, table_size);
+void BrickRenderer::enableVolume(const TransferFunction& tf, int table_size, int block_cells,
+                                 const VolumeMethod& method) {
+  if (method.raycast)
+    volume_ = std::make_unique<RaycastRenderer>(*ctx_, width_, height_, block_cells, method.raycast_settings);
+  else
+    volume_ = std::make_unique<SlicingRenderer>(*ctx_, width_, height_, block_cells);
+  std::visit([&](auto& r) { r->setTransferFunction(tf, table_size); }, volume_);
 }
 
 void BrickRenderer::enableParticles(const MetaballSettings& settings) {
@@ -29,9 +45,16 @@ void BrickRenderer::enableParticles(const MetaballSettings& settings) {
 
 int BrickRenderer::addBrick(const Brick* volume_brick, const GridGeometry* grid,
                             const std::vector<float>* samples, const Box3& particle_clip,
-                            const std::vector<glm::vec3>* particles) {
+                            const std::vector<glm::vec3>* particles,
+                            const AdaptiveBrickBlocks* adaptive) {
   Handles h;
-  if (volume_brick && slicing_) h.volume = slicing_->addBrick(*volume_brick, *grid, *samples);
+  if (volume_brick && adaptive) {
+    auto* ray = std::get_if<std::unique_ptr<RaycastRenderer>>(&volume_);
+    if (!ray || !*ray) throw std::logic_error("adaptive bricks need the ray caster (enableVolume)");
+    h.volume = (*ray)->addAdaptiveBrick(*volume_brick, *grid, *adaptive);
+  } else if (volume_brick) {
+    std::visit([&](auto& r) { if (r) h.volume = r->addBrick(*volume_brick, *grid, *samples); }, volume_);
+  }
   if (particles && metaballs_) h.particles = metaballs_->addBrick(particle_clip, *particles);
   bricks_.push_back(h);
   return int(bricks_.size()) - 1;
@@ -55,8 +78,12 @@ BrickFrame BrickRenderer::render(int handle, const Camera& cam, double slice_spa
   SurfaceLayer layer;
   if (!surface.rect.empty())
     layer = {metaballs_->colourTexture(), metaballs_->surfaceTexture(), surface.rect};
-  RenderedBrick rb = slicing_->render(h.volume, cam, slice_spacing, near_plane, far_plane,
-                                      surface.rect.empty() ? nullptr : &layer);
+  RenderedBrick rb = std::visit(
+      [&](auto& r) {
+        return r->render(h.volume, cam, slice_spacing, near_plane, far_plane,
+                         surface.rect.empty() ? nullptr : &layer);
+      },
+      volume_);
   // The surface floats cover the particle rectangle; re-cut them to the brick image's rectangle.
   if (!out.surface.empty() && !(rb.rect == surface.rect)) {
     std::vector<float> cut(size_t(rb.rect.area()) * 4, 0.0f);

@@ -1,20 +1,32 @@
 #pragma once
-// One rank's renderers, behind one call per brick: the volume part (3D-texture slicing) and the
-// particle part (metaball ray caster) of a brick become one premultiplied brick image. In a brick
+// One rank's renderers, behind one call per brick: the volume part (3D-texture slicing or ray
+// casting, as the scene chooses) and the particle part (metaball ray caster) of a brick become one premultiplied brick image. In a brick
 // holding both, the particle surface is drawn first and ends the volume's rays, so the image is
 // correctly ordered inside the brick; between bricks the compositor's visibility order does it.
 #include <memory>
 #include <optional>
+#include <variant>
 #include <vector>
 
+#include "common/adaptive_brick.h"
 #include "common/brick.h"
 #include "common/particles.h"
 #include "common/transfer_function.h"
 #include "worker/gl_context.h"
 #include "worker/metaball_renderer.h"
+#include "worker/raycast_renderer.h"
 #include "worker/slicing_renderer.h"
 
 namespace sortlast {
+
+struct Scene;
+
+// The volume renderer a scene asks for (render.method), with its settings.
+struct VolumeMethod {
+  bool raycast = false;  // false: 3D-texture slicing
+  RaycastSettings raycast_settings;
+};
+VolumeMethod volumeMethod(const Scene& scene);
 
 struct BrickFrame {
   Rect rect;
@@ -28,13 +40,17 @@ class BrickRenderer {
   BrickRenderer(const std::string& backend, int width, int height);
   std::string description() const { return ctx_->description(); }
 
-  void enableVolume(const TransferFunction& tf, int table_size, int block_cells);
+  void enableVolume(const TransferFunction& tf, int table_size, int block_cells,
+                    const VolumeMethod& method = {});
   void enableParticles(const MetaballSettings& settings);
 
   // A brick: its volume samples (stored box; null: no volume) and its particles with ghosts
-  // (null: no particles), clipped to `particle_clip`. Returns a handle for render().
+  // (null: no particles), clipped to `particle_clip`. With `adaptive` (ray casting only) the
+  // volume is drawn from the brick's adaptive blocks instead, and `samples` is not read (may be
+  // null). Returns a handle for render().
   int addBrick(const Brick* volume_brick, const GridGeometry* grid, const std::vector<float>* samples,
-               const Box3& particle_clip, const std::vector<glm::vec3>* particles);
+               const Box3& particle_clip, const std::vector<glm::vec3>* particles,
+               const AdaptiveBrickBlocks* adaptive = nullptr);
 
   BrickFrame render(int handle, const Camera& cam, double slice_spacing, double near_plane,
                     double far_plane, bool want_surface);
@@ -45,7 +61,8 @@ class BrickRenderer {
   };
   std::unique_ptr<GlContext> ctx_;
   int width_, height_;
-  std::unique_ptr<SlicingRenderer> slicing_;
+  // The volume renderer; a null slicing renderer until enableVolume().
+  std::variant<std::unique_ptr<SlicingRenderer>, std::unique_ptr<RaycastRenderer>> volume_;
   std::unique_ptr<MetaballRenderer> metaballs_;
   std::vector<Handles> bricks_;
 };

@@ -42,6 +42,14 @@ FrameReference::FrameReference(Scene scene, int threads)
     IndexBox all{{0, 0, 0}, scene.volume.grid.dims - 1};
     in.vol.samples =
         scene.volume.isVtk() ? readWholeVtk(scene.volume) : readSamples(scene.volume, all);
+    if (scene.reference_field == "adaptive") {
+      AdaptiveOptions options;
+      options.blocks_per_axis = scene.adaptive_blocks;
+      options.tolerance = scene.adaptive_tolerance;
+      options.threads = threads_;
+      in.vol.adaptive = std::make_shared<const AdaptiveVolume>(
+          buildAdaptive(scene.volume.grid, in.vol.samples, options));
+    }
     auto [lo, hi] = std::minmax_element(in.vol.samples.begin(), in.vol.samples.end());
     in.tf = scene.transfer.build(*lo, *hi, scene.volume.grid.minSpacing());
     in.step = scene.reference_step * scene.volume.grid.minSpacing();

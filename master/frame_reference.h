@@ -3,7 +3,8 @@
 // `render --psnr` measures each frame against. Holds the whole volume and every particle in one
 // process (it is a measuring instrument, not the product).
 //
-// Volume only: the emission-absorption integral. Particles only: the metaball surface, rays
+// Volume only: the emission-absorption integral (of the original samples, or with
+// reference.field: adaptive of the adaptive-sampling field the ray caster's adaptive blocks hold). Particles only: the metaball surface, rays
 // clipped to the particles' bounds grown by h. Both: the volume integrated up to the surface, the
 // surface composited behind it.
 #include <optional>

@@ -8,6 +8,7 @@
 
 #include "common/error.h"
 #include "common/scene.h"
+#include "master/adaptive_stats_job.h"
 #include "master/compare.h"
 #include "master/compare_surface.h"
 #include "master/reference_job.h"
@@ -174,6 +175,18 @@ int main(int argc, char** argv) {
   compare_surface->add_flag("--ignore-edges", surf_bounds.ignore_edges,
                             "Leave out silhouette pixels (a 4-neighbour differs in the reference)");
 
+  AdaptiveStatsOptions adaptive_opts;
+  auto* adaptive_stats = app.add_subcommand(
+      "adaptive-stats",
+      "Adaptive sampling of the scene's volume (adaptive.tolerance, adaptive.blocks): data left, "
+      "preprocessing time, error; JSON");
+  adaptive_stats->add_option("scene", adaptive_opts.scene, "Scene file (YAML); omitted: the built-in default scene");
+  adaptive_stats->add_option("--set", adaptive_opts.overrides, "Override a scene key: key.path=value (repeatable)")
+      ->allow_extra_args(false);
+  adaptive_stats->add_option("--threads", adaptive_opts.threads, "Worker threads (default: all cores)");
+  adaptive_stats->add_option("--runs", adaptive_opts.runs,
+                             "Preprocessing runs timed; the first is cold, the best of the rest is reported (default 5)");
+
   auto* keys = app.add_subcommand("keys", "Print every scene key with its default (Markdown)");
 
   CLI11_PARSE(app, argc, argv);
@@ -185,6 +198,7 @@ int main(int argc, char** argv) {
   if (*compare) return runCompare(img_a, img_b, max_diff, allow_pixels, min_psnr, diff_out);
   if (*compare_surface) return runCompareSurface(surf_ref, surf_test, surf_bounds);
   if (*reference) return runReferenceJob(ref_opts, threads, surface_out);
+  if (*adaptive_stats) return runAdaptiveStatsJob(adaptive_opts);
 
   MPI_Init(&argc, &argv);
   int code = runRenderJob(render_opts, MPI_COMM_WORLD);

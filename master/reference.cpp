@@ -10,6 +10,7 @@
 namespace sortlast {
 
 double WholeVolume::at(const glm::dvec3& u) const {
+  if (adaptive) return sampleIndex(*adaptive, u);
   const glm::ivec3 n = grid.dims;
   int i[3];
   double f[3];

@@ -4,8 +4,10 @@
 // correction), in the continuous limit of the sample spacing: each ray is cut into steps of
 // `step` world units (default 1/16 voxel) and each step is composited exactly with its midpoint
 // value, T *= exp(-tau h). This is what accuracy is measured against.
+#include <memory>
 #include <vector>
 
+#include "common/adaptive_blocks.h"
 #include "common/camera.h"
 #include "common/grid.h"
 #include "common/image.h"
@@ -17,6 +19,9 @@ namespace sortlast {
 struct WholeVolume {
   GridGeometry grid;
   std::vector<float> samples;  // x fastest
+  // Set: the field is this adaptive representation's (sampleIndex), not the samples' (which then
+  // only give the transfer function its range).
+  std::shared_ptr<const AdaptiveVolume> adaptive;
   double at(const glm::dvec3& index) const;  // trilinear, index clamped to the grid
 };
 

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <tuple>
 
 #include "common/brick.h"
 #include "common/brick_planes.h"
@@ -15,6 +16,7 @@
 #include "compositing/compositor.h"
 #include "compositing/rle.h"
 #include "compositing/visibility.h"
+#include "master/adaptive_loading.h"
 #include "master/brick_renderer.h"
 #include "master/collective.h"
 #include "master/compare.h"
@@ -148,8 +150,10 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
   try {
     // Scene and volume geometry: every rank parses the same input, so they agree.
     Layout L;
+    bool adaptive_blocks = false;
     collectively(comm, [&] {
       L.scene = loadScene(opts.scene, opts.overrides);
+      adaptive_blocks = usesAdaptiveBlocks(L.scene);
       if (L.scene.hasVolume()) {
         validateVolume(L.scene.volume);
         L.volume_bricks = makeBricks(L.scene.volume.grid, L.scene.bricks_per_axis);
@@ -192,11 +196,20 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
       my_particles = scatterParticles(root, regions, h, comm);
       root.set = {};  // rank 0 keeps only the count
     }
+    // Adaptive sampling: every rank reads the whole volume (master/adaptive_loading.h) and keeps
+    // its bricks' adaptive blocks instead of their samples.
     std::vector<std::vector<float>> samples;
+    AdaptiveRankData adaptive;
     TransferFunction tf;
     if (scene.hasVolume()) {
-      samples = loadOwnBricks(scene.volume, L.volume_bricks, mine, L.assignment, comm);
-      auto [data_min, data_max] = globalRange(samples, comm);
+      double data_min = 0, data_max = 0;
+      if (adaptive_blocks) {
+        adaptive = loadAdaptiveBricks(scene, L.volume_bricks, mine, comm);
+        data_min = adaptive.data_min, data_max = adaptive.data_max;
+      } else {
+        samples = loadOwnBricks(scene.volume, L.volume_bricks, mine, L.assignment, comm);
+        std::tie(data_min, data_max) = globalRange(samples, comm);
+      }
       collectively(comm, [&] {
         tf = scene.transfer.build(data_min, data_max, scene.volume.grid.minSpacing());
       });
@@ -207,16 +220,21 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
     double particles_held = 0;
     collectively(comm, [&] {
       renderer = std::make_unique<BrickRenderer>(scene.backend, scene.camera.width, scene.camera.height);
-      if (scene.hasVolume()) renderer->enableVolume(tf, scene.transfer.table_size, scene.block_cells);
+      if (scene.hasVolume())
+        renderer->enableVolume(tf, scene.transfer.table_size, scene.block_cells, volumeMethod(scene));
       if (has_particles) renderer->enableParticles(metaballSettings(scene.particles));
       for (size_t i = 0; i < mine.size(); ++i) {
         Box3 clip = brickBox(L.planes, cellOf(mine[i]));
         std::vector<glm::vec3> near = has_particles ? particlesNear(my_particles, clip, h) : std::vector<glm::vec3>();
         particles_held += double(near.size());
         const Brick* vb = scene.hasVolume() ? &L.volume_bricks[size_t(mine[i])] : nullptr;
-        handles.push_back(renderer->addBrick(vb, &scene.volume.grid, vb ? &samples[i] : nullptr, clip,
-                                             has_particles ? &near : nullptr));
-        if (vb) std::vector<float>().swap(samples[i]);  // the texture holds the data now
+        const bool sampled = vb && !adaptive_blocks;
+        handles.push_back(renderer->addBrick(vb, &scene.volume.grid, sampled ? &samples[i] : nullptr, clip,
+                                             has_particles ? &near : nullptr,
+                                             vb && adaptive_blocks ? &adaptive.bricks[i] : nullptr));
+        // The textures hold the data now.
+        if (sampled) std::vector<float>().swap(samples[i]);
+        if (vb && adaptive_blocks) adaptive.bricks[i] = {};
       }
     });
     if (rank == 0 && !opts.quiet)
@@ -314,15 +332,25 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
     }
     if (rank == 0 && !opts.stats.empty()) {
       std::ofstream out(opts.stats);
-      out << nlohmann::json{{"ranks", size},
-                            {"bricks_per_axis", d},
-                            {"width", scene.camera.width},
-                            {"height", scene.camera.height},
-                            {"renderer", renderer->description()},
-                            {"particles", root.total},
-                            {"frames", stats_json}}
-                 .dump(1)
-          << "\n";
+      nlohmann::json top{{"ranks", size},
+                         {"bricks_per_axis", d},
+                         {"width", scene.camera.width},
+                         {"height", scene.camera.height},
+                         {"renderer", renderer->description()},
+                         {"volume_method", scene.hasVolume() ? scene.volume_method : ""},
+                         {"compositing", scene.strategy},
+                         {"particles", root.total},
+                         {"frames", stats_json}};
+      if (adaptive_blocks) {
+        // Once per job, before the first frame (not in any frame's total_s); slowest rank.
+        top["adaptive_tolerance_percent"] = 100.0 * scene.adaptive_tolerance;
+        top["adaptive_blocks"] = scene.adaptive_blocks;
+        top["adaptive_data_left_percent"] = 100.0 * adaptive.data_left;
+        top["adaptive_read_s"] = adaptive.read_s;
+        top["adaptive_preprocess_s"] = adaptive.preprocess_s;
+        top["adaptive_bricks_s"] = adaptive.bricks_s;
+      }
+      out << top.dump(1) << "\n";
       if (!out) std::fprintf(stderr, "sortlast: warning: could not write stats to %s\n", opts.stats.c_str());
     }
   } catch (const JobFailed&) {

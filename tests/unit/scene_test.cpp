@@ -181,6 +181,21 @@ TEST(Scene, CompositingStrategies) {
   inputErrorOf([] { loadScene("", {"compositing.radix=two"}); });
 }
 
+TEST(Scene, VolumeMethod) {
+  Scene s = loadScene("", {});
+  EXPECT_EQ(s.volume_method, tableDefault("render.method"));
+  EXPECT_DOUBLE_EQ(s.ert_threshold, std::stod(tableDefault("render.ert_threshold")));
+  s = loadScene("", {"render.method=raycast", "render.ert_threshold=1"});
+  EXPECT_EQ(s.volume_method, "raycast");
+  EXPECT_EQ(s.ert_threshold, 1.0);
+  std::string msg = inputErrorOf([] { loadScene("", {"render.method=splatting"}); });
+  EXPECT_NE(msg.find("render.method"), std::string::npos) << msg;
+  for (const char* bad : {"render.ert_threshold=0", "render.ert_threshold=1.5", "render.ert_threshold=-0.2"}) {
+    msg = inputErrorOf([&] { loadScene("", {bad}); });
+    EXPECT_NE(msg.find("render.ert_threshold"), std::string::npos) << msg;
+  }
+}
+
 TEST_F(SceneFiles, InvalidValueInFileThrows) {
   std::string path = write("w0.yaml", "image:\n  width: 0\n");
   inputErrorOf([&] { loadScene(path, {}); });

@@ -1,0 +1,89 @@
+#pragma once
+// GPU ray casting of bricks, in OpenGL 4.5 core: the alternative to 3D-texture slicing
+// (worker/slicing_renderer.h) with the same inputs and outputs. Each pixel's ray is clipped to the
+// brick's box and sampled front to back on a lattice shared by all bricks (worker/raycast_shaders.h
+// has the rules that keep brick faces seam-free), with the slicing renderer's trilinear texture,
+// transfer-function table and opacity correction, so both converge to the same reference.
+//
+// What ray casting adds: early ray termination (a ray stops once its opacity reaches
+// `ert_threshold`; it can only act inside a brick, as later bricks are drawn apart) and
+// empty-space skipping along the ray: blocks whose values all map to zero opacity under the
+// current transfer function (rechecked every render) are jumped, and the brick's rectangle covers
+// only the blocks that are visible.
+//
+// Adaptive sampling: a brick added with addAdaptiveBrick() is drawn from its adaptive blocks
+// (common/adaptive_brick.h) with a variant of the program: the blocks are the adaptive ones, each
+// read at its own resolution and sampled at it (worker/raycast_shaders.h has the rule; or at
+// every lattice step: RaycastSettings::own_resolution_steps); the renderer's block_cells does not
+// apply to such a brick.
+#include <string>
+#include <vector>
+
+#include "common/adaptive_brick.h"
+#include "common/brick.h"
+#include "common/camera.h"
+#include "common/transfer_function.h"
+#include "worker/brick_output.h"
+#include "worker/float_target.h"
+#include "worker/gl_context.h"
+#include "worker/transfer_table.h"
+#include "worker/volume_brick.h"
+
+namespace sortlast {
+
+struct RaycastSettings {
+  double ert_threshold = 0.99;  // stop a ray at this opacity, in (0, 1]; 1: never stop early
+  // Adaptive bricks: a block at level L takes every 2^L-th lattice sample (true), or every one.
+  bool own_resolution_steps = true;
+};
+
+class RaycastRenderer {
+ public:
+  RaycastRenderer(const GlContext& ctx, int width, int height, int block_cells,
+                  const RaycastSettings& settings);
+  ~RaycastRenderer();
+  RaycastRenderer(const RaycastRenderer&) = delete;
+  RaycastRenderer& operator=(const RaycastRenderer&) = delete;
+
+  void setTransferFunction(const TransferFunction& tf, int table_size);
+  // Uploads a brick's stored samples (x fastest); returns a handle for render().
+  int addBrick(const Brick& brick, const GridGeometry& grid, const std::vector<float>& samples);
+  // Uploads the adaptive blocks a brick draws; returns a handle for render().
+  int addAdaptiveBrick(const Brick& brick, const GridGeometry& grid,
+                       const AdaptiveBrickBlocks& blocks);
+
+  // Renders one brick for `cam` with samples `spacing` world units apart along every ray. The
+  // depth range is not needed (rays are not rasterised); it is taken so both volume renderers
+  // have one call. Rays end at `surface`, whose colour goes behind what they gathered.
+  RenderedBrick render(int handle, const Camera& cam, double spacing, double near_plane,
+                       double far_plane, const SurfaceLayer* surface = nullptr);
+
+ private:
+  // The adaptive lookup's per-brick inputs (worker/adaptive_gpu_brick.h).
+  struct AdaptiveInputs {
+    unsigned table = 0;
+    glm::vec3 index_scale, index_offset, block_cells, atlas_inv;
+  };
+  struct GpuBrick {
+    VolumeBrick volume;
+    unsigned planes = 0;               // block planes: R32F, (largest block count + 1) x 3
+    unsigned visible = 0;              // per block: R8UI 1 if visible under the current table
+    std::vector<unsigned char> shown;  // what `visible` holds now (uploaded only when it changes)
+    bool adaptive = false;
+    AdaptiveInputs lookup;             // adaptive bricks only
+  };
+
+  // The block planes and visibility textures of a brick whose volume is uploaded.
+  int addGpuBrick(GpuBrick g);
+
+  const GlApi& gl_;
+  int block_cells_;
+  RaycastSettings settings_;
+  FloatTarget target_;
+  TransferTable table_;
+  unsigned program_ = 0, vao_ = 0;
+  unsigned adaptive_program_ = 0;  // linked with the first adaptive brick
+  std::vector<GpuBrick> bricks_;
+};
+
+}  // namespace sortlast

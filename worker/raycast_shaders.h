@@ -1,0 +1,195 @@
+#pragma once
+// GLSL for ray casting one brick. A fullscreen triangle, scissored to the brick's rectangle, runs
+// one ray per pixel, from the eye through the pixel centre (the reference's rays:
+// Camera::rayDirection), clipped to the brick's own box.
+//
+// Samples lie on one lattice for every brick: distance t_k = k * delta from the eye. Sample k
+// belongs to the brick, and to the block inside it, whose interval [enter, exit) along the ray
+// holds float(k) * delta. Every interval end is (plane - eye) * inv_dir of a block plane, and a
+// plane shared by two blocks or bricks is the same float in both, so each sample is taken by
+// exactly one brick and one block: no seam, no double sample, whatever the decomposition.
+//
+// The ray walks the brick's block grid (a DDA over the block planes); a block whose values all map
+// to zero opacity is jumped (to the first lattice sample beyond it: its samples would add exactly
+// nothing). Each sample stands for delta of the ray: alpha = 1 - exp(-tau * delta), the slicing
+// renderer's and the reference's opacity correction, composited front to back. The ray stops once
+// alpha >= u_ert (early ray termination), at the brick's exit, or at the particle surface's t.
+//
+// Adaptive sampling (the program compiled with ADAPTIVE defined; worker/adaptive_gpu_brick.h):
+// the blocks of the DDA are the adaptive blocks cut by the brick's faces, sampleVolume() reads the
+// current block's samples from the atlas, and a block at level L, whose samples are r = 2^L cells
+// apart, is rendered at its own resolution: of the lattice samples it owns (k0 .. k1, decided as
+// above) it evaluates only those at multiples of r, the "anchors". Anchor a stands for the r
+// lattice steps around it, a - r/2 <= k < a + r/2 (integer r/2: 0 at level 0), as far as the block
+// owns them: n such steps give alpha = 1 - exp(-tau(v(a)) * n * delta). So
+//   - every lattice step of the ray is still counted exactly once, in the block that owns it: no
+//     gap and no overlap where the level changes (a rule that starts each block at its first
+//     anchor and gives every anchor r steps leaves both, and cost 8-16 dB in tests/mpi/adaptive.sh
+//     field, and a seam of 30/255 in its bricks test);
+//   - each anchor sits in the middle of its steps, as each fine sample does (anchoring at the
+//     first step instead shifts coarse blocks by (r - 1) delta / 2 along the ray: 1.9 dB worse
+//     on Marschner-Lobb at 20 %, neghip within 0.2 dB either way);
+//   - a block's first (or last) anchor may lie up to r/2 steps outside it, in the previous block
+//     or brick: it is read from this block's own samples, the block-local coordinate clamped to
+//     the block (its value at the nearest point of the block; the field is continuous across
+//     block faces, so that is close to the true one);
+//   - a block cut by a brick face gives both bricks the same anchors and values (each holds the
+//     whole block), an anchor's steps are split between them, and A over B of one colour and tau
+//     is exact: 1 - exp(-tau n1 delta) exp(-tau n2 delta) = 1 - exp(-tau (n1 + n2) delta). Brick
+//     faces stay seam-free up to float rounding and the RGBA8 brick images;
+//   - at level 0 every anchor is its own sample and n = 1: the arithmetic of the non-adaptive
+//     loop. With u_own_steps = 0 (adaptive.steps: fine) every block takes r = 1: the adaptive
+//     field at the full sampling cost.
+namespace sortlast::shaders {
+
+// A triangle covering the viewport; the scissor cuts it to the brick's rectangle.
+inline constexpr const char* kRaycastVertex = R"(#version 450 core
+void main() {
+  vec2 p = vec2((gl_VertexID & 1) * 4 - 1, (gl_VertexID & 2) * 2 - 1);
+  gl_Position = vec4(p, 0.0, 1.0);
+}
+)";
+
+inline constexpr const char* kRaycastFragment = R"(#version 450 core
+uniform sampler3D u_volume;
+uniform sampler1D u_table;
+uniform sampler2D u_planes;     // texel (i, axis): world coordinate of block plane i on that axis
+uniform usampler3D u_visible;   // per block: 1 if some value in it has non-zero opacity
+uniform vec3 u_tex_scale;
+uniform vec3 u_tex_offset;
+uniform vec3 u_eye;
+uniform vec3 u_forward;
+uniform vec3 u_right;           // scaled by tan(fov / 2) * aspect
+uniform vec3 u_up;              // scaled by tan(fov / 2)
+uniform vec2 u_pixel_scale;     // 2 / width, 2 / height
+uniform float u_delta;          // lattice step along every ray (world units)
+uniform float u_ert;            // stop at this opacity; > 1: never
+uniform vec2 u_value_map;       // normalised value = v * x + y
+uniform vec2 u_table_map;       // table coordinate = normalised * x + y (texel centres at the ends)
+uniform sampler2D u_surface;    // particle surface (t, normal) per pixel, t = 1e30 on a miss
+uniform int u_has_surface;
+uniform ivec4 u_surface_rect;   // x, y, w, h where u_surface is valid (stale elsewhere)
+out vec4 frag;
+
+vec3 g_inv;  // 1 / ray direction, per axis
+ivec3 g_step;
+
+#ifdef ADAPTIVE
+uniform sampler3D u_blocks;     // per block (cell of this brick): atlas offset xyz, 2^-level
+uniform vec3 u_index_scale;     // sample index relative to cell (0,0,0)'s block origin
+uniform vec3 u_index_offset;    //   = world * scale + offset
+uniform vec3 u_block_cells;     // s: cells per block per axis
+uniform vec3 u_atlas_inv;       // 1 / atlas dims
+uniform int u_own_steps;        // 1: a block takes every 2^level-th lattice sample; 0: every one
+vec4 g_block;                   // the current block's table texel
+vec3 g_origin;                  // its first sample, relative to cell (0,0,0)'s block origin
+
+// The adaptive field at world point p, read from the current block (u_volume is the atlas):
+// common/adaptive_brick.h sampleCell(), the block-local lattice coordinate clamped to the block;
+// the hardware's trilinear filter on the texel centres (offset + local + 0.5) / atlas dims, as
+// the plain sampleVolume filters the brick's texture: the same filter precision (float weights
+// on llvmpipe; 8 fractional bits on NVIDIA for both), and at lossless settings the two images
+// agree within 1/255 (tests/mpi/adaptive.sh lossless).
+float sampleVolume(vec3 p) {
+  vec3 local = clamp((p * u_index_scale + u_index_offset - g_origin) * g_block.w, vec3(0.0),
+                     u_block_cells * g_block.w);
+  return texture(u_volume, (g_block.xyz + local + 0.5) * u_atlas_inv).r;
+}
+#else
+// The volume's value at world point p. The one place that reads the volume: a multi-resolution
+// lookup would replace this function alone.
+float sampleVolume(vec3 p) { return texture(u_volume, p * u_tex_scale + u_tex_offset).r; }
+#endif
+
+// (r, g, b, tau) of a value, through the transfer-function table.
+vec4 classify(float v) {
+  float x = clamp(v * u_value_map.x + u_value_map.y, 0.0, 1.0);
+  return texture(u_table, x * u_table_map.x + u_table_map.y);
+}
+
+// Ray distance to block plane i of an axis: the one formula every brick uses for a plane.
+float planeT(int axis, int i) {
+  return (texelFetch(u_planes, ivec2(i, axis), 0).r - u_eye[axis]) * g_inv[axis];
+}
+// Where the ray leaves slab `i` of an axis.
+float exitT(int axis, int i) { return planeT(axis, g_step[axis] > 0 ? i + 1 : i); }
+
+// The first lattice sample at or beyond t: the smallest k with float(k) * delta >= t, decided by
+// the same product the sample loop compares, so bricks and blocks agree on every sample.
+int firstSample(float t) {
+  int k = int(ceil(t / u_delta));
+  if (float(k) * u_delta < t) ++k;
+  else if (float(k - 1) * u_delta >= t) --k;
+  return k;
+}
+
+void main() {
+  vec2 s = vec2(gl_FragCoord.x * u_pixel_scale.x - 1.0, 1.0 - gl_FragCoord.y * u_pixel_scale.y);
+  vec3 dir = normalize(u_forward + s.x * u_right + s.y * u_up);
+  ivec3 nb = textureSize(u_visible, 0);
+  float t0 = 0.0, t1 = 1e30;
+  for (int a = 0; a < 3; ++a) {
+    // A zero component gets a tiny one: its slabs then span (almost) the whole line, as they should.
+    g_inv[a] = 1.0 / (abs(dir[a]) < 1e-20 ? 1e-20 : dir[a]);
+    g_step[a] = g_inv[a] > 0.0 ? 1 : -1;
+    float ta = planeT(a, 0), tb = planeT(a, nb[a]);
+    t0 = max(t0, min(ta, tb));
+    t1 = min(t1, max(ta, tb));
+  }
+  // An opaque particle surface in this brick ends the ray; its colour is already in the target.
+  ivec2 px = ivec2(gl_FragCoord.xy);
+  if (u_has_surface != 0 && all(greaterThanEqual(px, u_surface_rect.xy)) &&
+      all(lessThan(px, u_surface_rect.xy + u_surface_rect.zw)))
+    t1 = min(t1, texelFetch(u_surface, px, 0).x);
+  if (!(t0 < t1)) discard;
+
+  // The block holding t0 on each axis: the first slab, in ray order, that the ray leaves after t0.
+  ivec3 idx;
+  for (int a = 0; a < 3; ++a) {
+    int i = g_step[a] > 0 ? 0 : nb[a] - 1;
+    while (i + g_step[a] >= 0 && i + g_step[a] < nb[a] && exitT(a, i) <= t0) i += g_step[a];
+    idx[a] = i;
+  }
+  vec4 acc = vec4(0.0);
+  int k = firstSample(t0);
+  float t = t0;
+  while (t < t1 && acc.a < u_ert) {
+    vec3 te = vec3(exitT(0, idx.x), exitT(1, idx.y), exitT(2, idx.z));
+    float tb = min(min(te.x, te.y), min(te.z, t1));
+    if (texelFetch(u_visible, idx, 0).r != 0u) {
+#ifdef ADAPTIVE
+      g_block = texelFetch(u_blocks, idx, 0);
+      g_origin = vec3(idx) * u_block_cells;
+      int r = u_own_steps != 0 ? int(1.0 / g_block.w + 0.5) : 1;  // 2^level
+      int k_end = firstSample(tb);         // the first lattice sample this block does not own
+      while (k < k_end) {
+        int anchor = (k + r / 2) / r * r;
+        int next = min(anchor - r / 2 + r, k_end);
+        vec4 e = classify(sampleVolume(u_eye + float(anchor) * u_delta * dir));
+        float alpha = 1.0 - exp(-e.a * float(next - k) * u_delta);
+        acc += (1.0 - acc.a) * vec4(e.rgb * alpha, alpha);
+        k = next;
+        if (acc.a >= u_ert) break;
+      }
+#else
+      for (float ts = float(k) * u_delta; ts < tb; ts = float(++k) * u_delta) {
+        vec4 e = classify(sampleVolume(u_eye + ts * dir));
+        float alpha = 1.0 - exp(-e.a * u_delta);
+        acc += (1.0 - acc.a) * vec4(e.rgb * alpha, alpha);
+        if (acc.a >= u_ert) break;
+      }
+#endif
+    } else {
+      k = firstSample(tb);
+    }
+    // Into the next block: every axis whose slab ends here steps on.
+    bvec3 leave = equal(te, vec3(tb));
+    idx += ivec3(leave) * g_step;
+    if (any(lessThan(idx, ivec3(0))) || any(greaterThanEqual(idx, nb))) break;
+    t = tb;
+  }
+  frag = acc;
+}
+)";
+
+}  // namespace sortlast::shaders

@@ -1,0 +1,64 @@
+#include "worker/volume_brick.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace sortlast {
+
+VolumeBrick uploadVolumeBrick(const GlApi& gl, const Brick& brick, const GridGeometry& grid,
+                              const std::vector<float>& samples, int block_cells) {
+  VolumeBrick g;
+  g.brick = brick;
+  glm::ivec3 n = brick.stored.size();
+  if (samples.size() != size_t(brick.stored.count()))
+    throw std::logic_error("addBrick: sample count does not match the brick");
+  // Block grid over the brick's cells; each block keeps the range of the samples it spans.
+  glm::ivec3 cells = brick.domain.size() - 1, nb = (cells + block_cells - 1) / block_cells;
+  g.block_count = nb;
+  std::array<std::vector<int>, 3> cuts;
+  for (int a = 0; a < 3; ++a) {
+    for (int i = 0; i <= nb[a]; ++i)
+      cuts[a].push_back(brick.domain.lo[a] + int((long long)cells[a] * i / nb[a]));
+    for (int c : cuts[a]) {
+      glm::dvec3 idx(0.0);
+      idx[a] = c;
+      g.block_planes[a].push_back(grid.worldOfIndex(idx)[a]);
+    }
+  }
+  for (int bz = 0; bz < nb.z; ++bz)
+    for (int by = 0; by < nb.y; ++by)
+      for (int bx = 0; bx < nb.x; ++bx) {
+        IndexBox box{{cuts[0][bx], cuts[1][by], cuts[2][bz]},
+                     {cuts[0][bx + 1], cuts[1][by + 1], cuts[2][bz + 1]}};
+        VolumeBlock blk{grid.worldBoxOf(box), 1e30f, -1e30f};
+        for (int z = box.lo.z; z <= box.hi.z; ++z)
+          for (int y = box.lo.y; y <= box.hi.y; ++y) {
+            const float* row = &samples[size_t(box.lo.x - brick.stored.lo.x) +
+                                        size_t(n.x) * (size_t(y - brick.stored.lo.y) +
+                                                       size_t(n.y) * (z - brick.stored.lo.z))];
+            auto [lo, hi] = std::minmax_element(row, row + (box.hi.x - box.lo.x + 1));
+            blk.vmin = std::min(blk.vmin, *lo);
+            blk.vmax = std::max(blk.vmax, *hi);
+          }
+        g.blocks.push_back(blk);
+      }
+  // Texel centres: stored sample s sits at texture coordinate (s - stored.lo + 0.5) / n, and the
+  // sample index of world point p is p / spacing + (dims - 1) / 2.
+  glm::dvec3 inv_n = 1.0 / glm::dvec3(n);
+  g.tex_scale = glm::vec3(inv_n / grid.spacing);
+  g.tex_offset =
+      glm::vec3((0.5 * glm::dvec3(grid.dims - 1) - glm::dvec3(brick.stored.lo) + 0.5) * inv_n);
+  gl.GenTextures(1, &g.texture);
+  gl.ActiveTexture(GL_TEXTURE0);
+  gl.BindTexture(GL_TEXTURE_3D, g.texture);
+  gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  gl.TexImage3D(GL_TEXTURE_3D, 0, GL_R32F, n.x, n.y, n.z, 0, GL_RED, GL_FLOAT, samples.data());
+  gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  for (GLenum w : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+    gl.TexParameteri(GL_TEXTURE_3D, w, GL_CLAMP_TO_EDGE);
+  gl.check("brick texture upload");
+  return g;
+}
+
+}  // namespace sortlast
