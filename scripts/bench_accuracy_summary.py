@@ -85,7 +85,7 @@ for ds in datasets:
 png = os.path.join(out, "accuracy.png")
 script = [f'set terminal pngcairo size {420 * max(1, len(panels))},460 font ",10"', f'set output "{png}"',
           f'set multiplot layout 1,{max(1, len(panels))} title "Frame time vs PSNR against the CPU reference (512^2, 1 rank, llvmpipe)"',
-          'set xlabel "seconds per frame"', 'set ylabel "PSNR (dB)"', "set grid", "set key bottom right",
+          'set termoption noenhanced', 'set xlabel "seconds per frame"', 'set ylabel "PSNR (dB)"', "set grid", "set key bottom right",
           "set logscale x"]
 for ds, series in panels:
     script += [f'set title "{ds}"', "plot 45 with lines dashtype 2 lc rgb 'gray' title '45 dB', " + ", ".join(series)]
