@@ -1,5 +1,7 @@
 #include "common/adaptive_blocks.h"
 
+#include "common/trilinear.h"
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -637,12 +639,7 @@ double sampleIndex(const AdaptiveVolume& vol, const glm::dvec3& u) {
   auto s = [&](int dx, int dy, int dz) {
     return double(vol.atlas[linear(o + glm::ivec3(dx, dy, dz), d)]);
   };
-  double c00 = s(0, 0, 0) * (1 - f[0]) + s(1, 0, 0) * f[0];
-  double c10 = s(0, 1, 0) * (1 - f[0]) + s(1, 1, 0) * f[0];
-  double c01 = s(0, 0, 1) * (1 - f[0]) + s(1, 0, 1) * f[0];
-  double c11 = s(0, 1, 1) * (1 - f[0]) + s(1, 1, 1) * f[0];
-  double c0 = c00 * (1 - f[1]) + c10 * f[1], c1 = c01 * (1 - f[1]) + c11 * f[1];
-  return c0 * (1 - f[2]) + c1 * f[2];
+  return trilinear(s, f);
 }
 
 double dataLeft(const AdaptiveVolume& vol) {

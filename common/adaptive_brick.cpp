@@ -1,5 +1,7 @@
 #include "common/adaptive_brick.h"
 
+#include "common/trilinear.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -59,12 +61,7 @@ double sampleCell(const AdaptiveBrickBlocks& b, const glm::ivec3& cell, const gl
   auto s = [&](int dx, int dy, int dz) {
     return double(b.atlas[linear(o + glm::ivec3(dx, dy, dz), b.atlas_dims)]);
   };
-  double c00 = s(0, 0, 0) * (1 - f[0]) + s(1, 0, 0) * f[0];
-  double c10 = s(0, 1, 0) * (1 - f[0]) + s(1, 1, 0) * f[0];
-  double c01 = s(0, 0, 1) * (1 - f[0]) + s(1, 0, 1) * f[0];
-  double c11 = s(0, 1, 1) * (1 - f[0]) + s(1, 1, 1) * f[0];
-  double c0 = c00 * (1 - f[1]) + c10 * f[1], c1 = c01 * (1 - f[1]) + c11 * f[1];
-  return c0 * (1 - f[2]) + c1 * f[2];
+  return trilinear(s, f);
 }
 
 }  // namespace sortlast

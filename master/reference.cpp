@@ -1,5 +1,7 @@
 #include "master/reference.h"
 
+#include "common/trilinear.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -22,12 +24,7 @@ double WholeVolume::at(const glm::dvec3& u) const {
   auto s = [&](int dx, int dy, int dz) {
     return double(samples[size_t(i[0] + dx) + size_t(n.x) * (size_t(i[1] + dy) + size_t(n.y) * size_t(i[2] + dz))]);
   };
-  double c00 = s(0, 0, 0) * (1 - f[0]) + s(1, 0, 0) * f[0];
-  double c10 = s(0, 1, 0) * (1 - f[0]) + s(1, 1, 0) * f[0];
-  double c01 = s(0, 0, 1) * (1 - f[0]) + s(1, 0, 1) * f[0];
-  double c11 = s(0, 1, 1) * (1 - f[0]) + s(1, 1, 1) * f[0];
-  double c0 = c00 * (1 - f[1]) + c10 * f[1], c1 = c01 * (1 - f[1]) + c11 * f[1];
-  return c0 * (1 - f[2]) + c1 * f[2];
+  return trilinear(s, f);
 }
 
 namespace {

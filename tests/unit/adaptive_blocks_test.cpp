@@ -16,6 +16,7 @@
 #include "common/brick.h"
 #include "common/error.h"
 #include "common/scene.h"
+#include "tests/unit/input_error_of.h"
 #include "common/volume_source.h"
 
 namespace sortlast {
@@ -92,19 +93,6 @@ int stitchedBlocks(const AdaptiveVolume& a) {
   return n;
 }
 
-template <class F>
-std::string inputErrorOf(F f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "threw something other than InputError: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "did not throw";
-  return "";
-}
 
 TEST(AdaptiveBlocks, BlockGridFollowsThePaper) {
   // 256^3 samples (255 cells) in 8 blocks per axis: 32 cells each, the last padded by one.

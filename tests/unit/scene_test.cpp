@@ -8,6 +8,7 @@
 #include <unistd.h>
 #include <vector>
 
+#include "tests/unit/input_error_of.h"
 #include "common/error.h"
 #include "common/scene.h"
 
@@ -37,20 +38,6 @@ class SceneFiles : public ::testing::Test {
   fs::path dir_;
 };
 
-// Runs `f`, which must throw InputError; returns its message.
-template <class F>
-std::string inputErrorOf(F f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "threw something other than InputError: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "did not throw";
-  return "";
-}
 
 // The default of `key` in the key table, as written there.
 std::string tableDefault(const std::string& key) {
