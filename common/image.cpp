@@ -28,17 +28,22 @@ ImageF toFloat(const ImageRGBA8& img) {
   return out;
 }
 
+std::vector<float> overBackground(const ImageF& img, const glm::dvec3& bg) {
+  std::vector<float> rgb(size_t(img.width) * img.height * 3);
+  for (size_t i = 0; i < size_t(img.width) * img.height; ++i) {
+    float a = img.px[4 * i + 3];
+    for (int c = 0; c < 3; ++c) rgb[3 * i + c] = img.px[4 * i + c] + (1.0f - a) * float(bg[c]);
+  }
+  return rgb;
+}
+
 void writeImage(const std::string& path, const ImageF& img, const glm::dvec3& bg) {
   auto ext = std::filesystem::path(path).extension().string();
   bool is_float = ext == ".exr";
   auto out = OIIO::ImageOutput::create(path);
   if (!out) throw InputError("output " + path + ": no image writer for this file extension");
   OIIO::ImageSpec spec(img.width, img.height, 3, is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-  std::vector<float> rgb(size_t(img.width) * img.height * 3);
-  for (size_t i = 0; i < size_t(img.width) * img.height; ++i) {
-    float a = img.px[4 * i + 3];
-    for (int c = 0; c < 3; ++c) rgb[3 * i + c] = img.px[4 * i + c] + (1.0f - a) * float(bg[c]);
-  }
+  std::vector<float> rgb = overBackground(img, bg);
   if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, rgb.data()) || !out->close())
     throw InputError("output " + path + ": " + out->geterror());
 }

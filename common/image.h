@@ -31,6 +31,10 @@ void toRGBA8(const float* in, uint8_t* out);
 ImageRGBA8 toRGBA8(const ImageF& img);
 ImageF toFloat(const ImageRGBA8& img);
 
+// The premultiplied image composited over `background`: opaque RGB floats, 3 per pixel. Shared by
+// writeImage and encodeImage (common/image_encode.h) so a file and a served frame look the same.
+std::vector<float> overBackground(const ImageF& img, const glm::dvec3& background);
+
 // Writes PNG (8-bit) or EXR (float) by extension through OpenImageIO. The premultiplied image is
 // composited over `background` and written opaque. Throws InputError on failure.
 void writeImage(const std::string& path, const ImageF& img, const glm::dvec3& background);

@@ -1,7 +1,12 @@
 #include "common/scene.h"
 
+#include <glob.h>
+
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include <yaml-cpp/yaml.h>
 
@@ -183,6 +188,36 @@ ParticleDesc readParticles(const Reader& r, const std::filesystem::path& base_di
   return p;
 }
 
+// volume.files / particles.files: a list of files, or one glob pattern (sorted matches). Relative
+// names are relative to the scene file (to the working directory when given with --set).
+std::vector<std::string> readSeries(const Reader& r, const std::string& key,
+                                    const std::filesystem::path& base_dir, bool from_override) {
+  YAML::Node n = r.get(key);
+  auto resolve = [&](const std::string& f) {
+    return std::filesystem::path(f).is_relative() && !from_override ? (base_dir / f).string() : f;
+  };
+  std::vector<std::string> files;
+  if (n.IsNull() || (n.IsScalar() && n.Scalar().empty())) return files;
+  if (n.IsSequence()) {
+    for (const auto& e : n) {
+      if (!e.IsScalar() || e.Scalar().empty())
+        throw InputError("scene key '" + key + "': expected a list of file names" + where(e));
+      files.push_back(resolve(e.Scalar()));
+    }
+    if (files.empty()) throw InputError("scene key '" + key + "': the list is empty" + where(n));
+    return files;
+  }
+  if (!n.IsScalar()) throw InputError("scene key '" + key + "': expected a glob pattern or a list of files" + where(n));
+  std::string pattern = resolve(n.Scalar());
+  glob_t g{};
+  int rc = glob(pattern.c_str(), GLOB_ERR, nullptr, &g);
+  for (size_t i = 0; rc == 0 && i < g.gl_pathc; ++i) files.push_back(g.gl_pathv[i]);
+  globfree(&g);
+  if (files.empty()) throw InputError("scene key '" + key + "': no file matches '" + pattern + "'");
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
 }  // namespace
 
 TransferFunction TransferSpec::build(double data_min, double data_max, double min_spacing) const {
@@ -210,14 +245,38 @@ std::vector<Camera> Scene::frameCameras(const Box3& bounds) const {
   return cams;
 }
 
+SceneText readSceneText(const std::string& path) {
+  if (path.empty()) return {};
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("scene file " + path + ": cannot open");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw InputError("scene file " + path + ": cannot read");
+  return {path, text.str()};
+}
+
 Scene loadScene(const std::string& path, const std::vector<std::string>& overrides) {
+  return parseScene(readSceneText(path), overrides);
+}
+
+bool isFrameKey(const std::string& path) {
+  for (const char* prefix : {"camera.", "image.", "transfer.", "compositing.", "time.step"})
+    if (path.rfind(prefix, 0) == 0) return true;
+  for (const char* key : {"render.sample_spacing", "render.method", "render.ert_threshold",
+                          "particles.radius", "particles.influence", "particles.threshold",
+                          "particles.color", "particles.step", "particles.max_samples",
+                          "particles.refine_iterations", "particles.cull", "particles.samples_per_pass"})
+    if (path == key) return true;
+  return false;
+}
+
+Scene parseScene(const SceneText& text, const std::vector<std::string>& overrides) {
+  const std::string& path = text.path;
   YAML::Node root(YAML::NodeType::Map);
   std::filesystem::path base_dir = std::filesystem::current_path();
   if (!path.empty()) {
     try {
-      root = YAML::LoadFile(path);
-    } catch (const YAML::BadFile&) {
-      throw InputError("scene file " + path + ": cannot open");
+      root = YAML::Load(text.yaml);
     } catch (const YAML::Exception& e) {
       throw InputError("scene file " + path + ": not valid YAML: " + e.what());
     }
@@ -227,6 +286,7 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
   }
   checkKeys(root, "");
   bool file_from_override = false, particles_file_from_override = false;
+  bool files_from_override = false, particles_files_from_override = false;
   for (const std::string& o : overrides) {
     auto eq = o.find('=');
     if (eq == std::string::npos || eq == 0)
@@ -242,6 +302,8 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     setPath(root, splitPath(key), 0, v);
     if (key == "volume.file") file_from_override = true;
     if (key == "particles.file") particles_file_from_override = true;
+    if (key == "volume.files") files_from_override = true;
+    if (key == "particles.files") particles_files_from_override = true;
   }
 
   Reader r(root);
@@ -266,7 +328,29 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
   vol.header_bytes = r.as<long long>("volume.header_bytes");
   if (vol.header_bytes < 0) throw InputError("scene key 'volume.header_bytes': must be >= 0");
 
+  s.time_step = r.as<int>("time.step");
+  s.time_cache_mib = r.as<double>("time.cache_mib");
+  if (!(s.time_cache_mib >= 0.0 && s.time_cache_mib <= 1e9))
+    throw InputError("scene key 'time.cache_mib': must be in [0, 1e9] MiB");
+  s.volume_files = readSeries(r, "volume.files", base_dir, files_from_override);
+  if (!s.volume_files.empty() && !vol.file.empty())
+    throw InputError("scene keys 'volume.file' and 'volume.files' are both set: use one");
   s.particles = readParticles(r, base_dir, particles_file_from_override);
+  s.particle_files = readSeries(r, "particles.files", base_dir, particles_files_from_override);
+  if (!s.particle_files.empty() && (!s.particles.file.empty() || s.particles.procedural != "none"))
+    throw InputError("scene key 'particles.files' is set with 'particles.file' or "
+                     "'particles.procedural': use one");
+  if (!s.volume_files.empty() && !s.particle_files.empty() &&
+      s.volume_files.size() != s.particle_files.size())
+    throw InputError("scene keys 'volume.files' and 'particles.files' name " +
+                     std::to_string(s.volume_files.size()) + " and " +
+                     std::to_string(s.particle_files.size()) + " steps: a series needs one of each per step");
+  s.time_steps = int(std::max({size_t(1), s.volume_files.size(), s.particle_files.size()}));
+  if (s.time_step < 0 || s.time_step >= s.time_steps)
+    throw InputError("scene key 'time.step': " + std::to_string(s.time_step) + " is out of range: the scene has " +
+                     std::to_string(s.time_steps) + " time step(s), 0 ... " + std::to_string(s.time_steps - 1));
+  if (!s.volume_files.empty()) vol.file = s.volume_files[size_t(s.time_step)];
+  if (!s.particle_files.empty()) s.particles.file = s.particle_files[size_t(s.time_step)];
   if (!s.hasVolume() && !s.particles.enabled())
     throw InputError("the scene has nothing to render: volume.procedural is none with no "
                      "volume.file, and neither particles.file nor particles.procedural is set");

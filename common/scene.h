@@ -58,6 +58,12 @@ struct Scene {
   bool rle = true;                  // run-length code image messages
   double reference_step = 0.0625;  // reference integrator step, in voxel units
   std::string reference_field = "original";  // original | adaptive: what the reference integrates
+  // Time series (volume.files, particles.files): one file per step, sorted; volume.file and
+  // particles.file then hold the file of `time_step`. Empty: no series (one step).
+  std::vector<std::string> volume_files, particle_files;
+  int time_step = 0;
+  int time_steps = 1;          // steps of the series (1 without one)
+  double time_cache_mib = 1024;  // host memory per rank for cached steps (resident sessions)
 
   bool hasVolume() const { return !volume.file.empty() || volume.procedural != "none"; }
 
@@ -68,8 +74,22 @@ struct Scene {
   double sampleSpacingWorld() const { return sample_spacing * volume.grid.minSpacing(); }
 };
 
+// A scene file's text, read once: a resident session parses it again with each request's keys, so
+// an edit of the file on disk cannot change a running session behind its back.
+struct SceneText {
+  std::string path;  // empty: the built-in default scene
+  std::string yaml;
+};
+// Throws InputError if the file cannot be read.
+SceneText readSceneText(const std::string& path);
+
 // Parses and validates; throws InputError naming the key (and file line) at fault. An empty path
 // means the built-in default scene.
+Scene parseScene(const SceneText& text, const std::vector<std::string>& overrides);
 Scene loadScene(const std::string& path, const std::vector<std::string>& overrides);
+
+// Whether a resident session can apply a change of this key without reloading its data layout
+// (camera, image, transfer function, render and compositing options, particle shading, time step).
+bool isFrameKey(const std::string& path);
 
 }  // namespace sortlast

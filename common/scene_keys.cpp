@@ -15,6 +15,10 @@ const std::vector<SceneKey>& sceneKeys() {
        "Procedural field when there is no file: `blobs` (shells, blobs and a torus), "
        "`marschner_lobb` (the Marschner-Lobb test signal), `sphere` (1 - r), or `none`: no "
        "volume (the scene must then have particles)."},
+      {"volume.files", "\"\"",
+       "A time series: one data file per step, as a list of names or one glob pattern "
+       "(`step_*.raw`; matches sorted by name). Each file is read like `volume.file` (same dims, "
+       "type and layout for every step); `time.step` picks the step. Excludes `volume.file`."},
       {"volume.dims", "[128, 128, 128]", "Samples per axis [x, y, z] (raw and procedural volumes)."},
       {"volume.type", "uint8", "Raw sample type: `uint8`, `uint16`, `int16` or `float32`."},
       {"volume.spacing", "[1, 1, 1]", "Distance between samples along x, y, z (world units)."},
@@ -30,6 +34,10 @@ const std::vector<SceneKey>& sceneKeys() {
        "metaball paper's test scene: layers of 24 x 24 particles stacked up), `splash` (a "
        "shallow pool, a crown of spikes rising from it and droplets flying off). Setting both "
        "this and `particles.file` is an error."},
+      {"particles.files", "\"\"",
+       "A time series of particle files (a list, or one glob pattern, sorted), read like "
+       "`particles.file`; `time.step` picks the step. The brick grid and the automatic camera "
+       "frame the union of every step's particles (rank 0 reads each step once at start)."},
       {"particles.format", "auto",
        "Format of `particles.file`: `vtk`, `raw`, `csv`, or `auto` (by extension: "
        "`.vtk`/`.vtp`/`.vtu` vtk, `.csv` csv, anything else raw)."},
@@ -161,6 +169,12 @@ const std::vector<SceneKey>& sceneKeys() {
       {"compositing.rle", "true",
        "Run-length code transparent runs in every image message (the paper's Fig. 7). false: every "
        "pixel travels (to measure what RLE saves)."},
+      {"time.step", "0",
+       "The time step to render, 0 ... steps - 1 (a scene with `volume.files` or "
+       "`particles.files`; otherwise only 0)."},
+      {"time.cache_mib", "1024",
+       "A resident session (`sortlast serve`) keeps the samples and particles of recent time steps "
+       "in memory, up to this many MiB per rank, so going back to a step needs no reading."},
       {"reference.step", "0.0625",
        "Step of the CPU reference integrator, in units of the smallest voxel spacing."},
       {"reference.field", "original",

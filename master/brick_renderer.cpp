@@ -43,6 +43,32 @@ void BrickRenderer::enableParticles(const MetaballSettings& settings) {
   metaballs_ = std::make_unique<MetaballRenderer>(*ctx_, width_, height_, settings);
 }
 
+void BrickRenderer::setImageSize(int width, int height) {
+  width_ = width;
+  height_ = height;
+  std::visit([&](auto& r) { if (r) r->resize(width, height); }, volume_);
+  if (metaballs_) metaballs_->resize(width, height);
+}
+
+void BrickRenderer::setTransferFunction(const TransferFunction& tf, int table_size) {
+  std::visit([&](auto& r) { if (r) r->setTransferFunction(tf, table_size); }, volume_);
+}
+
+void BrickRenderer::setVolumeMethodSettings(const VolumeMethod& method) {
+  if (auto* ray = std::get_if<std::unique_ptr<RaycastRenderer>>(&volume_); ray && *ray)
+    (*ray)->setSettings(method.raycast_settings);
+}
+
+void BrickRenderer::setMetaballSettings(const MetaballSettings& settings) {
+  if (metaballs_) metaballs_->setSettings(settings);
+}
+
+void BrickRenderer::reset() {
+  bricks_.clear();
+  metaballs_.reset();
+  volume_ = std::unique_ptr<SlicingRenderer>();
+}
+
 int BrickRenderer::addBrick(const Brick* volume_brick, const GridGeometry* grid,
                             const std::vector<float>* samples, const Box3& particle_clip,
                             const std::vector<glm::vec3>* particles,
@@ -56,6 +82,23 @@ int BrickRenderer::addBrick(const Brick* volume_brick, const GridGeometry* grid,
     std::visit([&](auto& r) { if (r) h.volume = r->addBrick(*volume_brick, *grid, *samples); }, volume_);
   }
   if (particles && metaballs_) h.particles = metaballs_->addBrick(particle_clip, *particles);
+  bricks_.push_back(h);
+  return int(bricks_.size()) - 1;
+}
+
+int BrickRenderer::addBrick(const Brick& volume_brick, const GridGeometry& grid,
+                            const BrickSamples& samples, const Box3& particle_clip,
+                            const std::vector<glm::vec3>* particles) {
+  Handles h;
+  std::visit([&](auto& r) { if (r) h.volume = r->addBrick(volume_brick, grid, samples); }, volume_);
+  if (particles && metaballs_) h.particles = metaballs_->addBrick(particle_clip, *particles);
+  bricks_.push_back(h);
+  return int(bricks_.size()) - 1;
+}
+
+int BrickRenderer::addParticleBrick(const Box3& particle_clip, const std::vector<glm::vec3>& particles) {
+  Handles h;
+  if (metaballs_) h.particles = metaballs_->addBrick(particle_clip, particles);
   bricks_.push_back(h);
   return int(bricks_.size()) - 1;
 }

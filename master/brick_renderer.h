@@ -52,6 +52,21 @@ class BrickRenderer {
                const Box3& particle_clip, const std::vector<glm::vec3>* particles,
                const AdaptiveBrickBlocks* adaptive = nullptr);
 
+  // What a resident session changes between frames without re-uploading any brick.
+  void setImageSize(int width, int height);
+  void setTransferFunction(const TransferFunction& tf, int table_size);
+  void setVolumeMethodSettings(const VolumeMethod& method);  // same renderer kind; its settings
+  void setMetaballSettings(const MetaballSettings& settings);  // same h
+  // Drops the renderers and every brick (their GL objects), keeping the GL context: the session
+  // then enables and adds bricks anew (a new time step, another volume renderer, another h).
+  void reset();
+
+  // The same with the volume's samples from any source (in situ: the simulation's arrays).
+  int addBrick(const Brick& volume_brick, const GridGeometry& grid, const BrickSamples& samples,
+               const Box3& particle_clip, const std::vector<glm::vec3>* particles);
+  // A brick with particles only.
+  int addParticleBrick(const Box3& particle_clip, const std::vector<glm::vec3>& particles);
+
   BrickFrame render(int handle, const Camera& cam, double slice_spacing, double near_plane,
                     double far_plane, bool want_surface);
 

@@ -16,7 +16,11 @@
 
 namespace sortlast {
 
-struct JobFailed {};
+// Every rank throws it with the same message: the first failing rank's (a resident session answers
+// a client with it and goes on).
+struct JobFailed {
+  std::string message;
+};
 
 // `while_waiting` runs over and over while this rank waits for the others to finish the step
 // (the failure flag is reduced without blocking), so a rank that is done early can do useful
@@ -44,7 +48,12 @@ void collectively(MPI_Comm comm, Step&& step, Idle&& while_waiting) {
   }
   if (first == INT_MAX) return;
   if (rank == first) std::fprintf(stderr, "sortlast: error: %s\n", message.c_str());
-  throw JobFailed{};
+  // Every rank learns the message (all know `first`, so this is a matched collective).
+  int length = int(message.size());
+  MPI_Bcast(&length, 1, MPI_INT, first, comm);
+  message.resize(size_t(length));
+  MPI_Bcast(message.data(), length, MPI_CHAR, first, comm);
+  throw JobFailed{message};
 }
 
 template <class Step>

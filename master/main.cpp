@@ -13,6 +13,7 @@
 #include "master/compare_surface.h"
 #include "master/reference_job.h"
 #include "master/render_job.h"
+#include "master/serve_job.h"
 
 using namespace sortlast;
 
@@ -132,6 +133,26 @@ int main(int argc, char** argv) {
   render->add_option("--surface-out", render_opts.surface_out,
                      "Also write the particle surface (t, nx, ny, nz per pixel) as EXR");
 
+  ServeOptions serve_opts;
+  auto* serve = app.add_subcommand(
+      "serve", "Keep the scene loaded and render frames on request: HTTP API, WebSocket stream and "
+               "web viewer (run under mpirun -np N; see docs/service.md)");
+  serve->add_option("scene", serve_opts.scene, "Scene file (YAML); omitted: the built-in default scene");
+  serve->add_option("--set", serve_opts.overrides, "Override a scene key: key.path=value (repeatable)")
+      ->allow_extra_args(false);
+  serve->add_option("--listen", serve_opts.listen,
+                    "ADDRESS:PORT to serve on (default 127.0.0.1:8080; port 0: any free port). An "
+                    "address other than 127.0.0.1, ::1 or localhost needs --token");
+  serve->add_option("--token", serve_opts.token,
+                    "Every /api/ request must carry it (Authorization: Bearer TOKEN, or ?token=TOKEN)");
+  serve->add_option("--data-dir", serve_opts.data_dir,
+                    "Clients may load scene files from under this directory (POST /api/load); the "
+                    "scene argument is then relative to it");
+  serve->add_option("--viewer-dir", serve_opts.viewer_dir, "Serve the web viewer from this directory");
+  serve->add_option("--max-size", serve_opts.max_image_side, "Largest image side a request may ask for")
+      ->check(CLI::Range(1, 32768));
+  serve->add_flag("-q,--quiet", serve_opts.quiet, "No start-up lines");
+
   RenderOptions ref_opts;
   ref_opts.output = "reference.png";
   int threads = 0;
@@ -200,8 +221,10 @@ int main(int argc, char** argv) {
   if (*reference) return runReferenceJob(ref_opts, threads, surface_out);
   if (*adaptive_stats) return runAdaptiveStatsJob(adaptive_opts);
 
-  MPI_Init(&argc, &argv);
-  int code = runRenderJob(render_opts, MPI_COMM_WORLD);
+  // The service's front end runs threads on rank 0, but only the main thread calls MPI.
+  int provided = 0;
+  MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+  int code = *serve ? runServeJob(serve_opts, MPI_COMM_WORLD) : runRenderJob(render_opts, MPI_COMM_WORLD);
   MPI_Finalize();
   return code;
 }

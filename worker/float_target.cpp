@@ -20,6 +20,15 @@ FloatTarget::FloatTarget(const GlApi& gl, int width, int height)
                              std::to_string(height) + " is not complete");
 }
 
+void FloatTarget::resize(int width, int height) {
+  if (width == width_ && height == height_) return;
+  gl_.BindTexture(GL_TEXTURE_2D, colour_);
+  gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, height, 0, GL_RGBA, GL_FLOAT, nullptr);
+  width_ = width;
+  height_ = height;
+  gl_.check("float target resize");
+}
+
 FloatTarget::~FloatTarget() {
   gl_.DeleteFramebuffers(1, &fbo_);
   gl_.DeleteTextures(1, &colour_);

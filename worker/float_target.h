@@ -17,6 +17,12 @@ class FloatTarget {
   FloatTarget(const FloatTarget&) = delete;
   FloatTarget& operator=(const FloatTarget&) = delete;
 
+  // The resident session changes the image size between frames: the texture is reallocated (its
+  // contents are cleared per brick anyway); nothing else depends on the size.
+  void resize(int width, int height);
+  int width() const { return width_; }
+  int height() const { return height_; }
+
   // Binds the framebuffer, scissors to `r` and clears it to transparent; then copies the
   // surface's colour over its rectangle (which must lie inside `r`), if there is a surface.
   void begin(const Rect& r, const SurfaceLayer* surface);

@@ -40,6 +40,7 @@ using PfnDrawArrays = void(APIENTRYP)(GLenum, GLint, GLsizei);
   X(TexImage1D, PFNGLTEXIMAGE1DPROC)                            \
   X(TexImage2D, PFNGLTEXIMAGE2DPROC)                            \
   X(TexImage3D, PFNGLTEXIMAGE3DPROC)                            \
+  X(TexSubImage3D, PFNGLTEXSUBIMAGE3DPROC)                      \
   X(GenFramebuffers, PFNGLGENFRAMEBUFFERSPROC)                  \
   X(DeleteFramebuffers, PFNGLDELETEFRAMEBUFFERSPROC)            \
   X(BindFramebuffer, PFNGLBINDFRAMEBUFFERPROC)                  \

@@ -35,17 +35,8 @@ std::string withCommon(const char* body) { return std::string(shaders::kMetaball
 
 MetaballRenderer::MetaballRenderer(const GlContext& ctx, int width, int height,
                                    const MetaballSettings& settings)
-    : gl_(ctx.gl()), width_(width), height_(height), s_(settings) {
-  levels_ = 1;
-  while ((1 << levels_) <= std::max(width, height)) ++levels_;
-  state_ = makeTexture(gl_, GL_RGBA32F, width, height);
-  hit_ = makeTexture(gl_, GL_RGBA32F, width, height);
-  next_ = makeTexture(gl_, GL_R32F, width, height);
-  pot_ = makeTexture(gl_, GL_RGBA32F, width, height);
-  pot2_ = makeTexture(gl_, GL_RGBA32F, width, height);
-  pyramid_ = makeTexture(gl_, GL_RG32F, width, height, levels_);
-  colour_ = makeTexture(gl_, GL_RGBA32F, width, height);
-  surface_ = makeTexture(gl_, GL_RGBA32F, width, height);
+    : gl_(ctx.gl()), s_(settings) {
+  allocateTargets(width, height);
   gl_.GenFramebuffers(1, &fbo_);
   gl_.GenVertexArrays(1, &vao_);
   gl_.GenVertexArrays(1, &empty_vao_);
@@ -83,11 +74,43 @@ MetaballRenderer::MetaballRenderer(const GlContext& ctx, int width, int height,
   gl_.check("metaball renderer setup");
 }
 
+void MetaballRenderer::allocateTargets(int width, int height) {
+  width_ = width;
+  height_ = height;
+  levels_ = 1;
+  while ((1 << levels_) <= std::max(width, height)) ++levels_;
+  state_ = makeTexture(gl_, GL_RGBA32F, width, height);
+  hit_ = makeTexture(gl_, GL_RGBA32F, width, height);
+  next_ = makeTexture(gl_, GL_R32F, width, height);
+  pot_ = makeTexture(gl_, GL_RGBA32F, width, height);
+  pot2_ = makeTexture(gl_, GL_RGBA32F, width, height);
+  pyramid_ = makeTexture(gl_, GL_RG32F, width, height, levels_);
+  colour_ = makeTexture(gl_, GL_RGBA32F, width, height);
+  surface_ = makeTexture(gl_, GL_RGBA32F, width, height);
+}
+
+void MetaballRenderer::freeTargets() {
+  for (unsigned t : {state_, hit_, next_, pot_, pot2_, pyramid_, colour_, surface_}) gl_.DeleteTextures(1, &t);
+}
+
+void MetaballRenderer::resize(int width, int height) {
+  if (width == width_ && height == height_) return;
+  // Immutable storage (TexStorage2D): new textures of the new size.
+  freeTargets();
+  allocateTargets(width, height);
+  gl_.check("metaball renderer resize");
+}
+
+void MetaballRenderer::setSettings(const MetaballSettings& settings) {
+  if (settings.h != s_.h) throw std::logic_error("MetaballRenderer::setSettings: h changed");
+  s_ = settings;
+}
+
 MetaballRenderer::~MetaballRenderer() {
   for (auto& b : bricks_) gl_.DeleteBuffers(1, &b.vbo);
   for (unsigned p : {advance_, potential_, init_, window_, step_, secant_, bracket_, bracket_base_, shade_, reduce_})
     gl_.DeleteProgram(p);
-  for (unsigned t : {state_, hit_, next_, pot_, pot2_, pyramid_, colour_, surface_}) gl_.DeleteTextures(1, &t);
+  freeTargets();
   gl_.DeleteQueries(1, &query_);
   gl_.DeleteVertexArrays(1, &vao_);
   gl_.DeleteVertexArrays(1, &empty_vao_);

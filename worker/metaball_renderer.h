@@ -48,6 +48,13 @@ class MetaballRenderer {
   MetaballRenderer(const MetaballRenderer&) = delete;
   MetaballRenderer& operator=(const MetaballRenderer&) = delete;
 
+  // A new image size for the next frames: the per-pixel textures are reallocated, the bricks'
+  // particle buffers stay.
+  void resize(int width, int height);
+  // Settings for the next frames. The influence radius h must stay: the bricks' bounds (and the
+  // ghosts their callers chose) depend on it; throws std::logic_error otherwise.
+  void setSettings(const MetaballSettings& settings);
+
   // `particles`: the brick's own particles and its ghosts, in global order (the field is summed
   // in this order, so every decomposition adds the same numbers in the same order).
   int addBrick(const Box3& clip, const std::vector<glm::vec3>& particles);
@@ -75,6 +82,8 @@ class MetaballRenderer {
   void drawBillboards(unsigned program, const GpuBrick& b, const glm::mat4& vp, const Rect& r,
                       float cull_pad);
   void attach(unsigned texture, int level = 0);
+  void allocateTargets(int width, int height);
+  void freeTargets();
 
   const GlApi& gl_;
   int width_, height_, levels_;

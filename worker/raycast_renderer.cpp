@@ -55,6 +55,12 @@ int RaycastRenderer::addBrick(const Brick& brick, const GridGeometry& grid,
   return addGpuBrick(std::move(g));
 }
 
+int RaycastRenderer::addBrick(const Brick& brick, const GridGeometry& grid, const BrickSamples& samples) {
+  GpuBrick g;
+  g.volume = uploadVolumeBrick(gl_, brick, grid, samples, block_cells_);
+  return addGpuBrick(std::move(g));
+}
+
 int RaycastRenderer::addAdaptiveBrick(const Brick& brick, const GridGeometry& grid,
                                       const AdaptiveBrickBlocks& blocks) {
   if (!adaptive_program_) {

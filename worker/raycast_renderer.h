@@ -46,8 +46,13 @@ class RaycastRenderer {
   RaycastRenderer& operator=(const RaycastRenderer&) = delete;
 
   void setTransferFunction(const TransferFunction& tf, int table_size);
+  // A new image size for the next frames (the bricks' textures stay).
+  void resize(int width, int height) { target_.resize(width, height); }
+  // Early ray termination and adaptive stepping can change between frames.
+  void setSettings(const RaycastSettings& settings) { settings_ = settings; }
   // Uploads a brick's stored samples (x fastest); returns a handle for render().
   int addBrick(const Brick& brick, const GridGeometry& grid, const std::vector<float>& samples);
+  int addBrick(const Brick& brick, const GridGeometry& grid, const BrickSamples& samples);
   // Uploads the adaptive blocks a brick draws; returns a handle for render().
   int addAdaptiveBrick(const Brick& brick, const GridGeometry& grid,
                        const AdaptiveBrickBlocks& blocks);

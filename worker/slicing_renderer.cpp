@@ -38,6 +38,11 @@ int SlicingRenderer::addBrick(const Brick& brick, const GridGeometry& grid,
   return int(bricks_.size()) - 1;
 }
 
+int SlicingRenderer::addBrick(const Brick& brick, const GridGeometry& grid, const BrickSamples& samples) {
+  bricks_.push_back(uploadVolumeBrick(gl_, brick, grid, samples, block_cells_));
+  return int(bricks_.size()) - 1;
+}
+
 RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spacing,
                                       double near_plane, double far_plane,
                                       const SurfaceLayer* surface) {

@@ -31,9 +31,12 @@ class SlicingRenderer {
   SlicingRenderer& operator=(const SlicingRenderer&) = delete;
 
   void setTransferFunction(const TransferFunction& tf, int table_size);
+  // A new image size for the next frames (the bricks' textures stay).
+  void resize(int width, int height) { target_.resize(width, height); }
   // Uploads a brick's stored samples (x fastest); returns a handle for render(). The samples'
   // min and max are kept so invisible bricks can be skipped.
   int addBrick(const Brick& brick, const GridGeometry& grid, const std::vector<float>& samples);
+  int addBrick(const Brick& brick, const GridGeometry& grid, const BrickSamples& samples);
 
   // Renders one brick for `cam`; `spacing` is the world distance between slice planes and
   // [near_plane, far_plane] must enclose the whole volume (the same for all bricks of a frame).

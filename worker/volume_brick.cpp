@@ -5,13 +5,38 @@
 
 namespace sortlast {
 
+std::pair<float, float> FloatBrickSamples::range(const IndexBox& box) const {
+  const glm::ivec3 n = stored_.size();
+  float vmin = 1e30f, vmax = -1e30f;
+  for (int z = box.lo.z; z <= box.hi.z; ++z)
+    for (int y = box.lo.y; y <= box.hi.y; ++y) {
+      const float* row = &samples_[size_t(box.lo.x - stored_.lo.x) +
+                                   size_t(n.x) * (size_t(y - stored_.lo.y) + size_t(n.y) * (z - stored_.lo.z))];
+      auto [lo, hi] = std::minmax_element(row, row + (box.hi.x - box.lo.x + 1));
+      vmin = std::min(vmin, *lo);
+      vmax = std::max(vmax, *hi);
+    }
+  return {vmin, vmax};
+}
+
+void FloatBrickSamples::upload(const GlApi& gl, const IndexBox& stored) const {
+  const glm::ivec3 n = stored.size();
+  gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  gl.TexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, n.x, n.y, n.z, GL_RED, GL_FLOAT, samples_.data());
+}
+
 VolumeBrick uploadVolumeBrick(const GlApi& gl, const Brick& brick, const GridGeometry& grid,
                               const std::vector<float>& samples, int block_cells) {
+  if (samples.size() != size_t(brick.stored.count()))
+    throw std::logic_error("addBrick: sample count does not match the brick");
+  return uploadVolumeBrick(gl, brick, grid, FloatBrickSamples(samples, brick.stored), block_cells);
+}
+
+VolumeBrick uploadVolumeBrick(const GlApi& gl, const Brick& brick, const GridGeometry& grid,
+                              const BrickSamples& samples, int block_cells) {
   VolumeBrick g;
   g.brick = brick;
   glm::ivec3 n = brick.stored.size();
-  if (samples.size() != size_t(brick.stored.count()))
-    throw std::logic_error("addBrick: sample count does not match the brick");
   // Block grid over the brick's cells; each block keeps the range of the samples it spans.
   glm::ivec3 cells = brick.domain.size() - 1, nb = (cells + block_cells - 1) / block_cells;
   g.block_count = nb;
@@ -30,17 +55,8 @@ VolumeBrick uploadVolumeBrick(const GlApi& gl, const Brick& brick, const GridGeo
       for (int bx = 0; bx < nb.x; ++bx) {
         IndexBox box{{cuts[0][bx], cuts[1][by], cuts[2][bz]},
                      {cuts[0][bx + 1], cuts[1][by + 1], cuts[2][bz + 1]}};
-        VolumeBlock blk{grid.worldBoxOf(box), 1e30f, -1e30f};
-        for (int z = box.lo.z; z <= box.hi.z; ++z)
-          for (int y = box.lo.y; y <= box.hi.y; ++y) {
-            const float* row = &samples[size_t(box.lo.x - brick.stored.lo.x) +
-                                        size_t(n.x) * (size_t(y - brick.stored.lo.y) +
-                                                       size_t(n.y) * (z - brick.stored.lo.z))];
-            auto [lo, hi] = std::minmax_element(row, row + (box.hi.x - box.lo.x + 1));
-            blk.vmin = std::min(blk.vmin, *lo);
-            blk.vmax = std::max(blk.vmax, *hi);
-          }
-        g.blocks.push_back(blk);
+        auto [vmin, vmax] = samples.range(box);
+        g.blocks.push_back(VolumeBlock{grid.worldBoxOf(box), vmin, vmax});
       }
   // Texel centres: stored sample s sits at texture coordinate (s - stored.lo + 0.5) / n, and the
   // sample index of world point p is p / spacing + (dims - 1) / 2.
@@ -52,7 +68,8 @@ VolumeBrick uploadVolumeBrick(const GlApi& gl, const Brick& brick, const GridGeo
   gl.ActiveTexture(GL_TEXTURE0);
   gl.BindTexture(GL_TEXTURE_3D, g.texture);
   gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  gl.TexImage3D(GL_TEXTURE_3D, 0, GL_R32F, n.x, n.y, n.z, 0, GL_RED, GL_FLOAT, samples.data());
+  gl.TexImage3D(GL_TEXTURE_3D, 0, GL_R32F, n.x, n.y, n.z, 0, GL_RED, GL_FLOAT, nullptr);
+  samples.upload(gl, brick.stored);
   gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   for (GLenum w : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})

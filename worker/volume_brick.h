@@ -9,6 +9,7 @@
 
 #include "common/brick.h"
 #include "common/grid.h"
+#include "worker/brick_samples.h"
 #include "worker/gl_api.h"
 
 namespace sortlast {
@@ -32,5 +33,8 @@ struct VolumeBrick {
 // Throws std::logic_error if the sample count does not match the brick.
 VolumeBrick uploadVolumeBrick(const GlApi& gl, const Brick& brick, const GridGeometry& grid,
                               const std::vector<float>& samples, int block_cells);
+// The same from any source of samples (in situ: the simulation's arrays, read where they lie).
+VolumeBrick uploadVolumeBrick(const GlApi& gl, const Brick& brick, const GridGeometry& grid,
+                              const BrickSamples& samples, int block_cells);
 
 }  // namespace sortlast

@@ -1,0 +1,63 @@
+#include "master/session_layout.h"
+
+#include <cstdio>
+
+#include "common/error.h"
+
+namespace sortlast {
+
+Box3 grow(const Box3& b, double by) { return {b.lo - by, b.hi + by}; }
+Box3 unite(const Box3& a, const Box3& b) { return {glm::min(a.lo, b.lo), glm::max(a.hi, b.hi)}; }
+bool isEmpty(const Box3& b) { return b.lo.x > b.hi.x; }
+
+SessionLayout makeLayout(const Scene& scene, const Box3& particle_centres, int rank, int size) {
+  SessionLayout L;
+  const int d = scene.bricks_per_axis;
+  L.grid = scene.volume.grid;
+  if (scene.hasVolume()) L.volume_bricks = makeBricks(scene.volume.grid, d);
+  L.particle_h = scene.particles.enabled() ? scene.particles.influenceRadius() : 0.0;
+  L.particle_domain = isEmpty(particle_centres) ? Box3{glm::dvec3(1), glm::dvec3(-1)}
+                                                : grow(particle_centres, L.particle_h);
+  if (scene.hasVolume()) {
+    L.planes = volumeBrickPlanes(L.volume_bricks, d);
+    L.bounds = scene.volume.grid.worldBox();
+    if (!isEmpty(L.particle_domain)) {
+      L.planes = coverBox(L.planes, L.particle_domain);
+      L.bounds = unite(L.bounds, L.particle_domain);
+    }
+  } else {
+    // No volume and no particle at all: an empty (transparent) frame of a unit box.
+    L.bounds = isEmpty(L.particle_domain) ? Box3{glm::dvec3(-0.5), glm::dvec3(0.5)} : L.particle_domain;
+    L.planes = uniformBrickPlanes(L.bounds, d);
+  }
+  L.assignment = assignBricks(d, size);
+  L.mine = L.assignment.bricksOf(rank);
+  return L;
+}
+
+void checkCameraOutside(const Camera& cam, const Box3& box, const std::string& which) {
+  const glm::dvec3& p = cam.position;
+  if (!box.contains(p)) return;
+  char msg[512];
+  std::snprintf(msg, sizeof msg,
+                "camera.position (%g, %g, %g)%s is inside the scene, whose box (the volume, "
+                "and the particles grown by their influence radius) is "
+                "[%g, %g] x [%g, %g] x [%g, %g]; move the camera outside it",
+                p.x, p.y, p.z, which.c_str(), box.lo.x, box.hi.x, box.lo.y, box.hi.y, box.lo.z,
+                box.hi.z);
+  throw InputError(msg);
+}
+
+std::pair<double, double> depthRange(const Camera& cam, const Box3& box) {
+  double tmin = 1e300, tmax = -1e300;
+  for (int c = 0; c < 8; ++c) {
+    double t = glm::dot(cam.forward(), box.corner(c) - cam.position);
+    tmin = std::min(tmin, t);
+    tmax = std::max(tmax, t);
+  }
+  double extent = glm::length(box.extent());
+  double near_plane = std::max(tmin * 0.5, 1e-4 * extent);
+  return {near_plane, std::max(tmax * 1.01, near_plane * 2.0)};
+}
+
+}  // namespace sortlast
