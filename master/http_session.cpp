@@ -71,7 +71,7 @@ std::variant<json, std::string> jsonObject(const std::string& body) {
   json j;
   try {
     j = json::parse(body);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse errors, and numbers beyond a double (1e999)
     return std::string("malformed JSON: ") + e.what();
   }
   if (!j.is_object())

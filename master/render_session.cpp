@@ -210,6 +210,10 @@ const Scene& RenderSession::baseScene() const { return s_->base; }
 MPI_Comm RenderSession::comm() const { return s_->comm; }
 std::string RenderSession::rendererDescription() const { return s_->renderer->description(); }
 long long RenderSession::particleCount() const { return s_->current ? s_->current->root.total : 0; }
+int RenderSession::currentStep() const {
+  if (s_->ext) return s_->ext->step;
+  return s_->current ? s_->current->step : s_->base.time_step;
+}
 int RenderSession::orbitFrames() const { return int(s_->base.frameCameras(s_->layout.bounds).size()); }
 
 Scene RenderSession::State::resolve(const FrameRequest& request) const {
@@ -435,7 +439,11 @@ nlohmann::json RenderSession::describe() const {
   j["renderer"] = S.renderer->description();
   j["data_range"] = nullptr;
   j["histogram"] = nullptr;
-  if (b.hasVolume() && S.current) {
+  if (S.ext) {
+    j["has_volume"] = S.ext->has_volume;
+    j["has_particles"] = S.ext->has_particles;
+    if (S.ext->has_volume) j["data_range"] = {S.ext->data_min, S.ext->data_max};
+  } else if (b.hasVolume() && S.current) {
     j["data_range"] = {S.current->data_min, S.current->data_max};
     if (!S.current->histogram.empty())
       j["histogram"] = {{"range", {S.current->data_min, S.current->data_max}}, {"counts", S.current->histogram}};

@@ -104,6 +104,7 @@ class RenderSession {
   const Scene& baseScene() const;
   int orbitFrames() const;                // cameras of the base scene (1 without an orbit)
   long long particleCount() const;        // of the current step
+  int currentStep() const;                // the step on the GPU
   std::string rendererDescription() const;
   // Rank 0: what a client needs to know (bounds, camera, data range, histogram, steps, the base
   // settings, the keys a request may set, limits).

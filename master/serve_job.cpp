@@ -10,17 +10,17 @@
 #include <mutex>
 #include <optional>
 
+#include <dlfcn.h>
 #include <unistd.h>
 
 #include "common/error.h"
-#include "common/image_encode.h"
 #include "master/collective.h"
 #include "master/data_dir.h"
 #include "master/frame_commands.h"
+#include "master/frame_service.h"
 #include "master/http_server.h"
 #include "master/render_session.h"
 #include "master/request_queue.h"
-#include "master/request_translation.h"
 
 #ifndef SORTLAST_VIEWER_SOURCE_DIR
 #define SORTLAST_VIEWER_SOURCE_DIR ""
@@ -44,36 +44,6 @@ void installStopHandlers() {
   signal(SIGPIPE, SIG_IGN);
 }
 
-// The viewer's files: --viewer-dir, else installed beside the program (PREFIX/share/sortlast/
-// viewer for PREFIX/bin/sortlast), else the source tree's (a build that was not installed).
-std::string findViewerDir(const std::string& given) {
-  if (!given.empty()) return given;
-  std::error_code ec;
-  std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    auto installed = exe.parent_path().parent_path() / "share" / "sortlast" / "viewer";
-    if (std::filesystem::exists(installed / "index.html")) return installed.string();
-  }
-  return SORTLAST_VIEWER_SOURCE_DIR;
-}
-
-// The scene description GET /api/scene returns, updated by the frame loop, read by the front end.
-class SceneInfo {
- public:
-  void set(nlohmann::json j) {
-    std::lock_guard<std::mutex> lock(mu_);
-    info_ = std::move(j);
-  }
-  nlohmann::json get() const {
-    std::lock_guard<std::mutex> lock(mu_);
-    return info_;
-  }
-
- private:
-  mutable std::mutex mu_;
-  nlohmann::json info_;
-};
-
 ServiceReply errorReply(int status, const std::string& message) {
   ServiceReply r;
   r.status = status;
@@ -92,11 +62,36 @@ SessionOptions sessionOptions(const ServeOptions& opts, const std::string& scene
   return so;
 }
 
+// POST /api/load on every rank: the session is replaced by one of `path`. The old one goes first
+// (a session owns the rank's GL context, and two must not overlap); if the new scene fails, the
+// old scene is loaded again. The --set keys belong to the scene the service started with (`initial`)
+// and apply to it alone. Returns the error message, or "" on success. Collective.
+std::string replaceSession(std::unique_ptr<RenderSession>& session, const ServeOptions& opts,
+                           const std::string& path, const std::string& initial, std::string& current,
+                           MPI_Comm comm) {
+  auto open = [&](const std::string& scene) {
+    SessionOptions so;
+    collectively(comm, [&] {
+      so = sessionOptions(opts, scene, scene == initial ? opts.overrides : std::vector<std::string>());
+    });
+    session = std::make_unique<RenderSession>(std::move(so), comm);
+  };
+  session.reset();
+  try {
+    open(path);
+    current = path;
+    return "";
+  } catch (const JobFailed& e) {
+    open(current);  // the scene that loaded before loads again (or the service ends)
+    return e.message;
+  }
+}
+
 // Rank 0's part: the front end and the loop that feeds the other ranks.
 class Frontend {
  public:
-  Frontend(const ServeOptions& opts, std::unique_ptr<RenderSession>& session)
-      : opts_(opts), session_(session) {}
+  Frontend(const ServeOptions& opts, std::unique_ptr<RenderSession>& session, std::string scene)
+      : opts_(opts), session_(session), initial_(scene), scene_(scene) {}
 
   // Collective with the other ranks' follow(): returns when the service stops.
   void lead(MPI_Comm comm) {
@@ -148,66 +143,37 @@ class Frontend {
   }
 
   void frame(ServiceRequest& req, MPI_Comm comm) {
-    const double t_start = MPI_Wtime();
-    TranslatedRequest tr;
-    FrameRequest fr;
-    try {
-      tr = translateRequest(req.body);
-      fr.overrides = tr.overrides;
-      session_->check(fr);  // a bad request never reaches the other ranks
-    } catch (const InputError& e) {
-      req.reply(errorReply(400, e.what()));
-      return;
-    }
-    sendCommand({Command::kFrame, packOverrides(fr.overrides)}, comm);
-    FrameResult result;
-    try {
-      result = session_->render(fr);
-    } catch (const JobFailed& e) {
-      req.reply(errorReply(500, "the frame failed: " + e.message));
-      return;
-    }
-    ServiceReply r;
-    const double t_encode = MPI_Wtime();
-    try {
-      r.body = encodeImage(result.image, result.scene.background, tr.format, tr.quality);
-    } catch (const InputError& e) {
-      req.reply(errorReply(400, e.what()));
-      return;
-    }
-    r.content_type = tr.format == "png" ? "image/png" : "image/jpeg";
-    r.stats = std::move(result.stats);
-    r.stats["encode_image_s"] = MPI_Wtime() - t_encode;
-    r.stats["service_s"] = MPI_Wtime() - t_start;
-    r.stats["format"] = tr.format;
-    r.stats["dropped"] = queue_.dropped(req.client);
-    r.stats["dropped_total"] = queue_.dropped();
-    if (r.stats.value("step", 0) != info_step_) {
-      info_step_ = r.stats.value("step", 0);
+    leadFrame(req, *session_, queue_, comm);
+    const int step = session_->currentStep();
+    if (step != info_step_) {
+      info_step_ = step;
       info_.set(describe());  // the histogram and range of the step now shown
     }
-    req.reply(std::move(r));
   }
 
   void load(ServiceRequest& req, MPI_Comm comm) {
     std::string path = req.body.value("scene", "");
+    // Answer with the name relative to the data directory, as the client gave it.
+    std::error_code ec;
+    std::string name = std::filesystem::relative(
+        path, std::filesystem::weakly_canonical(opts_.data_dir, ec), ec).string();
     sendCommand({Command::kLoad, path}, comm);
-    try {
-      auto next = std::make_unique<RenderSession>(sessionOptions(opts_, path, {}), comm);
-      session_ = std::move(next);
-    } catch (const JobFailed& e) {
-      req.reply(errorReply(400, "cannot load " + path + ": " + e.message));
-      return;
-    }
+    std::string error = replaceSession(session_, opts_, path, initial_, scene_, comm);
     info_step_ = -1;
     info_.set(describe());
+    if (!error.empty()) {
+      req.reply(errorReply(400, "cannot load " + name + ": " + error));
+      return;
+    }
     ServiceReply r;
-    r.stats = {{"ok", true}, {"scene", path}};
+    r.stats = {{"ok", true}, {"scene", name}};
     req.reply(std::move(r));
   }
 
   const ServeOptions& opts_;
   std::unique_ptr<RenderSession>& session_;
+  const std::string initial_;  // the scene file the service started with
+  std::string scene_;          // the scene file the session has now
   RequestQueue queue_;
   SceneInfo info_;
   std::unique_ptr<HttpServer> server_;
@@ -215,7 +181,9 @@ class Frontend {
 };
 
 // The other ranks: do what rank 0 says until it says stop.
-void follow(std::unique_ptr<RenderSession>& session, const ServeOptions& opts, MPI_Comm comm) {
+void follow(std::unique_ptr<RenderSession>& session, const ServeOptions& opts, const std::string& initial,
+            MPI_Comm comm) {
+  std::string scene = initial;
   for (;;) {
     CommandMessage m = receiveCommand(comm, g_stop, 10.0);
     if (m.gave_up) {
@@ -226,26 +194,33 @@ void follow(std::unique_ptr<RenderSession>& session, const ServeOptions& opts, M
       case Command::kShutdown:
         return;
       case Command::kFrame:
-        try {
-          FrameRequest fr;
-          fr.overrides = unpackOverrides(m.payload);
-          session->render(fr);
-        } catch (const JobFailed&) {
-          // Rank 0 answers the client; the session goes on.
-        }
+        followFrame(m, *session);
         break;
       case Command::kLoad:
-        try {
-          auto next = std::make_unique<RenderSession>(sessionOptions(opts, m.payload, {}), comm);
-          session = std::move(next);
-        } catch (const JobFailed&) {
-        }
+        replaceSession(session, opts, m.payload, initial, scene, comm);
         break;
     }
   }
 }
 
 }  // namespace
+
+std::string findViewerDir(const std::string& given) {
+  if (!given.empty()) return given;
+  std::vector<std::filesystem::path> binaries;
+  std::error_code ec;
+  std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) binaries.push_back(exe);
+  // A simulation linking libsortlast.so: the library's own folder (PREFIX/lib).
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<void*>(&findViewerDir), &info) && info.dli_fname)
+    binaries.push_back(std::filesystem::absolute(info.dli_fname));
+  for (const auto& b : binaries) {
+    auto installed = b.parent_path().parent_path() / "share" / "sortlast" / "viewer";
+    if (std::filesystem::exists(installed / "index.html")) return installed.string();
+  }
+  return SORTLAST_VIEWER_SOURCE_DIR;
+}
 
 bool isDefaultLoopback(const std::string& address) {
   return address == "127.0.0.1" || address == "::1" || address == "localhost";
@@ -298,10 +273,10 @@ int runServeJob(const ServeOptions& opts, MPI_Comm comm) {
       session = std::make_unique<RenderSession>(std::move(so), comm);
     }
     if (rank == 0) {
-      Frontend frontend(opts, session);
+      Frontend frontend(opts, session, scene_path);
       frontend.lead(comm);
     } else {
-      follow(session, opts, comm);
+      follow(session, opts, scene_path, comm);
     }
     if (rank == 0 && !opts.quiet) std::fprintf(stderr, "sortlast serve: stopped\n");
   } catch (const JobFailed&) {

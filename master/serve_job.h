@@ -23,9 +23,15 @@ struct ServeOptions {
   bool quiet = false;
 };
 
-// Returns the process exit code. Collective over `comm`; returns when a SIGTERM or SIGINT reaches
-// any rank (all ranks stop within a second or so).
+// Returns the process exit code. Collective over `comm`. A SIGTERM or SIGINT to rank 0 (or to
+// mpirun, which passes SIGINT/SIGTERM on as it ends the job) stops every rank within a second or
+// so; one that reaches another rank alone makes it give up after 10 s of rank 0's silence
+// (MPI_Abort ends the job).
 int runServeJob(const ServeOptions& opts, MPI_Comm comm);
+
+// The web viewer's files: `given`, else installed beside the program or the library
+// (PREFIX/share/sortlast/viewer), else the source tree's (a build that was not installed).
+std::string findViewerDir(const std::string& given);
 
 // Whether serving on this address needs no token: only the loopback names 127.0.0.1, ::1 and
 // localhost (any other address, other 127.x included, may be reachable by others).

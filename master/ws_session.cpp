@@ -104,7 +104,7 @@ void WsSession::handleText(const std::string& text) {
   json body;
   try {
     body = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse errors, and numbers beyond a double (1e999)
     return reject(nullptr, std::string("malformed JSON: ") + e.what());
   }
   if (!body.is_object())

@@ -1,0 +1,638 @@
+// The web viewer of `sortlast serve`: asks the server for frames of the current view state
+// (camera, image size, renderer, compositing, transfer function, time step) and shows them.
+// While the user interacts it asks for reduced JPEG frames, and for a full-size PNG once the
+// interaction stops (progressive refinement).
+
+import { FrameClient } from './connection.js';
+import { PRESETS, sampleKnots, cssGradient } from './colormaps.js';
+import { TransferEditor } from './transfer_editor.js';
+import * as cam from './orbit.js';
+
+const $ = (id) => document.getElementById(id);
+const params = new URLSearchParams(location.search);
+const token = params.get('token') || '';
+const apiUrl = (path) => (token ? `${path}?token=${encodeURIComponent(token)}` : path);
+
+const IDLE_MS = 150;            // no wheel / slider input for this long: ask for the full frame
+const REDUCED_QUALITY = 80;     // JPEG quality of reduced frames
+const PLAY_QUALITY = 90;        // JPEG quality while a time series plays
+const FPS_WINDOW_MS = 2000;
+const LATENCY_WINDOW = 20;
+
+const state = {
+  scene: null,
+  bounds: null,
+  camera: null,
+  sceneCamera: null,
+  sceneSize: [512, 512],
+  limits: { max_width: 4096, max_height: 4096 },
+  keys: null,                   // request_keys, as a Set (null: send everything)
+  sceneKnots: null,             // colour knots of the scene's transfer function
+  sceneOpacity: null,
+  tfEdited: false,
+  steps: 1,
+  step: 0,
+  playing: false,
+  drags: 0,                     // pointer drags in progress (frame, transfer editor, sliders)
+  seq: 0,                       // submission counter
+  shownSeq: -1,
+  errorSeq: -1,
+  frameTimes: [],
+  lastFull: null,               // {blob, width, height} of the last full frame shown
+  waiters: [],                  // requestFull() promises
+  unanswered: null,             // {key, seq} of the newest request while no reply has come
+};
+
+const api = {
+  ready: false,
+  framesShown: 0,
+  lastCamera: null,
+  lastStats: null,
+  lastRequest: null,            // the request body of the last shown frame
+  lastMode: null,               // 'full' | 'reduced' | 'play'
+  latencies: [],
+  shown: { full: 0, reduced: 0, play: 0 },   // frames shown, by kind
+  requestFull,
+  // true once the newest request has been answered with a full-size frame that is on screen
+  get settled() { return state.shownSeq === state.seq && api.lastMode === 'full' && !client.busy; },
+  get message() { return $('message').hidden ? null : { text: $('message').textContent, kind: $('message').className }; },
+  tfHandles: () => tf.handlePositions(),
+  get camera() { return state.camera && cam.cloneCamera(state.camera); },
+  get transport() { return client.transport; },
+};
+window.sortlastViewer = api;
+
+// ---------------------------------------------------------------- messages
+let connectionMessage = null;
+function showMessage(text, kind = 'error') {
+  const el = $('message');
+  el.textContent = text || '';
+  el.className = text ? kind : '';
+  el.hidden = !text;
+}
+function error(text) { showMessage(text, 'error'); }
+$('message').addEventListener('click', () => showMessage(null));
+
+// ---------------------------------------------------------------- frame requests
+const client = new FrameClient({
+  token,
+  onFrame: (meta, blob, stats) => { answered(meta); showFrame(meta, blob, stats); },
+  onError: (meta, message) => {
+    answered(meta);
+    state.errorSeq = Math.max(state.errorSeq, meta.seq);
+    error(`Server: ${message}`);
+    state.waiters = state.waiters.filter((w) => {
+      if (meta.mode === 'full' && meta.seq >= w.seq) { w.reject(new Error(message)); return false; }
+      return true;
+    });
+    if (state.playing) setPlaying(false);
+    updateBusy();
+  },
+  onStatus: (text, isError) => {
+    connectionMessage = text;
+    if (text) showMessage(text, isError ? 'error' : 'info');
+    else if ($('message').dataset.connection) showMessage(null);
+    $('message').dataset.connection = text ? '1' : '';
+    updateTransport();
+  },
+  onReconnect: () => { state.unanswered = null; submit('full'); },
+});
+
+function answered(meta) { if (state.unanswered && state.unanswered.seq <= meta.seq) state.unanswered = null; }
+
+function fullSize() {
+  const [sw, sh] = state.sceneSize;
+  const v = $('size').value;
+  let w = sw, h = sh;
+  if (v !== 'scene') {
+    const s = Number(v);
+    if (sw >= sh) { w = s; h = Math.round((s * sh) / sw); } else { h = s; w = Math.round((s * sw) / sh); }
+  }
+  return [Math.max(1, Math.min(w, state.limits.max_width || 4096)), Math.max(1, Math.min(h, state.limits.max_height || 4096))];
+}
+
+const round6 = (v) => Math.round(v * 1e6) / 1e6;
+
+// transfer.points of the editor's state: the colour map and the opacity curve sampled at 64
+// evenly spaced values plus every control point of either, strictly increasing.
+function transferPoints() {
+  const knots = currentKnots();
+  const xs = [];
+  for (let i = 0; i < 64; i++) xs.push(i / 63);
+  for (const p of tf.getPoints()) xs.push(p[0]);
+  for (const k of knots) if (k[0] >= 0 && k[0] <= 1) xs.push(k[0]);
+  const sorted = xs.map(round6).sort((a, b) => a - b).filter((x, i, a) => i === 0 || x > a[i - 1]);
+  return sorted.map((x) => [x, ...sampleKnots(knots, x).map(round6), round6(tf.opacity(x))]);
+}
+
+function buildRequest(mode) {
+  const [fw, fh] = fullSize();
+  const factor = mode === 'reduced' ? Number($('reduce').value) : 1;
+  const w = Math.max(8, Math.round(fw * factor)), h = Math.max(8, Math.round(fh * factor));
+  const c = state.camera;
+  const r = {
+    'camera.position': c.position.map(round6),
+    'camera.look_at': c.look_at.map(round6),
+    'camera.up': c.up.map(round6),
+    'camera.fov': c.fov,
+    'image.width': w,
+    'image.height': h,
+  };
+  if (state.scene.has_volume) {
+    r['render.method'] = $('method').value;
+    // Level of detail while interacting: samples twice as far apart halve the volume's cost
+    // (the full frame that follows uses the chosen spacing).
+    const coarse = mode === 'reduced' && $('coarse') && $('coarse').checked ? 2 : 1;
+    r['render.sample_spacing'] = Math.min(100, Number($('spacing').value) * coarse);
+    if (state.tfEdited) r['transfer.points'] = transferPoints();
+  }
+  r['compositing.strategy'] = $('strategy').value;
+  if (state.steps > 1) r['time.step'] = state.step;
+  if (state.keys) for (const k of Object.keys(r)) if (!state.keys.has(k)) delete r[k];
+  if (mode === 'full') r.format = 'png';
+  else { r.format = 'jpeg'; r.quality = mode === 'play' ? PLAY_QUALITY : REDUCED_QUALITY; }
+  return { request: r, meta: { mode, fullW: fw, fullH: fh, seq: ++state.seq } };
+}
+
+function submit(mode) {
+  if (!state.scene) return undefined;
+  const { request, meta } = buildRequest(mode);
+  // the same state as the request still unanswered: nothing new to ask for
+  const key = JSON.stringify(request);
+  if (state.unanswered && state.unanswered.key === key) { state.seq -= 1; return state.unanswered.seq; }
+  state.unanswered = { key, seq: meta.seq };
+  meta.request = request;
+  client.submit(request, meta);
+  updateBusy();
+  return meta.seq;
+}
+
+// An interaction step: a reduced frame now, the full frame once input has been idle.
+let idleTimer = 0;
+function interact() {
+  submit('reduced');
+  clearTimeout(idleTimer);
+  idleTimer = setTimeout(() => { if (state.drags === 0 && !state.playing) submit('full'); }, IDLE_MS);
+}
+function interactionEnd() {
+  clearTimeout(idleTimer);
+  if (state.drags === 0 && !state.playing) submit('full');
+}
+
+function requestFull() {
+  return new Promise((resolve, reject) => {
+    const seq = submit('full');
+    if (seq === undefined) { reject(new Error('the scene is not loaded')); return; }
+    state.waiters.push({ seq, resolve, reject });
+  });
+}
+
+// ---------------------------------------------------------------- showing frames
+const canvas = $('frame');
+const ctx = canvas.getContext('2d');
+
+async function showFrame(meta, blob, stats) {
+  let bitmap;
+  try {
+    bitmap = await createImageBitmap(blob);
+  } catch (e) {
+    error(`Could not decode the ${blob.type} frame: ${e.message}`);
+    return;
+  }
+  if (meta.seq <= state.shownSeq) { bitmap.close(); return; }   // a newer frame is already up
+  state.shownSeq = meta.seq;
+  if (canvas.width !== meta.fullW || canvas.height !== meta.fullH) {
+    canvas.width = meta.fullW;
+    canvas.height = meta.fullH;
+    layoutFrame();
+  }
+  ctx.imageSmoothingEnabled = true;
+  ctx.imageSmoothingQuality = 'high';
+  ctx.drawImage(bitmap, 0, 0, canvas.width, canvas.height);
+  bitmap.close();
+  const now = performance.now();
+  const latency = now - meta.t0;
+
+  api.latencies.push(latency);
+  if (api.latencies.length > 200) api.latencies.splice(0, api.latencies.length - 200);
+  state.frameTimes.push(now);
+  while (state.frameTimes.length && now - state.frameTimes[0] > FPS_WINDOW_MS) state.frameTimes.shift();
+  api.framesShown += 1;
+  api.shown[meta.mode] += 1;
+  api.lastStats = stats;
+  api.lastCamera = stats.camera || null;
+  api.lastRequest = meta.request;
+  api.lastMode = meta.mode;
+  if (meta.mode === 'full') state.lastFull = { blob, width: meta.fullW, height: meta.fullH };
+  if (meta.seq > state.errorSeq && !connectionMessage) showMessage(null);
+  api.ready = true;
+  document.body.classList.add('ready');
+  updateStats(meta, stats, latency);
+  updateBusy();
+  if (meta.mode === 'full') {
+    state.waiters = state.waiters.filter((w) => {
+      if (meta.seq >= w.seq) { w.resolve(stats); return false; }
+      return true;
+    });
+  }
+  if (state.playing && meta.mode === 'play') advancePlay();
+  if (meta.mode === 'full' && Number.isInteger(stats.step) && stats.step !== state.histogramStep) refreshHistogram(stats.step);
+}
+
+// The histogram and data range are the shown step's: fetch them again when the step changes.
+async function refreshHistogram(step) {
+  state.histogramStep = step;
+  try {
+    const res = await fetch(apiUrl('/api/scene'));
+    if (!res.ok) return;
+    const scene = await res.json();
+    if (state.histogramStep !== step) return;
+    state.scene.data_range = scene.data_range;
+    state.scene.histogram = scene.histogram;
+    showHistogram();
+  } catch { /* keep the old one */ }
+}
+
+function showHistogram() {
+  const scene = state.scene;
+  const [lo, hi] = tfRange();
+  const tiny = Math.abs(hi - lo) * 1e-6;  // a "minimum" of 1e-33 is a 0
+  $('tf-lo').textContent = fmt(Math.abs(lo) < tiny ? 0 : lo);
+  $('tf-hi').textContent = fmt(Math.abs(hi) < tiny ? 0 : hi);
+  if (scene.histogram && Array.isArray(scene.histogram.counts)) {
+    const [hlo, hhi] = scene.histogram.range || scene.data_range || [lo, hi];
+    const span = hi - lo || 1;
+    tf.setHistogram(scene.histogram.counts, (hlo - lo) / span, (hhi - lo) / span);
+  } else {
+    tf.setHistogram(null);
+  }
+}
+
+function layoutFrame() {
+  const view = $('view');
+  const vw = view.clientWidth - 16, vh = view.clientHeight - 16;
+  const s = Math.min(vw / canvas.width, vh / canvas.height);
+  if (!(s > 0)) return;
+  canvas.style.width = `${Math.floor(canvas.width * s)}px`;
+  canvas.style.height = `${Math.floor(canvas.height * s)}px`;
+}
+new ResizeObserver(layoutFrame).observe($('view'));
+
+// ---------------------------------------------------------------- stats overlay
+const ms = (s) => (typeof s === 'number' ? (s * 1000).toFixed(1) : '–');
+const maxOf = (v) => (Array.isArray(v) ? (v.length ? Math.max(...v) : undefined) : v);
+const sumOf = (v) => (Array.isArray(v) ? v.reduce((a, b) => a + b, 0) : v);
+function bytes(n) {
+  if (typeof n !== 'number') return '–';
+  if (n < 1024) return `${n} B`;
+  if (n < 1024 * 1024) return `${(n / 1024).toFixed(1)} KiB`;
+  return `${(n / 1024 / 1024).toFixed(2)} MiB`;
+}
+
+function updateStats(meta, s, latency) {
+  const t = state.frameTimes;
+  const fps = t.length > 1 ? ((t.length - 1) * 1000) / (t[t.length - 1] - t[0]) : 0;
+  const recent = api.latencies.slice(-LATENCY_WINDOW);
+  const mean = recent.reduce((a, b) => a + b, 0) / recent.length;
+  const w = s.width ?? meta.request['image.width'], h = s.height ?? meta.request['image.height'];
+  const kind = meta.mode === 'full' ? 'full PNG' : meta.mode === 'play' ? 'JPEG' : 'reduced JPEG';
+  const rle = typeof s.rle_ratio === 'number' ? s.rle_ratio.toFixed(3) : '–';
+  const rows = [
+    ['fps', fps ? fps.toFixed(1) : '–'],
+    ['frame', `${w}×${h} ${kind}`],
+    ['latency', `${latency.toFixed(0)} ms (mean ${mean.toFixed(0)})`],
+    ['total', `${ms(s.total_s)} ms`],
+    ['render', `${ms(maxOf(s.render_s))} ms`],
+    ['composite', `${ms(maxOf(s.composite_s))} ms`],
+    ['transfer', `${ms(maxOf(s.transfer_s))} ms`],
+    ['sent', bytes(sumOf(s.bytes_sent))],
+    ['RLE ratio', rle],
+    ['ranks', s.ranks ?? state.scene.ranks ?? '–'],
+  ];
+  const el = $('stats');
+  el.replaceChildren(...rows.map(([k, v]) => {
+    const row = document.createElement('div');
+    const a = document.createElement('span'); a.textContent = k;
+    const b = document.createElement('b'); b.textContent = v;
+    row.append(a, b);
+    return row;
+  }));
+}
+
+function updateBusy() { $('busy').hidden = !client.busy; }
+function updateTransport() {
+  const el = $('transport');
+  el.textContent = client.transport;
+  el.className = client.transport;
+}
+setInterval(() => { updateBusy(); updateTransport(); }, 500);
+
+// ---------------------------------------------------------------- camera interaction
+const pointers = new Map();   // pointerId -> {x, y}
+let dragMode = null;          // 'orbit' | 'pan' | 'pinch'
+
+function viewHeight() { return canvas.getBoundingClientRect().height || canvas.height; }
+
+canvas.addEventListener('contextmenu', (e) => e.preventDefault());
+canvas.addEventListener('pointerdown', (e) => {
+  if (!state.camera) return;
+  canvas.setPointerCapture(e.pointerId);
+  pointers.set(e.pointerId, { x: e.clientX, y: e.clientY });
+  if (pointers.size === 1) {
+    state.drags += 1;
+    dragMode = e.button === 2 || e.button === 1 || e.shiftKey ? 'pan' : 'orbit';
+  } else {
+    dragMode = 'pinch';
+  }
+  canvas.classList.add('dragging');
+  e.preventDefault();
+});
+canvas.addEventListener('pointermove', (e) => {
+  const p = pointers.get(e.pointerId);
+  if (!p) return;
+  const dx = e.clientX - p.x, dy = e.clientY - p.y;
+  if (dx === 0 && dy === 0) return;
+  const vh = viewHeight();
+  if (dragMode === 'pinch' && pointers.size >= 2) {
+    const [a, b] = [...pointers.values()];
+    const before = Math.hypot(a.x - b.x, a.y - b.y);
+    const midBefore = [(a.x + b.x) / 2, (a.y + b.y) / 2];
+    p.x = e.clientX; p.y = e.clientY;
+    const [c, d] = [...pointers.values()];
+    const after = Math.hypot(c.x - d.x, c.y - d.y);
+    const midAfter = [(c.x + d.x) / 2, (c.y + d.y) / 2];
+    if (before > 0 && after > 0) state.camera = cam.zoom(state.camera, before / after, state.bounds);
+    state.camera = cam.pan(state.camera, midAfter[0] - midBefore[0], midAfter[1] - midBefore[1], vh);
+  } else {
+    p.x = e.clientX; p.y = e.clientY;
+    if (dragMode === 'pan') state.camera = cam.pan(state.camera, dx, dy, vh);
+    else state.camera = cam.orbit(state.camera, dx, dy, vh);
+  }
+  state.camera = cam.keepOutside(state.camera, state.bounds);
+  submit('reduced');
+});
+function pointerEnd(e) {
+  if (!pointers.delete(e.pointerId)) return;
+  if (pointers.size === 1 && dragMode === 'pinch') dragMode = 'orbit';
+  if (pointers.size > 0) return;
+  dragMode = null;
+  canvas.classList.remove('dragging');
+  state.drags = Math.max(0, state.drags - 1);
+  interactionEnd();
+}
+canvas.addEventListener('pointerup', pointerEnd);
+canvas.addEventListener('pointercancel', pointerEnd);
+canvas.addEventListener('wheel', (e) => {
+  if (!state.camera) return;
+  e.preventDefault();
+  const unit = e.deltaMode === 1 ? 0.05 : e.deltaMode === 2 ? 1 : 0.0015;
+  state.camera = cam.zoom(state.camera, Math.exp(e.deltaY * unit), state.bounds);
+  interact();
+}, { passive: false });
+
+function aspect() { const [w, h] = fullSize(); return w / h; }
+function resetView() {
+  state.camera = cam.frameBounds(state.sceneCamera, state.bounds, aspect());
+  submit('full');
+}
+$('reset').addEventListener('click', resetView);
+window.addEventListener('keydown', (e) => {
+  if (e.target instanceof HTMLInputElement || e.target instanceof HTMLSelectElement || e.target === $('tf-canvas')) return;
+  if (e.key === 'r' || e.key === 'R') resetView();
+  if (e.key === ' ' && state.steps > 1) { e.preventDefault(); setPlaying(!state.playing); }
+});
+
+// ---------------------------------------------------------------- controls
+// Sliders: reduced frames while dragged, the full frame on release.
+function trackSlider(el, onInput) {
+  let held = false;
+  el.addEventListener('pointerdown', () => { if (!held) { held = true; state.drags += 1; } });
+  const release = () => { if (held) { held = false; state.drags = Math.max(0, state.drags - 1); interactionEnd(); } };
+  window.addEventListener('pointerup', release);
+  window.addEventListener('pointercancel', release);
+  el.addEventListener('input', () => { onInput(); interact(); });
+  el.addEventListener('change', () => { onInput(); if (!held) interactionEnd(); });
+}
+
+for (const id of ['size', 'method', 'strategy']) $(id).addEventListener('change', () => submit('full'));
+
+// sample spacing: a log slider and a number box, 0.01 .. 100
+const SPACING_MIN = 0.01, SPACING_MAX = 100;
+const clampSpacing = (v) => Math.min(Math.max(v, SPACING_MIN), SPACING_MAX);
+function syncSpacingSlider() { $('spacing-range').value = Math.log10(clampSpacing(Number($('spacing').value) || 1)); }
+trackSlider($('spacing-range'), () => {
+  const v = 10 ** Number($('spacing-range').value);
+  $('spacing').value = v >= 1 ? v.toFixed(2) : v.toPrecision(2);
+});
+$('spacing').addEventListener('change', () => {
+  const v = Number($('spacing').value);
+  if (!(v > 0)) { error('Sample spacing must be a number between 0.01 and 100'); return; }
+  $('spacing').value = clampSpacing(v);
+  syncSpacingSlider();
+  submit('full');
+});
+
+// time steps
+trackSlider($('step'), () => { state.step = Number($('step').value); showStep(); });
+function showStep() { $('step-label').textContent = `${state.step + 1} / ${state.steps}`; }
+let playTimer = 0;
+function setPlaying(on) {
+  state.playing = on && state.steps > 1;
+  $('play').textContent = state.playing ? 'Pause' : 'Play';
+  $('play').classList.toggle('active', state.playing);
+  clearTimeout(playTimer);
+  if (state.playing) advancePlay();
+  else submit('full');
+}
+function advancePlay() {
+  clearTimeout(playTimer);
+  playTimer = setTimeout(() => {
+    if (!state.playing) return;
+    state.step = (state.step + 1) % state.steps;
+    $('step').value = state.step;
+    showStep();
+    submit('play');
+  }, 30);
+}
+$('play').addEventListener('click', () => setPlaying(!state.playing));
+
+$('show-stats').addEventListener('change', () => { $('stats').hidden = !$('show-stats').checked; });
+
+// save
+$('save').addEventListener('click', async () => {
+  let blob = state.lastFull && state.lastFull.blob.type === 'image/png' ? state.lastFull.blob : null;
+  if (!blob) blob = await new Promise((r) => canvas.toBlob(r, 'image/png'));
+  if (!blob) { error('No frame to save yet'); return; }
+  const a = document.createElement('a');
+  a.href = URL.createObjectURL(blob);
+  a.download = `sortlast_${canvas.width}x${canvas.height}.png`;
+  document.body.append(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(a.href), 10000);
+});
+
+// ---------------------------------------------------------------- transfer function
+const tf = new TransferEditor($('tf-canvas'), {
+  onChange: (interactive) => {
+    state.tfEdited = true;
+    if (interactive) {
+      if (!tfDragging) { tfDragging = true; state.drags += 1; }
+      submit('reduced');
+    } else {
+      if (tfDragging) { tfDragging = false; state.drags = Math.max(0, state.drags - 1); }
+      interactionEnd();
+    }
+  },
+  onHover: (x, a) => {
+    const el = $('tf-readout');
+    if (x === null) { el.textContent = ''; return; }
+    const [lo, hi] = tfRange();
+    const v = lo + (hi - lo) * x;
+    el.textContent = `value ${fmt(v)} · opacity ${a.toFixed(2)}`;
+  },
+});
+let tfDragging = false;
+
+function fmt(v) {
+  if (!Number.isFinite(v)) return '–';
+  const a = Math.abs(v);
+  return a !== 0 && (a >= 1e5 || a < 1e-3) ? v.toExponential(2) : String(Math.round(v * 1000) / 1000);
+}
+
+function tfRange() {
+  const r = state.scene && state.scene.settings && state.scene.settings['transfer.range'];
+  if (Array.isArray(r) && r.length === 2 && r.every(Number.isFinite)) return r;
+  return (state.scene && state.scene.data_range) || [0, 1];
+}
+
+function currentKnots() {
+  const name = $('colormap').value;
+  return name === 'scene' ? state.sceneKnots : PRESETS[name];
+}
+
+$('colormap').addEventListener('change', () => {
+  tf.setColormap(currentKnots());
+  $('colormap-preview').style.background = cssGradient(currentKnots());
+  state.tfEdited = true;
+  submit('full');
+});
+$('tf-reset').addEventListener('click', () => {
+  tf.setPoints(state.sceneOpacity);
+  $('colormap').value = state.sceneKnotsFromScene ? 'scene' : 'Cool to Warm';
+  tf.setColormap(currentKnots());
+  $('colormap-preview').style.background = cssGradient(currentKnots());
+  state.tfEdited = !state.sceneKnotsFromScene;
+  submit('full');
+});
+
+// ---------------------------------------------------------------- start
+function setOptions(select, values, current) {
+  const list = [...values];
+  if (current !== undefined && !list.some((v) => String(v[0] ?? v) === String(current))) list.push([current, String(current)]);
+  select.replaceChildren(...list.map((v) => {
+    const [value, label] = Array.isArray(v) ? v : [v, v];
+    const o = document.createElement('option');
+    o.value = value; o.textContent = label;
+    return o;
+  }));
+  if (current !== undefined) select.value = String(current);
+}
+
+function validVec(v) { return Array.isArray(v) && v.length === 3 && v.every(Number.isFinite); }
+
+function applyScene(scene) {
+  state.scene = scene;
+  const settings = scene.settings || {};
+  state.keys = Array.isArray(scene.request_keys) ? new Set(scene.request_keys) : null;
+  if (scene.limits) state.limits = scene.limits;
+  const b = scene.bounds;
+  state.bounds = b && validVec(b.lo) && validVec(b.hi) ? { lo: b.lo, hi: b.hi } : { lo: [-1, -1, -1], hi: [1, 1, 1] };
+  const c = scene.camera || {};
+  state.sceneSize = [scene.image?.width || 512, scene.image?.height || 512];
+  const centre = cam.sphere(state.bounds).center;
+  const sc = {
+    position: validVec(c.position) ? c.position : null,
+    look_at: validVec(c.look_at) ? c.look_at : centre,
+    up: validVec(c.up) ? c.up : [0, 1, 0],
+    fov: Number.isFinite(c.fov) ? c.fov : 35,
+  };
+  if (!sc.position) {
+    state.sceneCamera = { ...sc, position: cam.add(sc.look_at, [0.55, 0.35, 1]) };
+    state.sceneCamera = cam.frameBounds(state.sceneCamera, state.bounds, state.sceneSize[0] / state.sceneSize[1]);
+  } else {
+    state.sceneCamera = sc;
+  }
+  state.camera = cam.cloneCamera(state.sceneCamera);
+
+  const [sw, sh] = state.sceneSize;
+  const sizes = [256, 512, 768, 1024].filter((s) => s <= Math.max(state.limits.max_width || 4096, state.limits.max_height || 4096));
+  setOptions($('size'), [['scene', `${sw}×${sh} (scene)`], ...sizes.map((s) => [String(s), `${s} px`])], 'scene');
+  setOptions($('method'), ['slicing', 'raycast'], settings['render.method'] || 'slicing');
+  setOptions($('strategy'), ['direct', 'binary-swap', 'radix-k'], settings['compositing.strategy'] || 'direct');
+  $('spacing').value = Number.isFinite(settings['render.sample_spacing']) ? settings['render.sample_spacing'] : 1;
+  syncSpacingSlider();
+
+  state.steps = Math.max(1, scene.steps | 0);
+  state.step = Math.min(Math.max(0, scene.step | 0), state.steps - 1);
+  $('time-group').hidden = state.steps <= 1;
+  $('step').max = state.steps - 1;
+  $('step').value = state.step;
+  showStep();
+
+  const hasVolume = scene.has_volume !== false;
+  $('volume-controls').hidden = !hasVolume;
+  $('tf-group').hidden = !hasVolume;
+  const pts = Array.isArray(settings['transfer.points']) ? settings['transfer.points'].filter((p) => Array.isArray(p) && p.length >= 5) : [];
+  state.sceneKnotsFromScene = pts.length > 0;
+  state.sceneKnots = pts.length ? pts.map((p) => [p[0], p[1], p[2], p[3]]) : PRESETS['Cool to Warm'];
+  state.sceneOpacity = pts.length ? pts.map((p) => [p[0], p[4]]) : [[0, 0], [1, 1]];
+  const maps = Object.keys(PRESETS).map((k) => [k, k]);
+  setOptions($('colormap'), pts.length ? [['scene', 'Scene'], ...maps] : maps, pts.length ? 'scene' : 'Cool to Warm');
+  state.tfEdited = false;   // the scene's own transfer function until the user edits it
+  tf.setPoints(state.sceneOpacity);
+  tf.setColormap(currentKnots());
+  $('colormap-preview').style.background = cssGradient(currentKnots());
+  state.histogramStep = state.step;
+  showHistogram();
+
+  const parts = [];
+  if (scene.ranks) parts.push(`${scene.ranks} rank${scene.ranks === 1 ? '' : 's'}`);
+  const kinds = [scene.has_volume && 'volume',
+    scene.has_particles && (Number.isFinite(scene.particles) ? `${scene.particles.toLocaleString('en-US')} particles` : 'particles')].filter(Boolean);
+  if (kinds.length) parts.push(kinds.join(' + '));
+  if (state.steps > 1) parts.push(`${state.steps} time steps`);
+  $('scene-info').textContent = parts.join(' · ');
+
+  canvas.width = fullSize()[0];
+  canvas.height = fullSize()[1];
+  layoutFrame();
+}
+
+async function loadScene() {
+  showMessage('Loading the scene…', 'info');
+  for (let attempt = 0; ; attempt++) {
+    try {
+      const res = await fetch(apiUrl('/api/scene'));
+      if (!res.ok) {
+        let msg = `HTTP ${res.status}`;
+        try { msg = (await res.json()).error || msg; } catch { /* not JSON */ }
+        throw new Error(msg);
+      }
+      return await res.json();
+    } catch (e) {
+      error(`Could not load /api/scene: ${e.message} (retrying)`);
+      await new Promise((r) => setTimeout(r, Math.min(1000 * 2 ** attempt, 5000)));
+    }
+  }
+}
+
+async function main() {
+  const scene = await loadScene();
+  showMessage(null);
+  applyScene(scene);
+  client.connect();
+  submit('full');
+}
+
+main();
