@@ -109,7 +109,7 @@ void InSitu::Impl::answerLiveView() {
   MPI_Bcast(&pending, 1, MPI_LONG_LONG, 0, comm);
   // The first step is prepared even unasked, so a browser's first GET /api/scene finds a scene.
   if (pending == 0 && described) {
-    if (live && prepared) live->describe(*session);
+    if (live && prepared) live->describe(*session, shiftCamera(actions.renders[0].overrides, shift));
     return;
   }
   try {
@@ -119,7 +119,7 @@ void InSitu::Impl::answerLiveView() {
       prepareStep(all);
       prepared = true;
     }
-    if (live) live->describe(*session);
+    if (live) live->describe(*session, shiftCamera(actions.renders[0].overrides, shift));
     described = true;
     LiveView::answerPending(live.get(), *session, comm, 0.5, shiftCamera(actions.renders[0].overrides, shift));
   } catch (const JobFailed& e) {

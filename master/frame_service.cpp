@@ -93,7 +93,13 @@ LiveView::~LiveView() {
 
 int LiveView::port() const { return server_->port(); }
 size_t LiveView::pending() const { return queue_.pending(); }
-void LiveView::describe(const RenderSession& session) { info_.set(session.describe()); }
+void LiveView::describe(const RenderSession& session, const std::vector<std::string>& base) {
+  try {
+    info_.set(session.describe(base));
+  } catch (const InputError&) {
+    info_.set(session.describe());  // keys this step cannot take (they fail its frames too)
+  }
+}
 
 void LiveView::answerPending(LiveView* view, RenderSession& session, MPI_Comm comm, double budget_s,
                              const std::vector<std::string>& prefix) {

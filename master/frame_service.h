@@ -47,7 +47,8 @@ class LiveView {
   ~LiveView();
   int port() const;
   size_t pending() const;
-  void describe(const RenderSession& session);  // what GET /api/scene shows now
+  // What GET /api/scene shows now; `base` as in RenderSession::describe.
+  void describe(const RenderSession& session, const std::vector<std::string>& base = {});
   // Collective (rank 0 with a LiveView, the others with null): rank 0 answers requests until
   // none is pending or `budget_s` has passed; the others follow.
   static void answerPending(LiveView* view, RenderSession& session, MPI_Comm comm, double budget_s,

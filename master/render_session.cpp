@@ -420,9 +420,15 @@ FrameResult RenderSession::render(const FrameRequest& request) {
   return out;
 }
 
-nlohmann::json RenderSession::describe() const {
+nlohmann::json RenderSession::describe(const std::vector<std::string>& base) const {
   const State& S = *s_;
-  const Scene& b = S.base;
+  Scene with_base;
+  if (!base.empty()) {
+    FrameRequest r;
+    r.overrides = base;
+    with_base = S.resolve(r);
+  }
+  const Scene& b = base.empty() ? S.base : with_base;
   nlohmann::json j;
   const Box3& box = S.layout.bounds;
   j["bounds"] = {{"lo", vec3Json(box.lo)}, {"hi", vec3Json(box.hi)}};

@@ -108,7 +108,9 @@ class RenderSession {
   std::string rendererDescription() const;
   // Rank 0: what a client needs to know (bounds, camera, data range, histogram, steps, the base
   // settings, the keys a request may set, limits).
-  nlohmann::json describe() const;
+  // `base`: keys applied first, as every request of this client will have them (the in-situ live
+  // view: the first render's), so the settings and camera shown are the ones its frames use.
+  nlohmann::json describe(const std::vector<std::string>& base = {}) const;
   // Per-job facts for --stats (adaptive sampling's preprocessing), rank 0.
   nlohmann::json jobStats() const;
   MPI_Comm comm() const;

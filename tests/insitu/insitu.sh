@@ -134,6 +134,43 @@ assert [s["step"] for s in info["steps"]] == [5], info["steps"]
 assert listed == written and len(written) == 6, (listed, written)
 PY
     ;;
+  live)
+    # `serve:` in the actions: while the simulation runs, a client gets the scene (with the first
+    # render's settings) and frames of the newest step, answered between steps.
+    cat > "$WORK/actions.yaml" <<YAML
+serve: 127.0.0.1:0
+renders:
+  - name: v
+    output: "$WORK/l_{step}.png"
+    trigger: {every: 1000}
+    scene: {image: {width: 80, height: 64}}
+YAML
+    run_driver 2 --size 16 --split slabs --steps 300 --step-ms 20 --actions "$WORK/actions.yaml" > "$WORK/log" 2>&1 &
+    pid=$!
+    port=
+    for _ in $(seq 100); do
+      port=$(grep -o 'live view at http://127.0.0.1:[0-9]*' "$WORK/log" | sed 's/.*://') || true
+      [ -n "$port" ] && break
+      sleep 0.1
+    done
+    [ -n "$port" ] || { kill $pid; cat "$WORK/log"; fail "no live view line"; }
+    scene=""
+    for _ in $(seq 50); do
+      scene=$(curl -s --max-time 5 "http://127.0.0.1:$port/api/scene") || true
+      [ -n "$scene" ] && [ "$scene" != null ] && break
+      sleep 0.1
+    done
+    python3 -c "import json,sys; j=json.loads(sys.argv[1]); assert j['settings']['image.width'] == 80, j['settings']" "$scene" ||
+      { kill $pid; fail "the live view's scene does not show the render's settings: $scene"; }
+    code=$(curl -s --max-time 20 -o "$WORK/live.png" -w '%{http_code}' -X POST -d '{"image.height": 48}' "http://127.0.0.1:$port/api/frame")
+    [ "$code" = 200 ] || { kill $pid; cat "$WORK/log"; fail "live frame answered $code"; }
+    python3 - "$WORK/live.png" <<'PY' || { kill $pid; fail "the live frame is not 80 x 48 (the render's width, the request's height)"; }
+import struct, sys
+d = open(sys.argv[1], "rb").read()
+assert d[:8] == b"\x89PNG\r\n\x1a\n" and struct.unpack(">II", d[16:24]) == (80, 48), struct.unpack(">II", d[16:24])
+PY
+    wait $pid || { cat "$WORK/log"; fail "the simulation did not finish normally with a live view"; }
+    ;;
   *) fail "unknown mode $MODE" ;;
 esac
 echo "in situ $MODE: ok"
