@@ -29,6 +29,8 @@ struct ParticleDesc {
   double threshold = 0.765625;  // T (the paper's)
   glm::dvec3 colour{0.85, 0.9, 1.0};
   // Metaball renderer settings.
+  // billboards (the paper's multi-pass method) | grid (one pass over a grid of cells of edge h)
+  std::string method = "grid";
   double step = 0.125;        // sample step along rays, in units of h
   int max_samples = 96;       // cap on field samples per pixel (per brick)
   int refine_iterations = 3;  // refinement passes (4 probes around the secant of eq. 5)

@@ -175,6 +175,9 @@ ParticleDesc readParticles(const Reader& r, const std::filesystem::path& base_di
   for (int c = 0; c < 3; ++c)
     if (p.colour[c] < 0.0 || p.colour[c] > 1.0)
       throw InputError("scene key 'particles.color': entries must be in [0, 1]");
+  p.method = r.as<std::string>("particles.method");
+  if (p.method != "billboards" && p.method != "grid")
+    throw InputError("scene key 'particles.method': expected billboards or grid, got '" + p.method + "'");
   p.step = positive("particles.step");
   p.max_samples = r.as<int>("particles.max_samples");
   if (p.max_samples < 1) throw InputError("scene key 'particles.max_samples': must be >= 1");

@@ -24,6 +24,7 @@ MetaballSettings metaballSettings(const ParticleDesc& desc) {
   s.cull = desc.cull;
   s.samples_per_pass = desc.samples_per_pass;
   s.colour = desc.colour;
+  s.method = desc.method;
   return s;
 }
 
@@ -40,7 +41,10 @@ void BrickRenderer::enableVolume(const TransferFunction& tf, int table_size, int
 }
 
 void BrickRenderer::enableParticles(const MetaballSettings& settings) {
-  metaballs_ = std::make_unique<MetaballRenderer>(*ctx_, width_, height_, settings);
+  if (settings.method == "grid")
+    metaballs_ = std::make_unique<MetaballGridRenderer>(*ctx_, width_, height_, settings);
+  else
+    metaballs_ = std::make_unique<MetaballRenderer>(*ctx_, width_, height_, settings);
 }
 
 void BrickRenderer::setImageSize(int width, int height) {

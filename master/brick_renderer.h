@@ -1,6 +1,6 @@
 #pragma once
 // One rank's renderers, behind one call per brick: the volume part (3D-texture slicing or ray
-// casting, as the scene chooses) and the particle part (metaball ray caster) of a brick become one premultiplied brick image. In a brick
+// casting, as the scene chooses) and the particle part (metaball ray caster, either method) of a brick become one premultiplied brick image. In a brick
 // holding both, the particle surface is drawn first and ends the volume's rays, so the image is
 // correctly ordered inside the brick; between bricks the compositor's visibility order does it.
 #include <memory>
@@ -13,6 +13,7 @@
 #include "common/particles.h"
 #include "common/transfer_function.h"
 #include "worker/gl_context.h"
+#include "worker/metaball_grid_renderer.h"
 #include "worker/metaball_renderer.h"
 #include "worker/raycast_renderer.h"
 #include "worker/slicing_renderer.h"
@@ -78,7 +79,7 @@ class BrickRenderer {
   int width_, height_;
   // The volume renderer; a null slicing renderer until enableVolume().
   std::variant<std::unique_ptr<SlicingRenderer>, std::unique_ptr<RaycastRenderer>> volume_;
-  std::unique_ptr<MetaballRenderer> metaballs_;
+  std::unique_ptr<ParticleRenderer> metaballs_;  // particles.method: billboards or grid
   std::vector<Handles> bricks_;
 };
 

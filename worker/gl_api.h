@@ -91,7 +91,9 @@ using PfnDrawArrays = void(APIENTRYP)(GLenum, GLint, GLsizei);
   X(Uniform4i, PFNGLUNIFORM4IPROC)                              \
   X(GetTexImage, PFNGLGETTEXIMAGEPROC)                          \
   X(CopyImageSubData, PFNGLCOPYIMAGESUBDATAPROC)                \
-  X(DrawBuffers, PFNGLDRAWBUFFERSPROC)
+  X(DrawBuffers, PFNGLDRAWBUFFERSPROC)                          \
+  X(BindBufferBase, PFNGLBINDBUFFERBASEPROC)                    \
+  X(ReadBuffer, PFNGLREADBUFFERPROC)
 
 struct GlApi {
 #define SORTLAST_GL_MEMBER(name, type) type name = nullptr;

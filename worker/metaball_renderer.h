@@ -14,6 +14,7 @@
 //        step     — first sample with I = sqrt(F) - T >= 0 ends the search (eq. 8).
 //   3. refine: `refine_iterations` passes of 4 probes around the secant estimate (eqs. 5-6).
 //   4. shade: gradient of F at the final t; opaque premultiplied RGBA, plus t and the normal.
+#include <string>
 #include <vector>
 
 #include "common/box.h"
@@ -32,6 +33,9 @@ struct MetaballSettings {
   int refine_iterations = 3;
   bool cull = true;
   glm::dvec3 colour{0.85, 0.9, 1.0};
+  // billboards (this renderer, the paper's) | grid (worker/metaball_grid_renderer.h); read by
+  // the caller that picks the renderer (master/brick_renderer.cpp)
+  std::string method = "grid";
 };
 
 struct SurfaceBrick {
@@ -41,33 +45,46 @@ struct SurfaceBrick {
   int rounds = 0;               // windows sampled (for stats)
 };
 
-class MetaballRenderer {
+// What master/brick_renderer.cpp needs of a metaball renderer, whichever method draws it.
+class ParticleRenderer {
+ public:
+  virtual ~ParticleRenderer() = default;
+  virtual void resize(int width, int height) = 0;
+  virtual void setSettings(const MetaballSettings& settings) = 0;
+  virtual int addBrick(const Box3& clip, const std::vector<glm::vec3>& particles) = 0;
+  virtual SurfaceBrick render(int handle, const Camera& cam, double near_plane, double far_plane,
+                              bool want_surface = false) = 0;
+  virtual unsigned surfaceTexture() const = 0;
+  virtual unsigned colourTexture() const = 0;
+};
+
+class MetaballRenderer : public ParticleRenderer {
  public:
   MetaballRenderer(const GlContext& ctx, int width, int height, const MetaballSettings& settings);
-  ~MetaballRenderer();
+  ~MetaballRenderer() override;
   MetaballRenderer(const MetaballRenderer&) = delete;
   MetaballRenderer& operator=(const MetaballRenderer&) = delete;
 
   // A new image size for the next frames: the per-pixel textures are reallocated, the bricks'
   // particle buffers stay.
-  void resize(int width, int height);
+  void resize(int width, int height) override;
   // Settings for the next frames. The influence radius h must stay: the bricks' bounds (and the
   // ghosts their callers chose) depend on it; throws std::logic_error otherwise.
-  void setSettings(const MetaballSettings& settings);
+  void setSettings(const MetaballSettings& settings) override;
 
   // `particles`: the brick's own particles and its ghosts, in global order (the field is summed
   // in this order, so every decomposition adds the same numbers in the same order).
-  int addBrick(const Box3& clip, const std::vector<glm::vec3>& particles);
+  int addBrick(const Box3& clip, const std::vector<glm::vec3>& particles) override;
 
   // [near_plane, far_plane] must hold every particle's billboard (the same for all bricks).
   SurfaceBrick render(int handle, const Camera& cam, double near_plane, double far_plane,
-                      bool want_surface = false);
+                      bool want_surface = false) override;
 
   // After render(): a texture of (t, nx, ny, nz) per pixel over the last brick's rectangle
   // (t = 1e30 where it missed), for a volume renderer to end its rays at the surface.
-  unsigned surfaceTexture() const { return surface_; }
+  unsigned surfaceTexture() const override { return surface_; }
   // After render(): the shaded colour (RGBA32F, premultiplied, alpha 1 on the surface).
-  unsigned colourTexture() const { return colour_; }
+  unsigned colourTexture() const override { return colour_; }
 
  private:
   struct GpuBrick {

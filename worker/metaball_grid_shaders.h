@@ -1,0 +1,196 @@
+#pragma once
+// GLSL for the metaball grid ray caster (worker/metaball_grid_renderer.h): one fragment pass per
+// brick; appended to kMetaballCommon (worker/metaball_shaders.h) for the ray, the clip interval,
+// the sample lattice and the refinement probes, so both methods sample the same points.
+namespace sortlast::shaders {
+
+inline constexpr const char* kGridFragment = R"(
+layout(std430, binding = 1) readonly buffer Offsets { uint offsets[]; };
+// The cells' lists as the particles' centres themselves (xyz, w unused): one load per entry.
+layout(std430, binding = 2) readonly buffer Items { vec4 items[]; };
+uniform vec3 u_grid_lo;
+uniform float u_cell;
+uniform ivec4 u_dims;     // cells per axis in xyz
+uniform float u_cap;       // samples allowed per pixel (those with field > 0 count)
+uniform int u_refine;      // refinement passes
+uniform vec3 u_colour;
+layout(location = 0) out vec4 o_colour;
+layout(location = 1) out vec4 o_surface;
+
+// Samples taken per walk of a cell's list: a ray crosses a cell of edge h/2 in at most
+// sqrt(3) (h/2) / w + 1 = 7.9 samples at the default step h/8, so one walk covers a cell.
+const int CHUNK = 8;
+float g_s[CHUNK];   // sample distances
+float g_f[CHUNK];   // field at them
+
+vec3 safeDir(vec3 d) { return mix(d, vec3(1e-30), equal(d, vec3(0.0))); }
+ivec3 cellOf(vec3 x) { return clamp(ivec3(floor((x - u_grid_lo) / u_cell)), ivec3(0), u_dims.xyz - 1); }
+uvec2 cellRange(ivec3 c) {
+  int i = (c.z * u_dims.y + c.y) * u_dims.x + c.x;
+  return uvec2(offsets[i], offsets[i + 1]);
+}
+// Where the ray leaves cell c (slab exits).
+float cellExit(ivec3 c, vec3 d) {
+  vec3 lo = u_grid_lo + vec3(c) * u_cell;
+  vec3 a = (lo - u_eye) / d, b = (lo + u_cell - u_eye) / d;
+  vec3 m = max(a, b);
+  return min(min(m.x, m.y), m.z);
+}
+vec2 gridInterval(vec3 d) {
+  vec3 a = (u_grid_lo - u_eye) / d, b = (u_grid_lo + vec3(u_dims.xyz) * u_cell - u_eye) / d;
+  vec3 lo = min(a, b), hi = max(a, b);
+  return vec2(max(max(lo.x, lo.y), lo.z), min(min(hi.x, hi.y), hi.z));
+}
+float field(float s, float tb, float perp2) {
+  float ds = s - tb;
+  float q = max(1.0 - sqrt(perp2 + ds * ds) / u_h, 0.0);
+  return q * q;
+}
+// F at g_s[0..m-1] (ascending, all in the cell whose list is r), summed in list order, which is
+// global particle order. Particles whose reach along the ray misses [g_s[0], g_s[m-1]] (with a
+// margin) are skipped: they would add zeros.
+void sumSamples(uvec2 r, vec3 d, int m) {
+  for (int k = 0; k < CHUNK; ++k) g_f[k] = 0.0;
+  float hh = u_h * u_h, first = g_s[0] - 1e-3 * u_h, last = g_s[m - 1] + 1e-3 * u_h;
+  for (uint j = r.x; j < r.y; ++j) {
+    vec3 oc = items[j].xyz - u_eye;
+    float tb = dot(d, oc);
+    vec3 perp = oc - tb * d;
+    float perp2 = dot(perp, perp);
+    if (perp2 >= hh) continue;
+    float reach = sqrt(hh - perp2);
+    if (tb + reach < first || tb - reach > last) continue;
+    for (int k = 0; k < m; ++k) g_f[k] += field(g_s[k], tb, perp2);
+  }
+}
+// F at the 4 refinement probes q (ascending) into g_f[0..3].
+void sumProbes(float q[4], vec3 d) {
+  ivec3 c0 = cellOf(u_eye + q[0] * d), c3 = cellOf(u_eye + q[3] * d);
+  if (c0 == c3) {
+    for (int k = 0; k < 4; ++k) g_s[k] = q[k];
+    sumSamples(cellRange(c0), d, 4);
+    return;
+  }
+  float f[4];
+  for (int k = 0; k < 4; ++k) {
+    g_s[0] = q[k];
+    sumSamples(cellRange(cellOf(u_eye + q[k] * d)), d, 1);
+    f[k] = g_f[0];
+  }
+  for (int k = 0; k < 4; ++k) g_f[k] = f[k];
+}
+
+void main() {
+  o_colour = vec4(0.0);
+  o_surface = vec4(INF, 0.0, 0.0, 0.0);
+  vec3 d = safeDir(rayDir(gl_FragCoord.xy));
+  vec2 iv = clipInterval(d);
+  float t_in = iv.x, t_out = iv.y;
+  if (t_in >= t_out) return;
+  // Beyond the grid's box the field is 0: nothing to find outside [g0, g1].
+  vec2 g = gridInterval(d);
+  float g0 = max(g.x, t_in), g1 = min(g.y, t_out);
+  if (g0 >= g1) return;
+
+  // The samples are t_in, then every lattice point up to t_out, then t_out: the billboard
+  // method's points, except that it also skips the rear halves of spheres (its eq. 3). Empty
+  // cells are jumped; the lattice point before the next sample then lies in the empty stretch,
+  // so the bracket starts there with I = -T.
+  float s = t_in, t_last = t_in, i_last = -u_T, n = 0.0;
+  bool hit = false;
+  vec4 b = vec4(0.0);
+  bool jump = g0 > t_in;
+  float jump_to = g0;
+  for (int iter = 0; iter < 65536; ++iter) {
+    if (jump) {
+      float c = latticeCeil(jump_to);
+      if (c <= s) c = latticeNext(s);
+      float prev = (round(c / u_w) - 1.0) * u_w;
+      s = min(c, t_out);
+      if (prev > t_last && prev < s) { t_last = prev; i_last = -u_T; }
+      jump = false;
+    }
+    if (s > g1) break;
+    ivec3 c = cellOf(u_eye + s * d);
+    float t_exit = cellExit(c, d);
+    uvec2 r = cellRange(c);
+    if (r.x == r.y) {
+      if (t_exit >= g1 || s >= t_out) break;
+      jump = true;
+      jump_to = t_exit;
+      continue;
+    }
+    g_s[0] = s;
+    int m = 1;
+    while (m < CHUNK && g_s[m - 1] < t_out) {
+      float nx = min(latticeNext(g_s[m - 1]), t_out);
+      if (nx >= t_exit) break;
+      g_s[m++] = nx;
+    }
+    sumSamples(r, d, m);
+    bool done = false;
+    for (int k = 0; k < m; ++k) {
+      if (n >= u_cap) { done = true; break; }  // out of samples: a hole, the paper's Fig. 12
+      float value = sqrt(g_f[k]) - u_T;
+      if (g_f[k] > 0.0) n += 1.0;
+      if (value >= 0.0) {
+        // Already inside at the box entry: the surface lies in front of this brick (its owner
+        // draws it), so this brick shows nothing here.
+        if (g_s[k] > t_in) { hit = true; b = vec4(t_last, i_last, g_s[k], value); }
+        done = true;
+        break;
+      }
+      t_last = g_s[k];
+      i_last = value;
+      if (g_s[k] >= t_out) { done = true; break; }
+    }
+    if (done) break;
+    s = min(latticeNext(g_s[m - 1]), t_out);
+  }
+  if (!hit) return;
+
+  // Refinement (eqs. 5-6): the first sign change among t_neg, the 4 probes and t_pos. (Gathering
+  // the particles that reach the bracket once, instead of walking the cell's list per pass, was
+  // measured no faster on llvmpipe: 0.131 against 0.128 s on the 65,536-particle layers.)
+  for (int i = 0; i < u_refine; ++i) {
+    float q[4];
+    refineProbes(b, q);
+    sumProbes(q, d);
+    vec2 neg = b.xy;
+    bool stored = false;
+    for (int k = 0; k < 4; ++k) {
+      float value = sqrt(g_f[k]) - u_T;
+      if (value >= 0.0) {
+        if (q[k] > neg.x) b = vec4(neg, q[k], value);
+        stored = true;
+        break;
+      }
+      if (q[k] > neg.x) neg = vec2(q[k], value);
+    }
+    if (!stored && b.z > neg.x) b = vec4(neg, b.zw);
+  }
+  float t = secantEstimate(b);
+
+  // Gradient of F at t (r = x - c; dP/dx = -2 (1 - |r|/h) / h * r / |r|), in list order.
+  uvec2 r = cellRange(cellOf(u_eye + t * d));
+  vec3 grad = vec3(0.0);
+  for (uint j = r.x; j < r.y; ++j) {
+    vec3 oc = items[j].xyz - u_eye;
+    float tb = dot(d, oc);
+    vec3 perp = oc - tb * d;
+    if (dot(perp, perp) >= u_h * u_h) continue;
+    vec3 rr = (t - tb) * d - perp;
+    float len = length(rr);
+    float q = max(1.0 - len / u_h, 0.0);
+    grad += len > 0.0 ? (-2.0 * q / (u_h * len)) * rr : vec3(0.0);
+  }
+  // Shading: common/metaball_shading.h, as the billboard method's shade pass.
+  float len = length(grad);
+  vec3 nrm = len > 0.0 ? -grad / len : -d;
+  float diffuse = max(dot(nrm, -d), 0.0);
+  o_colour = vec4(clamp(u_colour * (0.2 + 0.8 * diffuse), 0.0, 1.0), 1.0);
+  o_surface = vec4(t, nrm);
+}
+)";
+
+}  // namespace sortlast::shaders
