@@ -168,6 +168,15 @@ ParticleSet loadParticles(const ParticleDesc& d) {
   return s;
 }
 
+Box3 fieldBoundInside(const Box3& clip, const std::vector<glm::vec3>& particles, double h) {
+  glm::dvec3 lo(1e300), hi(-1e300);
+  for (const glm::vec3& p : particles) {
+    lo = glm::min(lo, glm::dvec3(p));
+    hi = glm::max(hi, glm::dvec3(p));
+  }
+  return {glm::max(clip.lo, lo - h), glm::min(clip.hi, hi + h)};
+}
+
 std::vector<glm::vec3> particlesNear(const std::vector<glm::vec3>& all, const Box3& box,
                                      double margin) {
   std::vector<glm::vec3> out;

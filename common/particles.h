@@ -66,6 +66,11 @@ ParticleSet proceduralParticles(const std::string& name, long long count, double
 std::vector<glm::vec3> particlesNear(const std::vector<glm::vec3>& all, const Box3& box,
                                      double margin);
 
+// The part of `clip` where the field of `particles` (influence radius h) can be non-zero: the box
+// of their centres grown by h, cut to `clip`. No particle, or none reaching `clip`: lo >= hi on
+// some axis. Both metaball renderers bound their bricks with it.
+Box3 fieldBoundInside(const Box3& clip, const std::vector<glm::vec3>& particles, double h);
+
 // Points of a VTK file (legacy .vtk polydata / unstructured grid, XML .vtp / .vtu); what
 // loadParticles uses for format vtk. Only vtk_particles.cpp sees VTK's headers.
 std::vector<glm::vec3> readVtkParticles(const std::string& file);

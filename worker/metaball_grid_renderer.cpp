@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <stdexcept>
+
+#include "common/particles.h"
 #include <string>
 
 #include "worker/gl_program.h"
@@ -86,12 +88,7 @@ int MetaballGridRenderer::addBrick(const Box3& clip, const std::vector<glm::vec3
   g.clip = clip;
   g.count = int(particles.size());
   if (!particles.empty()) {
-    glm::dvec3 lo(1e300), hi(-1e300);
-    for (const glm::vec3& p : particles) {
-      lo = glm::min(lo, glm::dvec3(p));
-      hi = glm::max(hi, glm::dvec3(p));
-    }
-    g.bound = {glm::max(clip.lo, lo - s_.h), glm::min(clip.hi, hi + s_.h)};
+    g.bound = fieldBoundInside(clip, particles, s_.h);
     if (glm::any(glm::greaterThanEqual(g.bound.lo, g.bound.hi))) g.count = 0;
   }
   if (g.count > 0) {
