@@ -10,6 +10,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "common/colormap_presets.h"
 #include "common/error.h"
 
 namespace sortlast {
@@ -290,6 +291,7 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
   checkKeys(root, "");
   bool file_from_override = false, particles_file_from_override = false;
   bool files_from_override = false, particles_files_from_override = false;
+  bool colormap_from_override = false;
   for (const std::string& o : overrides) {
     auto eq = o.find('=');
     if (eq == std::string::npos || eq == 0)
@@ -307,6 +309,7 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
     if (key == "particles.file") particles_file_from_override = true;
     if (key == "volume.files") files_from_override = true;
     if (key == "particles.files") particles_files_from_override = true;
+    if (key == "transfer.colormap") colormap_from_override = true;
   }
 
   Reader r(root);
@@ -388,6 +391,17 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
     throw InputError("scene key 'transfer.table_size': must be in [2, 65536]");
   // Validate the points now (range and unit length are placeholders until the data is known).
   TransferFunction(tf.points, 0.0, 1.0, tf.unit_length.value_or(1.0));
+  // A colour map replaces the points' colours (their opacity stays): resolved here, once per
+  // parse, so the rest of the program sees plain control points.
+  if (!r.get("transfer.colormap").IsNull()) tf.colormap = r.as<std::string>("transfer.colormap");
+  if (!tf.colormap.empty()) {
+    try {
+      ColourMap map = loadColourMap(tf.colormap, colormap_from_override ? std::filesystem::current_path() : base_dir);
+      tf.points = applyColourMap(tf.points, map.sampled());
+    } catch (const InputError& e) {
+      throw InputError(std::string("scene key 'transfer.colormap': ") + e.what());
+    }
+  }
 
   Camera& cam = s.camera;
   cam.width = r.as<int>("image.width");

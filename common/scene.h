@@ -22,7 +22,8 @@ const std::vector<SceneKey>& sceneKeys();
 std::string sceneKeysMarkdown();
 
 struct TransferSpec {
-  std::vector<TfPoint> points;
+  std::vector<TfPoint> points;  // with transfer.colormap's colours applied, if it is set
+  std::string colormap;         // transfer.colormap as given (empty: none)
   std::optional<std::pair<double, double>> range;  // unset: the data's global min and max
   std::optional<double> unit_length;               // unset: the smallest voxel spacing
   int table_size = 4096;

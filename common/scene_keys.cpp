@@ -89,6 +89,22 @@ const std::vector<SceneKey>& sceneKeys() {
       {"transfer.points", "null",
        "List of control points `[value, r, g, b, a]`, all in [0, 1], values increasing; value "
        "is normalised over `transfer.range`. Colour and opacity are linear between points."},
+      {"transfer.colormap", "\"\"",
+       "Colour map for the volume: its colours replace those of `transfer.points` / "
+       "`transfer.preset`, whose opacity stays as it is. Empty: none. A built-in by ParaView's "
+       "name or its alias: `Cool to Warm` (`cool_to_warm`), `Viridis (matplotlib)` (`Viridis`, "
+       "`viridis`), `Inferno (matplotlib)` (`inferno`), `Plasma (matplotlib)` (`plasma`), "
+       "`Grayscale` (`grayscale`), `Black-Body Radiation` (`black_body`), `Jet` (`jet`). Or a "
+       "colour-map file as ParaView exports it (`FILE.json`: an array of presets, or one, each "
+       "with `RGBPoints` [x, r, g, b, ...] and `ColorSpace`: `RGB`, `Lab`/`CIELAB`, `Diverging` "
+       "(Moreland's Msh interpolation, as ParaView's Cool to Warm uses) or `HSV`; the first "
+       "preset, or `FILE.json#Name` for the one with that `Name`). The preset's x range is "
+       "stretched onto `transfer.range` (first point at its low end, last at its high end); "
+       "`Points` (ParaView's opacity), `NanColor` and other fields are ignored. The map is "
+       "resampled at 256 evenly spaced values, its own points, and more where a Lab or "
+       "Diverging path bends (to 0.1/255), and interpolated linearly in RGB between them. A relative FILE is relative to the scene file (with `--set`: to the "
+       "working directory); the file is read whenever the scene is (a resident session: with "
+       "each request). A request to `sortlast serve` may name a built-in only."},
       {"transfer.range", "auto",
        "Data values `[lo, hi]` that map to 0 and 1. `auto`: the volume's minimum and maximum."},
       {"transfer.unit_length", "auto",

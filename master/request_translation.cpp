@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "common/colormap_presets.h"
 #include "common/error.h"
 #include "common/scene.h"
 
@@ -25,6 +26,20 @@ void checkFinite(const std::string& key, const nlohmann::json& v) {
     for (const auto& e : v) checkFinite(key, e);
 }
 
+// A request may pick a built-in colour map, not name a file: the service may face a network, and
+// a client must not read the server's files (nor learn which exist from the error messages).
+// Files belong in the scene the service started with.
+void checkColourMap(const nlohmann::json& v) {
+  if (!v.is_string())
+    throw InputError("key 'transfer.colormap': expected the name of a built-in colour map, or \"\" for none");
+  const std::string name = v.get<std::string>();
+  if (name.empty() || isBuiltinColourMap(name)) return;
+  std::string known;
+  for (const std::string& n : builtinColourMapNames()) known += (known.empty() ? "" : ", ") + n;
+  throw InputError("key 'transfer.colormap': a request may name a built-in colour map only (" + known +
+                   ") or \"\" for none, not '" + name + "'; a colour-map file goes in the scene the service starts with");
+}
+
 void flatten(const std::string& prefix, const nlohmann::json& obj, std::vector<std::string>& out) {
   for (auto it = obj.begin(); it != obj.end(); ++it) {
     std::string key = prefix.empty() ? it.key() : prefix + "." + it.key();
@@ -35,6 +50,7 @@ void flatten(const std::string& prefix, const nlohmann::json& obj, std::vector<s
       continue;
     }
     checkFinite(key, it.value());
+    if (key == "transfer.colormap") checkColourMap(it.value());
     out.push_back(key + "=" + it.value().dump());
   }
 }
