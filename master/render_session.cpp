@@ -457,6 +457,7 @@ nlohmann::json RenderSession::describe(const std::vector<std::string>& base) con
   nlohmann::json points = nlohmann::json::array();
   for (const TfPoint& p : b.transfer.points) points.push_back({p.value, p.r, p.g, p.b, p.a});
   j["settings"] = {{"transfer.points", points},
+                   {"transfer.colormap", b.transfer.colormap},
                    {"transfer.range", b.transfer.range ? nlohmann::json{b.transfer.range->first, b.transfer.range->second}
                                                        : nlohmann::json("auto")},
                    {"image.width", b.camera.width},

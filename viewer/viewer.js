@@ -144,7 +144,14 @@ function buildRequest(mode) {
     // (the full frame that follows uses the chosen spacing).
     const coarse = mode === 'reduced' && $('coarse') && $('coarse').checked ? 2 : 1;
     r['render.sample_spacing'] = Math.min(100, Number($('spacing').value) * coarse);
-    if (state.tfEdited) r['transfer.points'] = transferPoints();
+    if (state.tfEdited) {
+      r['transfer.points'] = transferPoints();
+      // A named map is drawn with the server's definition of it (transfer.colormap: ParaView's
+      // presets, with their colour spaces), whose colours replace those of transfer.points; the
+      // knots here are only the preview. 'scene' sends the scene's own colours as points.
+      const map = $('colormap').value;
+      if (map !== 'scene') r['transfer.colormap'] = map;
+    }
   }
   r['compositing.strategy'] = $('strategy').value;
   if (state.steps > 1) r['time.step'] = state.step;

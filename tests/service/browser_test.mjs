@@ -8,7 +8,9 @@
 //   render_args.txt  `--set key=value` arguments (one per line) for `sortlast render` to
 //                  render the same frame (camera from camera.json, the rest from request.json)
 // then drags a transfer-function point, checks the image changed again and saves that frame too
-// (tf_frame.png, tf_request.json, tf_render_args.txt). Screenshots: initial.png, orbit.png,
+// (tf_frame.png, tf_request.json, tf_render_args.txt), then picks the Viridis colour map, checks
+// the request names it (transfer.colormap) and the image changed, and saves that frame
+// (cm_frame.png, cm_request.json, cm_render_args.txt). Screenshots: initial.png, orbit.png,
 // final.png. Every wait is bounded; exits 1 with a message on failure.
 
 import { chromium } from 'playwright-core';
@@ -218,6 +220,20 @@ async function main() {
     if (d2.mean < 0.5 && d2.changed < 0.005) await fail('the image did not change after the transfer-function edit');
     await saveFrame('tf_frame.png');
     writeFrameFiles('tf_', edited);
+
+    // ---- colour map: one of the viewer's presets, drawn with the server's definition
+    const beforeCm = await snapshot();
+    const n1 = (await viewerState()).framesShown;
+    await page.selectOption('#colormap', 'Viridis');
+    await waitFor('the full-size frame after choosing a colour map', (n) => window.sortlastViewer.settled && window.sortlastViewer.framesShown > n, n1);
+    const coloured = await viewerState();
+    if (coloured.lastRequest['transfer.colormap'] !== 'Viridis')
+      await fail(`the request after choosing Viridis has transfer.colormap ${JSON.stringify(coloured.lastRequest['transfer.colormap'])}`);
+    const d3 = difference(beforeCm, await snapshot());
+    log(`after choosing Viridis: image difference mean ${d3.mean.toFixed(2)}, ${(d3.changed * 100).toFixed(1)}% of pixels`);
+    if (d3.mean < 0.5 && d3.changed < 0.005) await fail('the image did not change with the colour map');
+    await saveFrame('cm_frame.png');
+    writeFrameFiles('cm_', coloured);
   }
 
   const end = await viewerState();
