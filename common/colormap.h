@@ -1,6 +1,6 @@
 #pragma once
-// Colour maps in ParaView's preset format (the JSON that ParaView's "Save colour map" exports and
-// its presets dialog imports): a JSON array of presets, or one preset object, each with "Name",
+// Colour maps in ParaView's preset format (the JSON that ParaView's presets dialog exports and
+// imports): a JSON array of presets, or one preset object, each with "Name",
 // "ColorSpace" and "RGBPoints" [x, r, g, b, x, r, g, b, ...]. Other fields ("NanColor", "Points"
 // (opacity), "Creator", ...) are read past: a volume's opacity comes from the transfer
 // function's own points, and its data has no NaN colour.
