@@ -2,9 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
-
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "common/error.h"
 
@@ -21,11 +20,14 @@ std::string number(double v) {
 // nlohmann's messages start with "[json.exception.parse_error.101] ": keep what a user can read.
 std::string withoutExceptionId(const std::string& what) {
   auto close = what.find("] ");
-  return what.rfind("[json.exception.", 0) == 0 && close != std::string::npos ? what.substr(close + 2) : what;
+  return what.rfind("[json.exception.", 0) == 0 && close != std::string::npos
+             ? what.substr(close + 2)
+             : what;
 }
 
 // The preset object to read: the one named `pick`, or the first.
-const nlohmann::json& choosePreset(const nlohmann::json& doc, const std::string& pick, const std::string& source) {
+const nlohmann::json& choosePreset(const nlohmann::json& doc, const std::string& pick,
+                                   const std::string& source) {
   if (doc.is_object()) {
     if (!pick.empty() && doc.value("Name", std::string()) != pick)
       throw InputError(source + ": holds no colour map named \"" + pick + "\" (its one map is \"" +
@@ -33,11 +35,14 @@ const nlohmann::json& choosePreset(const nlohmann::json& doc, const std::string&
     return doc;
   }
   if (!doc.is_array())
-    throw InputError(source + ": expected a colour-map preset (a JSON object with RGBPoints) or an array of them");
+    throw InputError(
+        source +
+        ": expected a colour-map preset (a JSON object with RGBPoints) or an array of them");
   if (doc.empty()) throw InputError(source + ": the array holds no colour map");
   for (size_t i = 0; i < doc.size(); ++i)
     if (!doc[i].is_object())
-      throw InputError(source + ": entry " + std::to_string(i) + " of the array is not a preset (a JSON object)");
+      throw InputError(source + ": entry " + std::to_string(i) +
+                       " of the array is not a preset (a JSON object)");
   if (pick.empty()) return doc[0];
   std::string names;
   for (const auto& p : doc) {
@@ -46,7 +51,8 @@ const nlohmann::json& choosePreset(const nlohmann::json& doc, const std::string&
     if (name == pick) return p;
     names += (names.empty() ? "\"" : ", \"") + name + "\"";
   }
-  throw InputError(source + ": holds no colour map named \"" + pick + "\" (it holds " + names + ")");
+  throw InputError(source + ": holds no colour map named \"" + pick + "\" (it holds " + names +
+                   ")");
 }
 
 }  // namespace
@@ -54,7 +60,8 @@ const nlohmann::json& choosePreset(const nlohmann::json& doc, const std::string&
 Rgb ColourMap::at(double x) const {
   if (x <= knots.front().x) return knots.front().rgb;
   if (x >= knots.back().x) return knots.back().rgb;
-  auto it = std::upper_bound(knots.begin(), knots.end(), x, [](double v, const ColourKnot& k) { return v < k.x; });
+  auto it = std::upper_bound(knots.begin(), knots.end(), x,
+                             [](double v, const ColourKnot& k) { return v < k.x; });
   const ColourKnot& b = *it;
   const ColourKnot& a = *(it - 1);
   return interpolateColour(space, a.rgb, b.rgb, (x - a.x) / (b.x - a.x));
@@ -88,7 +95,8 @@ std::vector<ColourKnot> ColourMap::sampled(int n) const {
   return out;
 }
 
-ColourMap parseColourMapJson(const std::string& text, const std::string& source, const std::string& pick) {
+ColourMap parseColourMapJson(const std::string& text, const std::string& source,
+                             const std::string& pick) {
   nlohmann::json doc;
   try {
     doc = nlohmann::json::parse(text);
@@ -102,11 +110,13 @@ ColourMap parseColourMapJson(const std::string& text, const std::string& source,
   ColourMap map;
   map.name = p.value("Name", std::string());
   // Several maps in one file: say which one is at fault.
-  std::string where = source + (doc.is_array() && doc.size() > 1 ? ", colour map \"" + map.name + "\"" : "") + ": ";
+  std::string where =
+      source + (doc.is_array() && doc.size() > 1 ? ", colour map \"" + map.name + "\"" : "") + ": ";
 
   auto space = p.find("ColorSpace");
   if (space != p.end()) {
-    if (!space->is_string()) throw InputError(where + "ColorSpace must be a string such as \"RGB\"");
+    if (!space->is_string())
+      throw InputError(where + "ColorSpace must be a string such as \"RGB\"");
     try {
       map.space = parseColourSpace(space->get<std::string>());
     } catch (const InputError& e) {
@@ -117,17 +127,22 @@ ColourMap parseColourMapJson(const std::string& text, const std::string& source,
   auto rgb = p.find("RGBPoints");
   if (rgb == p.end()) {
     if (p.contains("IndexedColors"))
-      throw InputError(where + "an indexed (categorical) colour map, with IndexedColors and no RGBPoints: "
+      throw InputError(where +
+                       "an indexed (categorical) colour map, with IndexedColors and no RGBPoints: "
                        "only a continuous map can colour a volume");
     throw InputError(where + "no RGBPoints (the colour points [x, r, g, b, ...])");
   }
-  if (!rgb->is_array()) throw InputError(where + "RGBPoints must be an array of numbers [x, r, g, b, ...]");
+  if (!rgb->is_array())
+    throw InputError(where + "RGBPoints must be an array of numbers [x, r, g, b, ...]");
   std::vector<double> v;
   for (size_t i = 0; i < rgb->size(); ++i) {
     const auto& e = (*rgb)[i];
-    if (!e.is_number()) throw InputError(where + "RGBPoints[" + std::to_string(i) + "] is " + e.dump() + ", not a number");
+    if (!e.is_number())
+      throw InputError(where + "RGBPoints[" + std::to_string(i) + "] is " + e.dump() +
+                       ", not a number");
     double d = e.get<double>();
-    if (!std::isfinite(d)) throw InputError(where + "RGBPoints[" + std::to_string(i) + "] is not a finite number");
+    if (!std::isfinite(d))
+      throw InputError(where + "RGBPoints[" + std::to_string(i) + "] is not a finite number");
     v.push_back(d);
   }
   if (v.size() % 4 != 0)
@@ -140,11 +155,12 @@ ColourMap parseColourMapJson(const std::string& text, const std::string& source,
     const double* q = &v[4 * k];
     for (int c = 1; c <= 3; ++c)
       if (q[c] < 0.0 || q[c] > 1.0)
-        throw InputError(where + "RGBPoints point " + std::to_string(k) + " (x = " + number(q[0]) + "): " +
-                         "rgb"[c - 1] + " = " + number(q[c]) + " is outside [0, 1]");
+        throw InputError(where + "RGBPoints point " + std::to_string(k) + " (x = " + number(q[0]) +
+                         "): " + "rgb"[c - 1] + " = " + number(q[c]) + " is outside [0, 1]");
     if (k > 0 && !(q[0] > q[-4]))
       throw InputError(where + "RGBPoints point " + std::to_string(k) + ": x = " + number(q[0]) +
-                       " does not follow x = " + number(q[-4]) + " of the point before (x must increase)");
+                       " does not follow x = " + number(q[-4]) +
+                       " of the point before (x must increase)");
   }
   // The preset's x range maps onto the transfer function's normalised [0, 1].
   const double x0 = v.front(), x1 = v[v.size() - 4];
@@ -154,11 +170,13 @@ ColourMap parseColourMapJson(const std::string& text, const std::string& source,
   return map;
 }
 
-std::vector<TfPoint> applyColourMap(const std::vector<TfPoint>& points, const std::vector<ColourKnot>& colours) {
+std::vector<TfPoint> applyColourMap(const std::vector<TfPoint>& points,
+                                    const std::vector<ColourKnot>& colours) {
   auto colourAt = [&](double x) -> Rgb {
     if (x <= colours.front().x) return colours.front().rgb;
     if (x >= colours.back().x) return colours.back().rgb;
-    auto it = std::upper_bound(colours.begin(), colours.end(), x, [](double v, const ColourKnot& k) { return v < k.x; });
+    auto it = std::upper_bound(colours.begin(), colours.end(), x,
+                               [](double v, const ColourKnot& k) { return v < k.x; });
     const ColourKnot &a = *(it - 1), &b = *it;
     double f = (x - a.x) / (b.x - a.x);
     return {a.rgb[0] + f * (b.rgb[0] - a.rgb[0]), a.rgb[1] + f * (b.rgb[1] - a.rgb[1]),
@@ -169,7 +187,8 @@ std::vector<TfPoint> applyColourMap(const std::vector<TfPoint>& points, const st
   auto opacityAt = [&](double x) {
     if (x <= points.front().value) return points.front().a;
     if (x >= points.back().value) return points.back().a;
-    auto it = std::upper_bound(points.begin(), points.end(), x, [](double v, const TfPoint& p) { return v < p.value; });
+    auto it = std::upper_bound(points.begin(), points.end(), x,
+                               [](double v, const TfPoint& p) { return v < p.value; });
     const TfPoint &a = *(it - 1), &b = *it;
     return a.a + (x - a.value) / (b.value - a.value) * (b.a - a.a);
   };

@@ -38,14 +38,17 @@ struct ColourMap {
 // Parses a preset file's text. `source` names it in messages ("colour-map file maps/x.json");
 // `pick`, if not empty, is the "Name" of the preset to take from an array (else the first).
 // The preset's x range is rescaled linearly onto [0, 1] (first point 0, last 1). Throws
-// InputError starting with `source` for malformed JSON, a missing or unknown ColorSpace... (see
-// the checks in colormap.cpp): every problem a file can have is named, with the point at fault.
-ColourMap parseColourMapJson(const std::string& text, const std::string& source, const std::string& pick = "");
+// InputError starting with `source` for malformed JSON, an unknown ColorSpace, fewer than 2
+// points, a non-number, x not increasing, a colour outside [0, 1], ... (the checks in
+// colormap.cpp), naming the point at fault. No ColorSpace means RGB, as in VTK.
+ColourMap parseColourMapJson(const std::string& text, const std::string& source,
+                             const std::string& pick = "");
 
 // The transfer function `points` with its colour channels taken from `colours` (piecewise linear,
 // as from ColourMap::sampled) and its opacity unchanged: the result has a point at every x of
 // either list (every opacity point kept, steps included), so both curves are reproduced exactly.
 // `points` must be valid transfer-function points (as TransferFunction's constructor checks).
-std::vector<TfPoint> applyColourMap(const std::vector<TfPoint>& points, const std::vector<ColourKnot>& colours);
+std::vector<TfPoint> applyColourMap(const std::vector<TfPoint>& points,
+                                    const std::vector<ColourKnot>& colours);
 
 }  // namespace sortlast

@@ -27,7 +27,8 @@ const std::vector<Builtin>& builtins() {
   static const std::vector<Builtin> all = [] {
     std::vector<Builtin> v;
     for (const EmbeddedColourMap& e : embeddedColourMaps())
-      v.push_back({e.stem, parseColourMapJson(e.json, std::string("built-in colour map ") + e.stem + ".json")});
+      v.push_back({e.stem, parseColourMapJson(
+                               e.json, std::string("built-in colour map ") + e.stem + ".json")});
     return v;
   }();
   return all;

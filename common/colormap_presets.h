@@ -14,7 +14,8 @@ namespace sortlast {
 std::vector<std::string> builtinColourMapNames();
 
 // Whether `name` is a built-in's name: its ParaView name ("Black-Body Radiation"), that name
-// without a parenthesised suffix ("Viridis"), or its lowercase alias, the file's stem ("black_body").
+// without a parenthesised suffix ("Viridis"), or its lowercase alias, the file's stem
+// ("black_body").
 bool isBuiltinColourMap(const std::string& name);
 
 // Whether `value` names a file: it ends in ".json", or holds ".json#" (FILE.json#Name).

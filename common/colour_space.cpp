@@ -14,8 +14,12 @@ constexpr double kPi = std::numbers::pi;
 // D65 white of the sRGB matrix below (its rows' sums), so grey has a = b = 0.
 constexpr double kWhiteX = 0.9505, kWhiteY = 1.0, kWhiteZ = 1.089;
 
-double srgbToLinear(double c) { return c > 0.04045 ? std::pow((c + 0.055) / 1.055, 2.4) : c / 12.92; }
-double linearToSrgb(double c) { return c > 0.0031308 ? 1.055 * std::pow(c, 1.0 / 2.4) - 0.055 : 12.92 * c; }
+double srgbToLinear(double c) {
+  return c > 0.04045 ? std::pow((c + 0.055) / 1.055, 2.4) : c / 12.92;
+}
+double linearToSrgb(double c) {
+  return c > 0.0031308 ? 1.055 * std::pow(c, 1.0 / 2.4) - 0.055 : 12.92 * c;
+}
 
 // CIE's f(t) and its inverse: a cube root with a linear piece near 0.
 double labF(double t) { return t > 0.008856 ? std::cbrt(t) : 7.787 * t + 16.0 / 116.0; }
@@ -35,7 +39,8 @@ double angleDiff(double a, double b) {
 // the other way below -0.3 pi (the purples).
 double adjustHue(const std::array<double, 3>& sat, double m_unsat) {
   if (sat[0] >= m_unsat - 0.1) return sat[2];
-  double spin = sat[1] * std::sqrt(m_unsat * m_unsat - sat[0] * sat[0]) / (sat[0] * std::sin(sat[1]));
+  double spin =
+      sat[1] * std::sqrt(m_unsat * m_unsat - sat[0] * sat[0]) / (sat[0] * std::sin(sat[1]));
   return sat[2] > -0.3 * kPi ? sat[2] + spin : sat[2] - spin;
 }
 
@@ -85,7 +90,8 @@ std::array<double, 3> rgbToLab(const Rgb& rgb) {
 Rgb labToRgb(const std::array<double, 3>& lab) {
   double fy = (lab[0] + 16.0) / 116.0;
   double fx = fy + lab[1] / 500.0, fz = fy - lab[2] / 200.0;
-  double x = kWhiteX * labFInverse(fx), y = kWhiteY * labFInverse(fy), z = kWhiteZ * labFInverse(fz);
+  double x = kWhiteX * labFInverse(fx), y = kWhiteY * labFInverse(fy),
+         z = kWhiteZ * labFInverse(fz);
   Rgb c = {linearToSrgb(3.2406 * x - 1.5372 * y - 0.4986 * z),
            linearToSrgb(-0.9689 * x + 1.8758 * y + 0.0415 * z),
            linearToSrgb(0.0557 * x - 0.2040 * y + 1.0570 * z)};
@@ -131,27 +137,42 @@ Rgb hsvToRgb(const std::array<double, 3>& hsv) {
   double f = sector - i;
   double p = v * (1.0 - s), q = v * (1.0 - s * f), u = v * (1.0 - s * (1.0 - f));
   switch (i) {
-    case 0: return {v, u, p};
-    case 1: return {q, v, p};
-    case 2: return {p, v, u};
-    case 3: return {p, q, v};
-    case 4: return {u, p, v};
-    default: return {v, p, q};
+    case 0:
+      return {v, u, p};
+    case 1:
+      return {q, v, p};
+    case 2:
+      return {p, v, u};
+    case 3:
+      return {p, q, v};
+    case 4:
+      return {u, p, v};
+    default:
+      return {v, p, q};
   }
 }
 
 Rgb interpolateColour(ColourSpace space, const Rgb& a, const Rgb& b, double t) {
   auto lerp = [t](const std::array<double, 3>& x, const std::array<double, 3>& y) {
-    return std::array<double, 3>{x[0] + t * (y[0] - x[0]), x[1] + t * (y[1] - x[1]), x[2] + t * (y[2] - x[2])};
+    return std::array<double, 3>{x[0] + t * (y[0] - x[0]), x[1] + t * (y[1] - x[1]),
+                                 x[2] + t * (y[2] - x[2])};
   };
   if (t <= 0.0) return a;  // the knots themselves, exactly (no round trip through a space)
   if (t >= 1.0) return b;
   Rgb c;
   switch (space) {
-    case ColourSpace::Rgb: c = lerp(a, b); break;
-    case ColourSpace::Lab: c = labToRgb(lerp(rgbToLab(a), rgbToLab(b))); break;
-    case ColourSpace::Diverging: c = interpolateDiverging(a, b, t); break;
-    case ColourSpace::Hsv: c = hsvToRgb(lerp(rgbToHsv(a), rgbToHsv(b))); break;
+    case ColourSpace::Rgb:
+      c = lerp(a, b);
+      break;
+    case ColourSpace::Lab:
+      c = labToRgb(lerp(rgbToLab(a), rgbToLab(b)));
+      break;
+    case ColourSpace::Diverging:
+      c = interpolateDiverging(a, b, t);
+      break;
+    case ColourSpace::Hsv:
+      c = hsvToRgb(lerp(rgbToHsv(a), rgbToHsv(b)));
+      break;
   }
   // Round-off in the conversions may step a hair outside [0, 1]; the transfer function may not.
   for (double& v : c) v = std::clamp(v, 0.0, 1.0);
