@@ -3,6 +3,15 @@
 // transfer-function table (r, g, b, tau) and corrects opacity for the actual distance between
 // slices along this pixel's ray, ds = spacing / cos(angle to the view axis), so that slicing and
 // the reference integrator are the same emission-absorption model.
+//
+// Pre-integration (PREINTEGRATED defined; transfer.preintegrated): the fragment stands for the
+// segment of its pixel's ray from ds/2 before the slice to ds/2 beyond it, the stretch its
+// midpoint sample stands for, and takes that segment's colour and opacity from the 2D table
+// (common/preintegration.h, built for L0 = spacing) between the values at its ends, with the
+// table's length correction for L = ds (exact for the opacity). Both ends are read from this
+// brick's texture: they lie ds/2 from the fragment, so within the ghost layer while the
+// perpendicular reach stays under one voxel (spacing <= 2 voxels and rays not too oblique);
+// segments cross brick faces as the ray caster's do (worker/raycast_shaders.h).
 namespace sortlast::shaders {
 
 inline constexpr const char* kSliceVertex = R"(#version 450 core
@@ -30,6 +39,23 @@ uniform sampler2D u_surface;  // particle surface (t, normal) per pixel, t = 1e3
 uniform int u_has_surface;
 uniform ivec4 u_surface_rect; // x, y, w, h where u_surface is valid (stale elsewhere)
 out vec4 frag;
+#ifdef PREINTEGRATED
+uniform sampler2D u_preint;     // (premultiplied rgb, optical depth) of segments u_preint_length long
+uniform vec2 u_preint_map;      // table coordinate = normalised * x + y (texel centres at the ends)
+uniform float u_preint_length;
+
+// Premultiplied RGBA of a ray segment of length len over which the value goes linearly from vf
+// (front) to vb (back): the 2D table, its optical depth scaled to len (exact for the opacity) and
+// its colour by the ratio of the opacities (common/preintegration.h states the error).
+vec4 segment(float vf, float vb, float len) {
+  vec2 x = clamp(vec2(vf, vb) * u_value_map.x + u_value_map.y, 0.0, 1.0);
+  vec4 e = texture(u_preint, x * u_preint_map.x + u_preint_map.y);
+  float r = len / u_preint_length;
+  float a = 1.0 - exp(-e.a * r);
+  float a0 = 1.0 - exp(-e.a);
+  return vec4(e.rgb * (a0 > 0.0 ? a / a0 : r), a);
+}
+#endif
 void main() {
   // An opaque particle surface in this brick ends the ray: nothing behind it is drawn.
   ivec2 px = ivec2(gl_FragCoord.xy);
@@ -37,6 +63,14 @@ void main() {
       all(lessThan(px, u_surface_rect.xy + u_surface_rect.zw)) &&
       length(v_world - u_eye) >= texelFetch(u_surface, px, 0).x)
     discard;
+#ifdef PREINTEGRATED
+  vec3 d = v_world - u_eye;
+  float ds = u_spacing * length(d) / dot(d, u_forward);
+  vec3 half_step = (0.5 * ds / length(d)) * d;
+  float vf = texture(u_volume, (v_world - half_step) * u_tex_scale + u_tex_offset).r;
+  float vb = texture(u_volume, (v_world + half_step) * u_tex_scale + u_tex_offset).r;
+  frag = segment(vf, vb, ds);
+#else
   float v = texture(u_volume, v_world * u_tex_scale + u_tex_offset).r;
   float x = clamp(v * u_value_map.x + u_value_map.y, 0.0, 1.0);
   vec4 e = texture(u_table, x * u_table_map.x + u_table_map.y);
@@ -44,6 +78,7 @@ void main() {
   float ds = u_spacing * length(d) / dot(d, u_forward);
   float a = 1.0 - exp(-e.a * ds);
   frag = vec4(e.rgb * a, a);
+#endif
 }
 )";
 
