@@ -20,11 +20,12 @@
 // the midpoint rule above, and is owned by the same brick and block (the one holding t_k, so the
 // rule above decides, and segments tile the ray as the midpoint samples do). The segment's colour
 // and opacity come from the 2D table (common/preintegration.h) between the values at its two ends,
-// v((k - 1/2) delta) and v((k + 1/2) delta), read from this brick's texture: an end lies at most
+// v((k - 1/2) delta) and v((k + 1/2) delta), and at its middle, v(t_k) (segment() has why and how
+// the three make one linear segment), read from this brick's texture: an end lies at most
 // delta/2 outside the block, and so within the brick's ghost layer (one voxel) while delta <= 2
 // voxels; beyond that an end near a brick face reads the texture's clamped edge, and faces may show
 // (documented limit). The back value of sample k is the front value of sample k + 1 (the same
-// float position, (float(k) + 0.5) * delta), so consecutive samples read the volume once each.
+// float position, (float(k) + 0.5) * delta), so consecutive samples read the volume twice each.
 // Skipping stays exact: a block is jumped only if the range of its samples grown by one voxel
 // (VolumeBlock::gmin/gmax, which hold both ends of every segment it owns) maps to zero opacity, and
 // a segment between two values of that range then integrates to exactly zero; after a jump the
@@ -141,6 +142,20 @@ vec4 segment(float vf, float vb, float len) {
   float a0 = 1.0 - exp(-e.a);
   return vec4(e.rgb * (a0 > 0.0 ? a / a0 : r), a);
 }
+
+// The segment with values vf, vm, vb at its front, middle and back. The field does not go
+// linearly along a ray (trilinear interpolation bends it), and the chord from vf to vb misses its
+// mean by twice the midpoint rule's error, the other way (on the engine's smooth ramp: 34.1 dB
+// against the midpoint rule's 38.8 at 1 voxel). So the chord is shifted to the mean of the
+// parabola through the three values, (vf + 4 vm + vb) / 6 (Simpson), within their own range (so
+// it reads no value outside what the block holds, and skipping stays exact): 38.4 dB there, and
+// 1.5-2.6 dB better than the plain chord on neghip and the narrow band. vf = vm = vb gives the
+// constant segment, which is the midpoint rule's sample.
+vec4 segment(float vf, float vm, float vb, float len) {
+  float shift = (2.0 / 3.0) * (vm - 0.5 * (vf + vb));
+  float lo = min(min(vf, vb), vm), hi = max(max(vf, vb), vm);
+  return segment(clamp(vf + shift, lo, hi), clamp(vb + shift, lo, hi), len);
+}
 #endif
 
 // Ray distance to block plane i of an axis: the one formula every brick uses for a plane.
@@ -216,7 +231,7 @@ void main() {
       float vf = k == k_back ? v_back : sampleVolume(u_eye + (float(k) - 0.5) * u_delta * dir);
       for (float ts = float(k) * u_delta; ts < tb; ts = float(++k) * u_delta) {
         float vb = sampleVolume(u_eye + (float(k) + 0.5) * u_delta * dir);
-        acc += (1.0 - acc.a) * segment(vf, vb, u_delta);
+        acc += (1.0 - acc.a) * segment(vf, sampleVolume(u_eye + ts * dir), vb, u_delta);
         vf = vb;
         if (acc.a >= u_ert) { ++k; break; }
       }

@@ -7,7 +7,8 @@
 // Pre-integration (PREINTEGRATED defined; transfer.preintegrated): the fragment stands for the
 // segment of its pixel's ray from ds/2 before the slice to ds/2 beyond it, the stretch its
 // midpoint sample stands for, and takes that segment's colour and opacity from the 2D table
-// (common/preintegration.h, built for L0 = spacing) between the values at its ends, with the
+// (common/preintegration.h, built for L0 = spacing) between the values at its ends (with the
+// midpoint's value: see segment() in worker/raycast_shaders.h), with the
 // table's length correction for L = ds (exact for the opacity). Both ends are read from this
 // brick's texture: they lie ds/2 from the fragment, so within the ghost layer while the
 // perpendicular reach stays under one voxel (spacing <= 2 voxels and rays not too oblique);
@@ -55,6 +56,20 @@ vec4 segment(float vf, float vb, float len) {
   float a0 = 1.0 - exp(-e.a);
   return vec4(e.rgb * (a0 > 0.0 ? a / a0 : r), a);
 }
+
+// The segment with values vf, vm, vb at its front, middle and back. The field does not go
+// linearly along a ray (trilinear interpolation bends it), and the chord from vf to vb misses its
+// mean by twice the midpoint rule's error, the other way (on the engine's smooth ramp: 34.1 dB
+// against the midpoint rule's 38.8 at 1 voxel). So the chord is shifted to the mean of the
+// parabola through the three values, (vf + 4 vm + vb) / 6 (Simpson), within their own range (so
+// it reads no value outside what the block holds, and skipping stays exact): 38.4 dB there, and
+// 1.5-2.6 dB better than the plain chord on neghip and the narrow band. vf = vm = vb gives the
+// constant segment, which is the midpoint rule's sample.
+vec4 segment(float vf, float vm, float vb, float len) {
+  float shift = (2.0 / 3.0) * (vm - 0.5 * (vf + vb));
+  float lo = min(min(vf, vb), vm), hi = max(max(vf, vb), vm);
+  return segment(clamp(vf + shift, lo, hi), clamp(vb + shift, lo, hi), len);
+}
 #endif
 void main() {
   // An opaque particle surface in this brick ends the ray: nothing behind it is drawn.
@@ -68,8 +83,9 @@ void main() {
   float ds = u_spacing * length(d) / dot(d, u_forward);
   vec3 half_step = (0.5 * ds / length(d)) * d;
   float vf = texture(u_volume, (v_world - half_step) * u_tex_scale + u_tex_offset).r;
+  float vm = texture(u_volume, v_world * u_tex_scale + u_tex_offset).r;
   float vb = texture(u_volume, (v_world + half_step) * u_tex_scale + u_tex_offset).r;
-  frag = segment(vf, vb, ds);
+  frag = segment(vf, vm, vb, ds);
 #else
   float v = texture(u_volume, v_world * u_tex_scale + u_tex_offset).r;
   float x = clamp(v * u_value_map.x + u_value_map.y, 0.0, 1.0);
