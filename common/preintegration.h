@@ -17,7 +17,7 @@
 // tests/unit/preintegration_test.cpp). A constant segment (i == j) is the midpoint formula
 // exactly: D = tau(v) L0, C = c(v) (1 - exp(-D)). exp() is taken once per cell and segment
 // length, shared by every entry of that length: the build costs O(n^3 kSubsteps / 3)
-// multiply-adds (256 entries: ~20-40 ms on this machine).
+// multiply-adds (256 entries: 26-75 ms on this shared 2-core machine; the unit test times it).
 //
 // Other lengths L (slicing: ds = spacing / cos): the optical depth of a linear segment is
 // proportional to L, so A_L = 1 - exp(-D L / L0) is exact; the colour is scaled by A_L / A_L0

@@ -6,7 +6,7 @@
 // With pre-integration (transfer.preintegrated) it also holds the 2D table of ray segments
 // (common/preintegration.h) as a linearly filtered RGBA32F texture, (C_r, C_g, C_b, optical
 // depth) at texel centres: built on first use for a base length, and again only when the
-// transfer function or that length changes (build_seconds() says how long the last build took).
+// transfer function or that length changes.
 #include "common/preintegration.h"
 #include "common/transfer_function.h"
 #include "worker/gl_api.h"
@@ -32,7 +32,6 @@ class TransferTable {
   // Builds the 2D table for segments of `base_length` (world units) if it is stale, binds it to
   // texture unit 6 and sets `program`'s u_preint, u_preint_map and u_preint_length.
   void usePreintegrated(unsigned program, double base_length);
-  double buildSeconds() const { return build_s_; }
 
  private:
   const GlApi& gl_;
@@ -44,7 +43,6 @@ class TransferTable {
   TransferFunction built_tf_;
   double built_length_ = 0.0;
   int built_size_ = 0;
-  double build_s_ = 0.0;
 };
 
 }  // namespace sortlast
