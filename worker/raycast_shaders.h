@@ -18,7 +18,9 @@
 // Pre-integration (the program compiled with PREINTEGRATED defined; transfer.preintegrated):
 // lattice sample k stands for the segment [t_k - delta/2, t_k + delta/2] of the ray, as it does in
 // the midpoint rule above, and is owned by the same brick and block (the one holding t_k, so the
-// rule above decides, and segments tile the ray as the midpoint samples do). The segment's colour
+// rule above decides, and segments tile the ray as the midpoint samples do; centred on the samples
+// rather than running between two of them, a segment reaches only delta/2 beyond its owner, so
+// the one-voxel ghost layer serves steps up to 2 voxels instead of 1). The segment's colour
 // and opacity come from the 2D table (common/preintegration.h) between the values at its two ends,
 // v((k - 1/2) delta) and v((k + 1/2) delta), and at its middle, v(t_k) (segment() has why and how
 // the three make one linear segment), read from this brick's texture: an end lies at most
@@ -137,6 +139,7 @@ uniform float u_preint_length;
 vec4 segment(float vf, float vb, float len) {
   vec2 x = clamp(vec2(vf, vb) * u_value_map.x + u_value_map.y, 0.0, 1.0);
   vec4 e = texture(u_preint, x * u_preint_map.x + u_preint_map.y);
+  if (len == u_preint_length) return vec4(e.rgb, 1.0 - exp(-e.a));  // the table's own length
   float r = len / u_preint_length;
   float a = 1.0 - exp(-e.a * r);
   float a0 = 1.0 - exp(-e.a);

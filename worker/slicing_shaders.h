@@ -51,6 +51,7 @@ uniform float u_preint_length;
 vec4 segment(float vf, float vb, float len) {
   vec2 x = clamp(vec2(vf, vb) * u_value_map.x + u_value_map.y, 0.0, 1.0);
   vec4 e = texture(u_preint, x * u_preint_map.x + u_preint_map.y);
+  if (len == u_preint_length) return vec4(e.rgb, 1.0 - exp(-e.a));  // the table's own length
   float r = len / u_preint_length;
   float a = 1.0 - exp(-e.a * r);
   float a0 = 1.0 - exp(-e.a);
