@@ -459,6 +459,12 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
     throw InputError("scene keys 'transfer.preintegrated' and 'adaptive.tolerance': pre-integration "
                      "is not supported with adaptive sampling; set transfer.preintegrated: false or "
                      "adaptive.tolerance: 0");
+  // A segment's ends lie up to half a step beyond the brick that owns it; the bricks' one-voxel
+  // ghost layer holds them for steps up to 2 voxels (beyond, brick faces showed seams of 55-74/255).
+  if (s.transfer.preintegrated && s.sample_spacing > 2.0)
+    throw InputError("scene keys 'transfer.preintegrated' and 'render.sample_spacing': "
+                     "pre-integration needs render.sample_spacing <= 2 voxels (got " +
+                     std::to_string(s.sample_spacing) + ")");
   s.adaptive_blocks = r.as<int>("adaptive.blocks");
   if (s.adaptive_blocks < 1 || s.adaptive_blocks > 256 || (s.adaptive_blocks & (s.adaptive_blocks - 1)))
     throw InputError("scene key 'adaptive.blocks': must be a power of two in [1, 256], got " +

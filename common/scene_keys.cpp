@@ -101,8 +101,8 @@ const std::vector<SceneKey>& sceneKeys() {
        "each ray segment between two samples takes the exact emission-absorption integral of a "
        "value going linearly from its front to its back value, from a 256 x 256 table rebuilt when "
        "the transfer function or the sample spacing changes (about 30 ms). Coarse steps stay "
-       "accurate on sharp transfer functions. Exact across bricks for `render.sample_spacing` <= 2. "
-       "Not with `adaptive.tolerance` > 0."},
+       "accurate on sharp transfer functions. Needs `render.sample_spacing` <= 2 (so segment ends "
+       "stay within the bricks' ghost layer) and `adaptive.tolerance` 0."},
       {"image.width", "512", "Image width in pixels."},
       {"image.height", "512", "Image height in pixels."},
       {"image.background", "[0, 0, 0]",

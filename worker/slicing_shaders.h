@@ -10,9 +10,11 @@
 // (common/preintegration.h, built for L0 = spacing) between the values at its ends (with the
 // midpoint's value: see segment() in worker/raycast_shaders.h), with the
 // table's length correction for L = ds (exact for the opacity). Both ends are read from this
-// brick's texture: they lie ds/2 from the fragment, so within the ghost layer while the
-// perpendicular reach stays under one voxel (spacing <= 2 voxels and rays not too oblique);
-// segments cross brick faces as the ray caster's do (worker/raycast_shaders.h).
+// brick's texture: they lie ds/2 from the fragment, within the ghost layer while the perpendicular
+// reach, (spacing / 2) |dir . n| / (dir . forward), stays under one voxel: spacing <= 2 voxels
+// (the scene enforces it) and up to 15 % beyond at a 60-degree field of view's corners, where the
+// texture's clamped edge is read (measured seams at 2 voxels: 2/255 at most). Segments cross brick
+// faces as the ray caster's do (worker/raycast_shaders.h).
 namespace sortlast::shaders {
 
 inline constexpr const char* kSliceVertex = R"(#version 450 core

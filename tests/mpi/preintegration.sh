@@ -13,8 +13,8 @@
 #             one-voxel ghost layer); 1-4 ranks give one image within 1/255
 #   skipping  empty-block skipping stays exact (blocks of 4 cells give the ray caster's image of one block per brick, bit for bit: a skip
 #             that tested the block's own range instead of its range grown by one voxel changed
-#             pixels by up to 19/255 here); pre-integration with adaptive sampling is refused,
-#             naming both keys
+#             pixels by up to 19/255 here); pre-integration with adaptive sampling or with steps
+#             over 2 voxels is refused, naming both keys
 # ERT is off (1) in the comparisons with the reference, so they measure the sampling alone.
 # Bounds are ~1.5 dB under the values measured on llvmpipe, given at each check.
 # (Pre-integration off renders today's images bit for bit: checked against the previous build's
@@ -123,13 +123,15 @@ skipping)
     small=$(raw "$WORK/c4.json") whole=$(raw "$WORK/c100000.json")
     at_least "$(python3 -c "print(0.9 * $whole)")" "$small" "blocks of 4 cells did not shrink the brick images ($small vs $whole bytes)"
   done
-  # Adaptive sampling is refused, naming both keys.
-  if msg=$(run_np 1 render "$DATA/neghip.yaml" -q -o "$WORK/x.png" --set render.method=raycast \
-      --set transfer.preintegrated=true --set adaptive.tolerance=10 2>&1); then
-    fail "pre-integration with adaptive sampling rendered"
-  fi
-  grep -q "transfer.preintegrated" <<<"$msg" && grep -q "adaptive.tolerance" <<<"$msg" \
-    || fail "the refusal does not name both keys: $msg"
+  # Refused, naming both keys: adaptive sampling, and steps beyond the ghost layer's reach.
+  for bad in adaptive.tolerance=10 render.sample_spacing=2.5; do
+    if msg=$(run_np 1 render "$DATA/neghip.yaml" -q -o "$WORK/x.png" --set render.method=raycast \
+        --set transfer.preintegrated=true --set "$bad" 2>&1 </dev/null); then
+      fail "pre-integration with $bad rendered"
+    fi
+    grep -q "transfer.preintegrated" <<<"$msg" && grep -q "${bad%%=*}" <<<"$msg" \
+      || fail "the refusal of $bad does not name both keys: $msg"
+  done
   ;;
 *) fail "unknown mode $3" ;;
 esac
