@@ -389,6 +389,7 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
   tf.table_size = r.as<int>("transfer.table_size");
   if (tf.table_size < 2 || tf.table_size > 65536)
     throw InputError("scene key 'transfer.table_size': must be in [2, 65536]");
+  tf.preintegrated = r.as<bool>("transfer.preintegrated");
   // Validate the points now (range and unit length are placeholders until the data is known).
   TransferFunction(tf.points, 0.0, 1.0, tf.unit_length.value_or(1.0));
   // A colour map replaces the points' colours (their opacity stays): resolved here, once per
@@ -468,6 +469,16 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
   if (!(s.adaptive_tolerance >= 0.0 && s.adaptive_tolerance <= 100.0))
     throw InputError("scene key 'adaptive.tolerance': must be in [0, 100] percent");
   s.adaptive_tolerance /= 100.0;
+  if (s.transfer.preintegrated && s.adaptive_tolerance > 0.0)
+    throw InputError("scene keys 'transfer.preintegrated' and 'adaptive.tolerance': pre-integration "
+                     "is not supported with adaptive sampling; set transfer.preintegrated: false or "
+                     "adaptive.tolerance: 0");
+  // A segment's ends lie up to half a step beyond the brick that owns it; the bricks' one-voxel
+  // ghost layer holds them for steps up to 2 voxels (beyond, brick faces showed seams of 55-74/255).
+  if (s.transfer.preintegrated && s.sample_spacing > 2.0)
+    throw InputError("scene keys 'transfer.preintegrated' and 'render.sample_spacing': "
+                     "pre-integration needs render.sample_spacing <= 2 voxels (got " +
+                     std::to_string(s.sample_spacing) + ")");
   s.adaptive_blocks = r.as<int>("adaptive.blocks");
   if (s.adaptive_blocks < 1 || s.adaptive_blocks > 256 || (s.adaptive_blocks & (s.adaptive_blocks - 1)))
     throw InputError("scene key 'adaptive.blocks': must be a power of two in [1, 256], got " +

@@ -27,6 +27,7 @@ struct TransferSpec {
   std::optional<std::pair<double, double>> range;  // unset: the data's global min and max
   std::optional<double> unit_length;               // unset: the smallest voxel spacing
   int table_size = 4096;
+  bool preintegrated = false;  // segments from a pre-integrated 2D table (common/preintegration.h)
 
   // Resolves the automatic parts against the data.
   TransferFunction build(double data_min, double data_max, double min_spacing) const;

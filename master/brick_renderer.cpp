@@ -32,12 +32,12 @@ BrickRenderer::BrickRenderer(const std::string& backend, int width, int height)
     : ctx_(createGlContext(backend)), width_(width), height_(height) {}
 
 void BrickRenderer::enableVolume(const TransferFunction& tf, int table_size, int block_cells,
-                                 const VolumeMethod& method) {
+                                 const VolumeMethod& method, bool preintegrated) {
   if (method.raycast)
     volume_ = std::make_unique<RaycastRenderer>(*ctx_, width_, height_, block_cells, method.raycast_settings);
   else
     volume_ = std::make_unique<SlicingRenderer>(*ctx_, width_, height_, block_cells);
-  std::visit([&](auto& r) { r->setTransferFunction(tf, table_size); }, volume_);
+  std::visit([&](auto& r) { r->setTransferFunction(tf, table_size, preintegrated); }, volume_);
 }
 
 void BrickRenderer::enableParticles(const MetaballSettings& settings) {
@@ -54,8 +54,8 @@ void BrickRenderer::setImageSize(int width, int height) {
   if (metaballs_) metaballs_->resize(width, height);
 }
 
-void BrickRenderer::setTransferFunction(const TransferFunction& tf, int table_size) {
-  std::visit([&](auto& r) { if (r) r->setTransferFunction(tf, table_size); }, volume_);
+void BrickRenderer::setTransferFunction(const TransferFunction& tf, int table_size, bool preintegrated) {
+  std::visit([&](auto& r) { if (r) r->setTransferFunction(tf, table_size, preintegrated); }, volume_);
 }
 
 void BrickRenderer::setVolumeMethodSettings(const VolumeMethod& method) {

@@ -42,7 +42,7 @@ class BrickRenderer {
   std::string description() const { return ctx_->description(); }
 
   void enableVolume(const TransferFunction& tf, int table_size, int block_cells,
-                    const VolumeMethod& method = {});
+                    const VolumeMethod& method = {}, bool preintegrated = false);
   void enableParticles(const MetaballSettings& settings);
 
   // A brick: its volume samples (stored box; null: no volume) and its particles with ghosts
@@ -55,7 +55,7 @@ class BrickRenderer {
 
   // What a resident session changes between frames without re-uploading any brick.
   void setImageSize(int width, int height);
-  void setTransferFunction(const TransferFunction& tf, int table_size);
+  void setTransferFunction(const TransferFunction& tf, int table_size, bool preintegrated = false);
   void setVolumeMethodSettings(const VolumeMethod& method);  // same renderer kind; its settings
   void setMetaballSettings(const MetaballSettings& settings);  // same h
   // Drops the renderers and every brick (their GL objects), keeping the GL context: the session

@@ -340,7 +340,7 @@ FrameResult RenderSession::render(const FrameRequest& request) {
     S.renderer->setImageSize(cam.width, cam.height);
     if (sc.hasVolume()) {
       S.renderer->setTransferFunction(sc.transfer.build(data_min, data_max, S.layout.grid.minSpacing()),
-                                      sc.transfer.table_size);
+                                      sc.transfer.table_size, sc.transfer.preintegrated);
       S.renderer->setVolumeMethodSettings(volumeMethod(sc));
     }
     if (has_particles) S.renderer->setMetaballSettings(metaballSettings(sc.particles));

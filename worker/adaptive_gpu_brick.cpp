@@ -22,7 +22,8 @@ AdaptiveGpuBrick uploadAdaptiveBrick(const GlApi& gl, const Brick& brick, const 
         const AdaptiveBlock& b = data.table[size_t(data.cellId({x, y, z}))];
         IndexBox box{{data.planes[0][x], data.planes[1][y], data.planes[2][z]},
                      {data.planes[0][x + 1], data.planes[1][y + 1], data.planes[2][z + 1]}};
-        v.blocks.push_back({grid.worldBoxOf(box), b.vmin, b.vmax});
+        // The grown range only serves pre-integration, which adaptive bricks refuse: the own one.
+        v.blocks.push_back({grid.worldBoxOf(box), b.vmin, b.vmax, b.vmin, b.vmax});
       }
   const glm::dvec3 origin = glm::dvec3(data.first * data.block_cells);
   g.index_scale = glm::vec3(1.0 / grid.spacing);

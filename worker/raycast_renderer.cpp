@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "worker/adaptive_gpu_brick.h"
 #include "worker/gl_program.h"
@@ -33,11 +34,24 @@ RaycastRenderer::~RaycastRenderer() {
   gl_.DeleteVertexArrays(1, &vao_);
   gl_.DeleteProgram(program_);
   if (adaptive_program_) gl_.DeleteProgram(adaptive_program_);
+  if (preint_program_) gl_.DeleteProgram(preint_program_);
 }
 
-void RaycastRenderer::setTransferFunction(const TransferFunction& tf, int table_size) {
-  table_.set(tf, table_size);
+void RaycastRenderer::setTransferFunction(const TransferFunction& tf, int table_size,
+                                          bool preintegrated) {
+  table_.set(tf, table_size, preintegrated);
 }
+
+namespace {
+// The fragment shader with `define` set (the #define must follow the #version line).
+std::string variant(const char* define) {
+  std::string src = shaders::kRaycastFragment;
+  const std::string version = "#version 450 core\n";
+  if (src.rfind(version, 0) != 0) throw std::logic_error("ray caster shader: no #version line");
+  src.insert(version.size(), std::string("#define ") + define + " 1\n");
+  return src;
+}
+}  // namespace
 
 namespace {
 // Integer and single-row textures are read with texelFetch only: no filtering, no mipmaps (a
@@ -63,14 +77,8 @@ int RaycastRenderer::addBrick(const Brick& brick, const GridGeometry& grid, cons
 
 int RaycastRenderer::addAdaptiveBrick(const Brick& brick, const GridGeometry& grid,
                                       const AdaptiveBrickBlocks& blocks) {
-  if (!adaptive_program_) {
-    // The same source with ADAPTIVE defined (the #define must follow the #version line).
-    std::string src = shaders::kRaycastFragment;
-    const std::string version = "#version 450 core\n";
-    if (src.rfind(version, 0) != 0) throw std::logic_error("ray caster shader: no #version line");
-    src.insert(version.size(), "#define ADAPTIVE 1\n");
-    adaptive_program_ = linkProgram(gl_, shaders::kRaycastVertex, src.c_str());
-  }
+  if (!adaptive_program_)
+    adaptive_program_ = linkProgram(gl_, shaders::kRaycastVertex, variant("ADAPTIVE").c_str());
   AdaptiveGpuBrick a = uploadAdaptiveBrick(gl_, brick, grid, blocks);
   GpuBrick g;
   g.volume = std::move(a.volume);
@@ -112,13 +120,17 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
   GpuBrick& g = bricks_.at(size_t(handle));
   const VolumeBrick& b = g.volume;
   RenderedBrick out;
+  const bool preint = table_.preintegrated();
+  if (preint && g.adaptive)  // the scene refuses this (transfer.preintegrated with adaptive.tolerance)
+    throw std::logic_error("ray caster: pre-integration of adaptive bricks is not supported");
   // Which blocks the current transfer function shows, and the box around them (the rectangle).
   std::vector<unsigned char> shown(b.blocks.size());
   Box3 bound{glm::dvec3(1e300), glm::dvec3(-1e300)};
   bool any = false;
   for (size_t i = 0; i < b.blocks.size(); ++i) {
     const VolumeBlock& blk = b.blocks[i];
-    shown[i] = table_.visible(blk.vmin, blk.vmax) ? 1 : 0;
+    // Pre-integrated segments reach up to one voxel beyond the block (worker/raycast_shaders.h).
+    shown[i] = (preint ? table_.visible(blk.gmin, blk.gmax) : table_.visible(blk.vmin, blk.vmax)) ? 1 : 0;
     if (!shown[i]) continue;
     any = true;
     bound.lo = glm::min(bound.lo, blk.world.lo);
@@ -141,7 +153,9 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
     }
     gl_.Enable(GL_BLEND);
     gl_.BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // the ray's colour over the surface's
-    const unsigned program = g.adaptive ? adaptive_program_ : program_;
+    if (preint && !preint_program_)
+      preint_program_ = linkProgram(gl_, shaders::kRaycastVertex, variant("PREINTEGRATED").c_str());
+    const unsigned program = g.adaptive ? adaptive_program_ : preint ? preint_program_ : program_;
     gl_.UseProgram(program);
     auto u3 = [&](const char* name, const glm::dvec3& v) {
       gl_.Uniform3f(gl_.GetUniformLocation(program, name), float(v.x), float(v.y), float(v.z));
@@ -178,6 +192,7 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
     gl_.Uniform1i(gl_.GetUniformLocation(program, "u_visible"), 4);
     gl_.Uniform1i(gl_.GetUniformLocation(program, "u_has_surface"), has_surface ? 1 : 0);
     table_.use(program);
+    if (preint) table_.usePreintegrated(program, spacing);  // segments delta long
     if (has_surface) {
       const Rect& sr = surface->rect;
       gl_.Uniform4i(gl_.GetUniformLocation(program, "u_surface_rect"), sr.x, sr.y, sr.w, sr.h);

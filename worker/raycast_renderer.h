@@ -45,7 +45,8 @@ class RaycastRenderer {
   RaycastRenderer(const RaycastRenderer&) = delete;
   RaycastRenderer& operator=(const RaycastRenderer&) = delete;
 
-  void setTransferFunction(const TransferFunction& tf, int table_size);
+  // With `preintegrated`, rays composite pre-integrated segments (worker/raycast_shaders.h).
+  void setTransferFunction(const TransferFunction& tf, int table_size, bool preintegrated = false);
   // A new image size for the next frames (the bricks' textures stay).
   void resize(int width, int height) { target_.resize(width, height); }
   // Early ray termination and adaptive stepping can change between frames.
@@ -88,6 +89,7 @@ class RaycastRenderer {
   TransferTable table_;
   unsigned program_ = 0, vao_ = 0;
   unsigned adaptive_program_ = 0;  // linked with the first adaptive brick
+  unsigned preint_program_ = 0;    // linked with the first pre-integrated frame
   std::vector<GpuBrick> bricks_;
 };
 

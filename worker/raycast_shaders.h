@@ -15,6 +15,27 @@
 // renderer's and the reference's opacity correction, composited front to back. The ray stops once
 // alpha >= u_ert (early ray termination), at the brick's exit, or at the particle surface's t.
 //
+// Pre-integration (the program compiled with PREINTEGRATED defined; transfer.preintegrated):
+// lattice sample k stands for the segment [t_k - delta/2, t_k + delta/2] of the ray, as it does in
+// the midpoint rule above, and is owned by the same brick and block (the one holding t_k, so the
+// rule above decides, and segments tile the ray as the midpoint samples do; centred on the samples
+// rather than running between two of them, a segment reaches only delta/2 beyond its owner, so
+// the one-voxel ghost layer serves steps up to 2 voxels instead of 1). The segment's colour
+// and opacity come from the 2D table (common/preintegration.h) between the values at its two ends,
+// v((k - 1/2) delta) and v((k + 1/2) delta), and at its middle, v(t_k) (segment() has why and how
+// the three make one linear segment), read from this brick's texture: an end lies at most
+// delta/2 outside the block, and so within the brick's ghost layer (one voxel) while delta <= 2
+// voxels, which the scene enforces (beyond, an end near a brick face would read the texture's
+// clamped edge: seams of 55-74/255 at 3-4 voxels on neghip). The back value of sample k is the front value of sample k + 1 (the same
+// float position, (float(k) + 0.5) * delta), so consecutive samples read the volume twice each.
+// Skipping stays exact: a block is jumped only if the range of its samples grown by one voxel
+// (VolumeBlock::gmin/gmax, which hold both ends of every segment it owns) maps to zero opacity, and
+// a segment between two values of that range then integrates to exactly zero; after a jump the
+// next segment reads its front value afresh. Early termination and the particle surface end the
+// ray as in the midpoint rule: a sample k with t_k < t1 contributes its whole segment (no partial
+// last segment, so the segment ends are the midpoint samples' and the two rules converge alike).
+// Not with ADAPTIVE (refused when the scene is read).
+//
 // Adaptive sampling (the program compiled with ADAPTIVE defined; worker/adaptive_gpu_brick.h):
 // the blocks of the DDA are the adaptive blocks cut by the brick's faces, sampleVolume() reads the
 // current block's samples from the atlas, and a block at level L, whose samples are r = 2^L cells
@@ -107,6 +128,39 @@ vec4 classify(float v) {
   return texture(u_table, x * u_table_map.x + u_table_map.y);
 }
 
+#ifdef PREINTEGRATED
+uniform sampler2D u_preint;     // (premultiplied rgb, optical depth) of segments u_preint_length long
+uniform vec2 u_preint_map;      // table coordinate = normalised * x + y (texel centres at the ends)
+uniform float u_preint_length;
+
+// Premultiplied RGBA of a ray segment of length len over which the value goes linearly from vf
+// (front) to vb (back): the 2D table, its optical depth scaled to len (exact for the opacity) and
+// its colour by the ratio of the opacities (common/preintegration.h states the error).
+vec4 segment(float vf, float vb, float len) {
+  vec2 x = clamp(vec2(vf, vb) * u_value_map.x + u_value_map.y, 0.0, 1.0);
+  vec4 e = texture(u_preint, x * u_preint_map.x + u_preint_map.y);
+  if (len == u_preint_length) return vec4(e.rgb, 1.0 - exp(-e.a));  // the table's own length
+  float r = len / u_preint_length;
+  float a = 1.0 - exp(-e.a * r);
+  float a0 = 1.0 - exp(-e.a);
+  return vec4(e.rgb * (a0 > 0.0 ? a / a0 : r), a);
+}
+
+// The segment with values vf, vm, vb at its front, middle and back. The field does not go
+// linearly along a ray (trilinear interpolation bends it), and the chord from vf to vb misses its
+// mean by twice the midpoint rule's error, the other way (on the engine's smooth ramp: 34.1 dB
+// against the midpoint rule's 38.8 at 1 voxel). So the chord is shifted to the mean of the
+// parabola through the three values, (vf + 4 vm + vb) / 6 (Simpson), within their own range (so
+// it reads no value outside what the block holds, and skipping stays exact): 38.4 dB there, and
+// 1.5-2.6 dB better than the plain chord on neghip and the narrow band. vf = vm = vb gives the
+// constant segment, which is the midpoint rule's sample.
+vec4 segment(float vf, float vm, float vb, float len) {
+  float shift = (2.0 / 3.0) * (vm - 0.5 * (vf + vb));
+  float lo = min(min(vf, vb), vm), hi = max(max(vf, vb), vm);
+  return segment(clamp(vf + shift, lo, hi), clamp(vb + shift, lo, hi), len);
+}
+#endif
+
 // Ray distance to block plane i of an axis: the one formula every brick uses for a plane.
 float planeT(int axis, int i) {
   return (texelFetch(u_planes, ivec2(i, axis), 0).r - u_eye[axis]) * g_inv[axis];
@@ -152,6 +206,10 @@ void main() {
   }
   vec4 acc = vec4(0.0);
   int k = firstSample(t0);
+#ifdef PREINTEGRATED
+  int k_back = k - 1;  // v_back holds the value at (float(k_back) - 0.5) * delta; none yet
+  float v_back = 0.0;
+#endif
   float t = t0;
   while (t < t1 && acc.a < u_ert) {
     vec3 te = vec3(exitT(0, idx.x), exitT(1, idx.y), exitT(2, idx.z));
@@ -171,6 +229,17 @@ void main() {
         k = next;
         if (acc.a >= u_ert) break;
       }
+#elif defined(PREINTEGRATED)
+      // The front value of sample k: the back value of sample k - 1 if that was just taken.
+      float vf = k == k_back ? v_back : sampleVolume(u_eye + (float(k) - 0.5) * u_delta * dir);
+      for (float ts = float(k) * u_delta; ts < tb; ts = float(++k) * u_delta) {
+        float vb = sampleVolume(u_eye + (float(k) + 0.5) * u_delta * dir);
+        acc += (1.0 - acc.a) * segment(vf, sampleVolume(u_eye + ts * dir), vb, u_delta);
+        vf = vb;
+        if (acc.a >= u_ert) { ++k; break; }
+      }
+      k_back = k;
+      v_back = vf;
 #else
       for (float ts = float(k) * u_delta; ts < tb; ts = float(++k) * u_delta) {
         vec4 e = classify(sampleVolume(u_eye + ts * dir));

@@ -1,6 +1,8 @@
 #include "worker/slicing_renderer.h"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 #include "compositing/visibility.h"
 #include "worker/gl_program.h"
@@ -26,10 +28,12 @@ SlicingRenderer::~SlicingRenderer() {
   gl_.DeleteBuffers(1, &vbo_);
   gl_.DeleteVertexArrays(1, &vao_);
   gl_.DeleteProgram(program_);
+  if (preint_program_) gl_.DeleteProgram(preint_program_);
 }
 
-void SlicingRenderer::setTransferFunction(const TransferFunction& tf, int table_size) {
-  table_.set(tf, table_size);
+void SlicingRenderer::setTransferFunction(const TransferFunction& tf, int table_size,
+                                          bool preintegrated) {
+  table_.set(tf, table_size, preintegrated);
 }
 
 int SlicingRenderer::addBrick(const Brick& brick, const GridGeometry& grid,
@@ -48,13 +52,15 @@ RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spac
                                       const SurfaceLayer* surface) {
   const VolumeBrick& b = bricks_.at(size_t(handle));
   RenderedBrick out;
+  const bool preint = table_.preintegrated();
   glm::dvec3 eye = cam.position, fwd = cam.forward();
   // Visible blocks, back to front, and the box around them (which sets the output rectangle).
   std::vector<float> tris;
   Box3 bound{glm::dvec3(1e300), glm::dvec3(-1e300)};
   for (int id : backToFrontOrder(b.block_planes, eye)) {
     const VolumeBlock& blk = b.blocks[size_t(id)];
-    if (!table_.visible(blk.vmin, blk.vmax)) continue;
+    // Pre-integrated segments reach ds/2 beyond the block: its range grown by one voxel.
+    if (preint ? !table_.visible(blk.gmin, blk.gmax) : !table_.visible(blk.vmin, blk.vmax)) continue;
     bound.lo = glm::min(bound.lo, blk.world.lo);
     bound.hi = glm::max(bound.hi, blk.world.hi);
     // Slices start just beyond the near plane so no polygon is clipped by it.
@@ -70,21 +76,31 @@ RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spac
   if (!tris.empty()) {
     gl_.Enable(GL_BLEND);
     gl_.BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // premultiplied "over", back to front
-    gl_.UseProgram(program_);
+    if (preint && !preint_program_) {
+      // The same source with PREINTEGRATED defined (the #define must follow the #version line).
+      std::string src = shaders::kSliceFragment;
+      const std::string version = "#version 450 core\n";
+      if (src.rfind(version, 0) != 0) throw std::logic_error("slicing shader: no #version line");
+      src.insert(version.size(), "#define PREINTEGRATED 1\n");
+      preint_program_ = linkProgram(gl_, shaders::kSliceVertex, src.c_str());
+    }
+    const unsigned program = preint ? preint_program_ : program_;
+    gl_.UseProgram(program);
     glm::mat4 vp = cam.viewProjection(near_plane, far_plane);
-    gl_.UniformMatrix4fv(gl_.GetUniformLocation(program_, "u_view_proj"), 1, GL_FALSE, &vp[0][0]);
-    gl_.Uniform1i(gl_.GetUniformLocation(program_, "u_volume"), 0);
-    gl_.Uniform3f(gl_.GetUniformLocation(program_, "u_tex_scale"), b.tex_scale.x, b.tex_scale.y, b.tex_scale.z);
-    gl_.Uniform3f(gl_.GetUniformLocation(program_, "u_tex_offset"), b.tex_offset.x, b.tex_offset.y, b.tex_offset.z);
-    gl_.Uniform3f(gl_.GetUniformLocation(program_, "u_eye"), float(eye.x), float(eye.y), float(eye.z));
-    gl_.Uniform3f(gl_.GetUniformLocation(program_, "u_forward"), float(fwd.x), float(fwd.y), float(fwd.z));
-    gl_.Uniform1f(gl_.GetUniformLocation(program_, "u_spacing"), float(spacing));
-    table_.use(program_);
-    gl_.Uniform1i(gl_.GetUniformLocation(program_, "u_surface"), 2);
-    gl_.Uniform1i(gl_.GetUniformLocation(program_, "u_has_surface"), has_surface ? 1 : 0);
+    gl_.UniformMatrix4fv(gl_.GetUniformLocation(program, "u_view_proj"), 1, GL_FALSE, &vp[0][0]);
+    gl_.Uniform1i(gl_.GetUniformLocation(program, "u_volume"), 0);
+    gl_.Uniform3f(gl_.GetUniformLocation(program, "u_tex_scale"), b.tex_scale.x, b.tex_scale.y, b.tex_scale.z);
+    gl_.Uniform3f(gl_.GetUniformLocation(program, "u_tex_offset"), b.tex_offset.x, b.tex_offset.y, b.tex_offset.z);
+    gl_.Uniform3f(gl_.GetUniformLocation(program, "u_eye"), float(eye.x), float(eye.y), float(eye.z));
+    gl_.Uniform3f(gl_.GetUniformLocation(program, "u_forward"), float(fwd.x), float(fwd.y), float(fwd.z));
+    gl_.Uniform1f(gl_.GetUniformLocation(program, "u_spacing"), float(spacing));
+    table_.use(program);
+    if (preint) table_.usePreintegrated(program, spacing);  // L0: the slice spacing
+    gl_.Uniform1i(gl_.GetUniformLocation(program, "u_surface"), 2);
+    gl_.Uniform1i(gl_.GetUniformLocation(program, "u_has_surface"), has_surface ? 1 : 0);
     if (has_surface) {
       const Rect& sr = surface->rect;
-      gl_.Uniform4i(gl_.GetUniformLocation(program_, "u_surface_rect"), sr.x, sr.y, sr.w, sr.h);
+      gl_.Uniform4i(gl_.GetUniformLocation(program, "u_surface_rect"), sr.x, sr.y, sr.w, sr.h);
       gl_.ActiveTexture(GL_TEXTURE2);
       gl_.BindTexture(GL_TEXTURE_2D, surface->surface_texture);
     }

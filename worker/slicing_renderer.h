@@ -30,7 +30,8 @@ class SlicingRenderer {
   SlicingRenderer(const SlicingRenderer&) = delete;
   SlicingRenderer& operator=(const SlicingRenderer&) = delete;
 
-  void setTransferFunction(const TransferFunction& tf, int table_size);
+  // With `preintegrated`, fragments draw pre-integrated segments (worker/slicing_shaders.h).
+  void setTransferFunction(const TransferFunction& tf, int table_size, bool preintegrated = false);
   // A new image size for the next frames (the bricks' textures stay).
   void resize(int width, int height) { target_.resize(width, height); }
   // Uploads a brick's stored samples (x fastest); returns a handle for render(). The samples'
@@ -50,6 +51,7 @@ class SlicingRenderer {
   FloatTarget target_;
   TransferTable table_;
   unsigned program_ = 0, vao_ = 0, vbo_ = 0;
+  unsigned preint_program_ = 0;  // linked with the first pre-integrated frame
   std::vector<VolumeBrick> bricks_;
 };
 

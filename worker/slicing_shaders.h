@@ -3,6 +3,18 @@
 // transfer-function table (r, g, b, tau) and corrects opacity for the actual distance between
 // slices along this pixel's ray, ds = spacing / cos(angle to the view axis), so that slicing and
 // the reference integrator are the same emission-absorption model.
+//
+// Pre-integration (PREINTEGRATED defined; transfer.preintegrated): the fragment stands for the
+// segment of its pixel's ray from ds/2 before the slice to ds/2 beyond it, the stretch its
+// midpoint sample stands for, and takes that segment's colour and opacity from the 2D table
+// (common/preintegration.h, built for L0 = spacing) between the values at its ends (with the
+// midpoint's value: see segment() in worker/raycast_shaders.h), with the
+// table's length correction for L = ds (exact for the opacity). Both ends are read from this
+// brick's texture: they lie ds/2 from the fragment, within the ghost layer while the perpendicular
+// reach, (spacing / 2) |dir . n| / (dir . forward), stays under one voxel: spacing <= 2 voxels
+// (the scene enforces it) and up to 15 % beyond at a 60-degree field of view's corners, where the
+// texture's clamped edge is read (measured seams at 2 voxels: 2/255 at most). Segments cross brick
+// faces as the ray caster's do (worker/raycast_shaders.h).
 namespace sortlast::shaders {
 
 inline constexpr const char* kSliceVertex = R"(#version 450 core
@@ -30,6 +42,38 @@ uniform sampler2D u_surface;  // particle surface (t, normal) per pixel, t = 1e3
 uniform int u_has_surface;
 uniform ivec4 u_surface_rect; // x, y, w, h where u_surface is valid (stale elsewhere)
 out vec4 frag;
+#ifdef PREINTEGRATED
+uniform sampler2D u_preint;     // (premultiplied rgb, optical depth) of segments u_preint_length long
+uniform vec2 u_preint_map;      // table coordinate = normalised * x + y (texel centres at the ends)
+uniform float u_preint_length;
+
+// Premultiplied RGBA of a ray segment of length len over which the value goes linearly from vf
+// (front) to vb (back): the 2D table, its optical depth scaled to len (exact for the opacity) and
+// its colour by the ratio of the opacities (common/preintegration.h states the error).
+vec4 segment(float vf, float vb, float len) {
+  vec2 x = clamp(vec2(vf, vb) * u_value_map.x + u_value_map.y, 0.0, 1.0);
+  vec4 e = texture(u_preint, x * u_preint_map.x + u_preint_map.y);
+  if (len == u_preint_length) return vec4(e.rgb, 1.0 - exp(-e.a));  // the table's own length
+  float r = len / u_preint_length;
+  float a = 1.0 - exp(-e.a * r);
+  float a0 = 1.0 - exp(-e.a);
+  return vec4(e.rgb * (a0 > 0.0 ? a / a0 : r), a);
+}
+
+// The segment with values vf, vm, vb at its front, middle and back. The field does not go
+// linearly along a ray (trilinear interpolation bends it), and the chord from vf to vb misses its
+// mean by twice the midpoint rule's error, the other way (on the engine's smooth ramp: 34.1 dB
+// against the midpoint rule's 38.8 at 1 voxel). So the chord is shifted to the mean of the
+// parabola through the three values, (vf + 4 vm + vb) / 6 (Simpson), within their own range (so
+// it reads no value outside what the block holds, and skipping stays exact): 38.4 dB there, and
+// 1.5-2.6 dB better than the plain chord on neghip and the narrow band. vf = vm = vb gives the
+// constant segment, which is the midpoint rule's sample.
+vec4 segment(float vf, float vm, float vb, float len) {
+  float shift = (2.0 / 3.0) * (vm - 0.5 * (vf + vb));
+  float lo = min(min(vf, vb), vm), hi = max(max(vf, vb), vm);
+  return segment(clamp(vf + shift, lo, hi), clamp(vb + shift, lo, hi), len);
+}
+#endif
 void main() {
   // An opaque particle surface in this brick ends the ray: nothing behind it is drawn.
   ivec2 px = ivec2(gl_FragCoord.xy);
@@ -37,6 +81,15 @@ void main() {
       all(lessThan(px, u_surface_rect.xy + u_surface_rect.zw)) &&
       length(v_world - u_eye) >= texelFetch(u_surface, px, 0).x)
     discard;
+#ifdef PREINTEGRATED
+  vec3 d = v_world - u_eye;
+  float ds = u_spacing * length(d) / dot(d, u_forward);
+  vec3 half_step = (0.5 * ds / length(d)) * d;
+  float vf = texture(u_volume, (v_world - half_step) * u_tex_scale + u_tex_offset).r;
+  float vm = texture(u_volume, v_world * u_tex_scale + u_tex_offset).r;
+  float vb = texture(u_volume, (v_world + half_step) * u_tex_scale + u_tex_offset).r;
+  frag = segment(vf, vm, vb, ds);
+#else
   float v = texture(u_volume, v_world * u_tex_scale + u_tex_offset).r;
   float x = clamp(v * u_value_map.x + u_value_map.y, 0.0, 1.0);
   vec4 e = texture(u_table, x * u_table_map.x + u_table_map.y);
@@ -44,6 +97,7 @@ void main() {
   float ds = u_spacing * length(d) / dot(d, u_forward);
   float a = 1.0 - exp(-e.a * ds);
   frag = vec4(e.rgb * a, a);
+#endif
 }
 )";
 

@@ -1,16 +1,24 @@
 #include "worker/transfer_table.h"
 
+#include <algorithm>
 #include <vector>
 
 namespace sortlast {
 
-TransferTable::TransferTable(const GlApi& gl) : gl_(gl) { gl_.GenTextures(1, &texture_); }
+TransferTable::TransferTable(const GlApi& gl) : gl_(gl) {
+  gl_.GenTextures(1, &texture_);
+  gl_.GenTextures(1, &texture2d_);
+}
 
-TransferTable::~TransferTable() { gl_.DeleteTextures(1, &texture_); }
+TransferTable::~TransferTable() {
+  gl_.DeleteTextures(1, &texture_);
+  gl_.DeleteTextures(1, &texture2d_);
+}
 
-void TransferTable::set(const TransferFunction& tf, int table_size) {
+void TransferTable::set(const TransferFunction& tf, int table_size, bool preintegrated) {
   tf_ = tf;
   size_ = table_size;
+  preintegrated_ = preintegrated;
   std::vector<float> table = tf.bakeTable(table_size);
   gl_.ActiveTexture(GL_TEXTURE1);
   gl_.BindTexture(GL_TEXTURE_1D, texture_);
@@ -22,8 +30,11 @@ void TransferTable::set(const TransferFunction& tf, int table_size) {
 }
 
 bool TransferTable::visible(float vmin, float vmax) const {
-  // The table is linearly filtered, so a value can pick up its neighbour entry: widen by one entry.
-  double pad = (tf_.rangeHi() - tf_.rangeLo()) / (size_ - 1);
+  // The table is linearly filtered, so a value can pick up its neighbour entry: widen by one entry
+  // (of the 2D table too, whose entry (i, j) holds the segments between values i and j).
+  int entries = size_;
+  if (preintegrated_) entries = std::min(entries, PreintegrationTable::kDefaultSize);
+  double pad = (tf_.rangeHi() - tf_.rangeLo()) / (entries - 1);
   return tf_.maxOpacity(vmin - pad, vmax + pad) > 0.0;
 }
 
@@ -36,6 +47,29 @@ void TransferTable::use(unsigned program) const {
   gl_.Uniform2f(gl_.GetUniformLocation(program, "u_table_map"), float((n - 1) / n), float(0.5 / n));
   gl_.ActiveTexture(GL_TEXTURE1);
   gl_.BindTexture(GL_TEXTURE_1D, texture_);
+}
+
+void TransferTable::usePreintegrated(unsigned program, double base_length) {
+  const int n = PreintegrationTable::kDefaultSize;
+  gl_.ActiveTexture(GL_TEXTURE6);
+  gl_.BindTexture(GL_TEXTURE_2D, texture2d_);
+  if (built_size_ != n || built_length_ != base_length || !sameTransferFunction(built_tf_, tf_)) {
+    // tests/unit/preintegration_test.cpp times the build (26-75 ms for 256 entries here).
+    std::vector<float> texels = PreintegrationTable::build(tf_, n, base_length).texels();
+    gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, n, n, 0, GL_RGBA, GL_FLOAT, texels.data());
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl_.check("pre-integrated table upload");
+    built_tf_ = tf_;
+    built_length_ = base_length;
+    built_size_ = n;
+  }
+  gl_.Uniform1i(gl_.GetUniformLocation(program, "u_preint"), 6);
+  const double m = n;
+  gl_.Uniform2f(gl_.GetUniformLocation(program, "u_preint_map"), float((m - 1) / m), float(0.5 / m));
+  gl_.Uniform1f(gl_.GetUniformLocation(program, "u_preint_length"), float(base_length));
 }
 
 }  // namespace sortlast

@@ -56,7 +56,9 @@ VolumeBrick uploadVolumeBrick(const GlApi& gl, const Brick& brick, const GridGeo
         IndexBox box{{cuts[0][bx], cuts[1][by], cuts[2][bz]},
                      {cuts[0][bx + 1], cuts[1][by + 1], cuts[2][bz + 1]}};
         auto [vmin, vmax] = samples.range(box);
-        g.blocks.push_back(VolumeBlock{grid.worldBoxOf(box), vmin, vmax});
+        IndexBox grown{glm::max(box.lo - 1, brick.stored.lo), glm::min(box.hi + 1, brick.stored.hi)};
+        auto [gmin, gmax] = samples.range(grown);
+        g.blocks.push_back(VolumeBlock{grid.worldBoxOf(box), vmin, vmax, gmin, gmax});
       }
   // Texel centres: stored sample s sits at texture coordinate (s - stored.lo + 0.5) / n, and the
   // sample index of world point p is p / spacing + (dims - 1) / 2.

@@ -17,6 +17,10 @@ namespace sortlast {
 struct VolumeBlock {
   Box3 world;
   float vmin, vmax;
+  // The range of the block grown by one sample on every side (within the stored box, so the
+  // ghost layer counts): every value a pre-integrated segment owned by the block reads, as long as
+  // its ends lie within one voxel of the block (worker/raycast_shaders.h).
+  float gmin, gmax;
 };
 
 struct VolumeBrick {

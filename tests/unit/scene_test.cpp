@@ -168,6 +168,20 @@ TEST(Scene, CompositingStrategies) {
   inputErrorOf([] { loadScene("", {"compositing.radix=two"}); });
 }
 
+TEST(Scene, Preintegration) {
+  EXPECT_FALSE(loadScene("", {}).transfer.preintegrated);
+  EXPECT_EQ(tableDefault("transfer.preintegrated"), "false");
+  EXPECT_TRUE(loadScene("", {"transfer.preintegrated=true", "render.sample_spacing=2"}).transfer.preintegrated);
+  // Refused: with adaptive sampling, and with steps whose segment ends pass the ghost layer.
+  std::string msg = inputErrorOf([] { loadScene("", {"transfer.preintegrated=true", "adaptive.tolerance=10"}); });
+  EXPECT_NE(msg.find("transfer.preintegrated"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("adaptive.tolerance"), std::string::npos) << msg;
+  msg = inputErrorOf([] { loadScene("", {"transfer.preintegrated=true", "render.sample_spacing=2.01"}); });
+  EXPECT_NE(msg.find("transfer.preintegrated"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("render.sample_spacing"), std::string::npos) << msg;
+  inputErrorOf([] { loadScene("", {"transfer.preintegrated=maybe"}); });
+}
+
 TEST(Scene, VolumeMethod) {
   Scene s = loadScene("", {});
   EXPECT_EQ(s.volume_method, tableDefault("render.method"));
