@@ -7,6 +7,7 @@
 #include "worker/adaptive_gpu_brick.h"
 #include "worker/gl_program.h"
 #include "worker/raycast_shaders.h"
+#include "worker/volume_shading.h"
 
 namespace sortlast {
 
@@ -17,7 +18,7 @@ RaycastRenderer::RaycastRenderer(const GlContext& ctx, int width, int height, in
       settings_(settings),
       target_(gl_, width, height),
       table_(gl_) {
-  program_ = linkProgram(gl_, shaders::kRaycastVertex, shaders::kRaycastFragment);
+  program_ = linkProgram(gl_, shaders::kRaycastVertex, withShading(shaders::kRaycastFragment).c_str());
   // A core-profile draw needs a vertex array, though the triangle has no attributes.
   gl_.GenVertexArrays(1, &vao_);
   gl_.check("ray caster setup");
@@ -65,7 +66,7 @@ int RaycastRenderer::addAdaptiveBrick(const Brick& brick, const GridGeometry& gr
                                       const AdaptiveBrickBlocks& blocks) {
   if (!adaptive_program_) {
     // The same source with ADAPTIVE defined (the #define must follow the #version line).
-    std::string src = shaders::kRaycastFragment;
+    std::string src = withShading(shaders::kRaycastFragment);
     const std::string version = "#version 450 core\n";
     if (src.rfind(version, 0) != 0) throw std::logic_error("ray caster shader: no #version line");
     src.insert(version.size(), "#define ADAPTIVE 1\n");
@@ -178,6 +179,10 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
     gl_.Uniform1i(gl_.GetUniformLocation(program, "u_visible"), 4);
     gl_.Uniform1i(gl_.GetUniformLocation(program, "u_has_surface"), has_surface ? 1 : 0);
     table_.use(program);
+    // Adaptive blocks cannot be shaded (raycast_shaders.h shadedSample); the scene refuses it.
+    if (g.adaptive && shading_.enabled)
+      throw std::logic_error("ray caster: gradient shading of an adaptive brick");
+    setShadingUniforms(gl_, program, shading_, b, table_.function());
     if (has_surface) {
       const Rect& sr = surface->rect;
       gl_.Uniform4i(gl_.GetUniformLocation(program, "u_surface_rect"), sr.x, sr.y, sr.w, sr.h);

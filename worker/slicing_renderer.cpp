@@ -6,12 +6,13 @@
 #include "worker/gl_program.h"
 #include "worker/slice_geometry.h"
 #include "worker/slicing_shaders.h"
+#include "worker/volume_shading.h"
 
 namespace sortlast {
 
 SlicingRenderer::SlicingRenderer(const GlContext& ctx, int width, int height, int block_cells)
     : gl_(ctx.gl()), block_cells_(std::max(1, block_cells)), target_(gl_, width, height), table_(gl_) {
-  program_ = linkProgram(gl_, shaders::kSliceVertex, shaders::kSliceFragment);
+  program_ = linkProgram(gl_, shaders::kSliceVertex, withShading(shaders::kSliceFragment).c_str());
   gl_.GenVertexArrays(1, &vao_);
   gl_.BindVertexArray(vao_);
   gl_.GenBuffers(1, &vbo_);
@@ -80,6 +81,7 @@ RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spac
     gl_.Uniform3f(gl_.GetUniformLocation(program_, "u_forward"), float(fwd.x), float(fwd.y), float(fwd.z));
     gl_.Uniform1f(gl_.GetUniformLocation(program_, "u_spacing"), float(spacing));
     table_.use(program_);
+    setShadingUniforms(gl_, program_, shading_, b, table_.function());
     gl_.Uniform1i(gl_.GetUniformLocation(program_, "u_surface"), 2);
     gl_.Uniform1i(gl_.GetUniformLocation(program_, "u_has_surface"), has_surface ? 1 : 0);
     if (has_surface) {

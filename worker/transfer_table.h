@@ -20,6 +20,7 @@ class TransferTable {
   bool visible(float vmin, float vmax) const;
   // Binds the table to texture unit 1 and sets `program`'s u_table, u_value_map and u_table_map.
   void use(unsigned program) const;
+  const TransferFunction& function() const { return tf_; }
 
  private:
   const GlApi& gl_;
