@@ -18,7 +18,7 @@ RaycastRenderer::RaycastRenderer(const GlContext& ctx, int width, int height, in
       settings_(settings),
       target_(gl_, width, height),
       table_(gl_) {
-  program_ = linkProgram(gl_, shaders::kRaycastVertex, withShading(shaders::kRaycastFragment).c_str());
+  program_ = linkProgram(gl_, shaders::kRaycastVertex, shaders::kRaycastFragment);
   // A core-profile draw needs a vertex array, though the triangle has no attributes.
   gl_.GenVertexArrays(1, &vao_);
   gl_.check("ray caster setup");
@@ -33,6 +33,7 @@ RaycastRenderer::~RaycastRenderer() {
   }
   gl_.DeleteVertexArrays(1, &vao_);
   gl_.DeleteProgram(program_);
+  if (shaded_program_) gl_.DeleteProgram(shaded_program_);
   if (adaptive_program_) gl_.DeleteProgram(adaptive_program_);
 }
 
@@ -66,7 +67,7 @@ int RaycastRenderer::addAdaptiveBrick(const Brick& brick, const GridGeometry& gr
                                       const AdaptiveBrickBlocks& blocks) {
   if (!adaptive_program_) {
     // The same source with ADAPTIVE defined (the #define must follow the #version line).
-    std::string src = withShading(shaders::kRaycastFragment);
+    std::string src = shaders::kRaycastFragment;
     const std::string version = "#version 450 core\n";
     if (src.rfind(version, 0) != 0) throw std::logic_error("ray caster shader: no #version line");
     src.insert(version.size(), "#define ADAPTIVE 1\n");
@@ -142,7 +143,14 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
     }
     gl_.Enable(GL_BLEND);
     gl_.BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // the ray's colour over the surface's
-    const unsigned program = g.adaptive ? adaptive_program_ : program_;
+    // Adaptive blocks cannot be shaded (raycast_shaders.h shadedSample); the scene refuses it.
+    if (g.adaptive && shading_.enabled)
+      throw std::logic_error("ray caster: gradient shading of an adaptive brick");
+    if (shading_.enabled && !shaded_program_)
+      shaded_program_ = linkProgram(gl_, shaders::kRaycastVertex,
+                                    withShading(shaders::kRaycastFragment).c_str());
+    const unsigned program =
+        g.adaptive ? adaptive_program_ : shading_.enabled ? shaded_program_ : program_;
     gl_.UseProgram(program);
     auto u3 = [&](const char* name, const glm::dvec3& v) {
       gl_.Uniform3f(gl_.GetUniformLocation(program, name), float(v.x), float(v.y), float(v.z));
@@ -179,10 +187,7 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
     gl_.Uniform1i(gl_.GetUniformLocation(program, "u_visible"), 4);
     gl_.Uniform1i(gl_.GetUniformLocation(program, "u_has_surface"), has_surface ? 1 : 0);
     table_.use(program);
-    // Adaptive blocks cannot be shaded (raycast_shaders.h shadedSample); the scene refuses it.
-    if (g.adaptive && shading_.enabled)
-      throw std::logic_error("ray caster: gradient shading of an adaptive brick");
-    setShadingUniforms(gl_, program, shading_, b, table_.function());
+    if (shading_.enabled) setShadingUniforms(gl_, program, shading_, b, table_.function());
     if (has_surface) {
       const Rect& sr = surface->rect;
       gl_.Uniform4i(gl_.GetUniformLocation(program, "u_surface_rect"), sr.x, sr.y, sr.w, sr.h);

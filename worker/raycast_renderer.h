@@ -92,6 +92,7 @@ class RaycastRenderer {
   TransferTable table_;
   unsigned program_ = 0, vao_ = 0;
   unsigned adaptive_program_ = 0;  // linked with the first adaptive brick
+  unsigned shaded_program_ = 0;    // render.shading's variant, linked when first shaded
   std::vector<GpuBrick> bricks_;
 };
 

@@ -14,8 +14,8 @@
 // nothing). Each sample stands for delta of the ray: alpha = 1 - exp(-tau * delta), the slicing
 // renderer's and the reference's opacity correction, composited front to back. The ray stops once
 // alpha >= u_ert (early ray termination), at the brick's exit, or at the particle surface's t.
-// With render.shading, each sample's colour is shaded (shadedSample; the program is linked with
-// worker/volume_shading.h's shadeColour in front).
+// With render.shading, each sample's colour is shaded (shadedSample, in a variant of the program
+// linked with worker/volume_shading.h's shadeColour in front).
 //
 // Adaptive sampling (the program compiled with ADAPTIVE defined; worker/adaptive_gpu_brick.h):
 // the blocks of the DDA are the adaptive blocks cut by the brick's faces, sampleVolume() reads the
@@ -109,15 +109,20 @@ vec4 classify(float v) {
   return texture(u_table, x * u_table_map.x + u_table_map.y);
 }
 
-// (r, g, b, tau) of the sample at world point p, its colour shaded with the field's gradient when
-// render.shading is on (shadeColour: worker/volume_shading.h; light at the eye, so the direction
-// from it to p). A sample of zero tau adds nothing whatever its colour: no gradient is read.
+// (r, g, b, tau) of the sample at world point p, its colour shaded with the field's gradient in the
+// program's shaded variant (SHADING defined; shadeColour: worker/volume_shading.h; light at the
+// eye, so the direction from it to p). A sample of zero tau adds nothing whatever its colour: no gradient is read.
 // Adaptive bricks are never shaded (the scene refuses the combination): their blocks hold only
 // their own samples, not the field one voxel across a block face.
+#if defined(SHADING) && defined(ADAPTIVE)
+#error gradient shading of adaptive blocks
+#endif
 vec4 shadedSample(vec3 p) {
   vec4 e = classify(sampleVolume(p));
-  if (u_shading != 0 && e.a > 0.0)
+#ifdef SHADING
+  if (e.a > 0.0)
     e.rgb = shadeColour(e.rgb, u_volume, p * u_tex_scale + u_tex_offset, normalize(p - u_eye));
+#endif
   return e;
 }
 

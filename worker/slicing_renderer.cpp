@@ -12,7 +12,7 @@ namespace sortlast {
 
 SlicingRenderer::SlicingRenderer(const GlContext& ctx, int width, int height, int block_cells)
     : gl_(ctx.gl()), block_cells_(std::max(1, block_cells)), target_(gl_, width, height), table_(gl_) {
-  program_ = linkProgram(gl_, shaders::kSliceVertex, withShading(shaders::kSliceFragment).c_str());
+  program_ = linkProgram(gl_, shaders::kSliceVertex, shaders::kSliceFragment);
   gl_.GenVertexArrays(1, &vao_);
   gl_.BindVertexArray(vao_);
   gl_.GenBuffers(1, &vbo_);
@@ -27,6 +27,7 @@ SlicingRenderer::~SlicingRenderer() {
   gl_.DeleteBuffers(1, &vbo_);
   gl_.DeleteVertexArrays(1, &vao_);
   gl_.DeleteProgram(program_);
+  if (shaded_program_) gl_.DeleteProgram(shaded_program_);
 }
 
 void SlicingRenderer::setTransferFunction(const TransferFunction& tf, int table_size) {
@@ -71,22 +72,25 @@ RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spac
   if (!tris.empty()) {
     gl_.Enable(GL_BLEND);
     gl_.BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // premultiplied "over", back to front
-    gl_.UseProgram(program_);
+    if (shading_.enabled && !shaded_program_)
+      shaded_program_ = linkProgram(gl_, shaders::kSliceVertex, withShading(shaders::kSliceFragment).c_str());
+    const unsigned program = shading_.enabled ? shaded_program_ : program_;
+    gl_.UseProgram(program);
     glm::mat4 vp = cam.viewProjection(near_plane, far_plane);
-    gl_.UniformMatrix4fv(gl_.GetUniformLocation(program_, "u_view_proj"), 1, GL_FALSE, &vp[0][0]);
-    gl_.Uniform1i(gl_.GetUniformLocation(program_, "u_volume"), 0);
-    gl_.Uniform3f(gl_.GetUniformLocation(program_, "u_tex_scale"), b.tex_scale.x, b.tex_scale.y, b.tex_scale.z);
-    gl_.Uniform3f(gl_.GetUniformLocation(program_, "u_tex_offset"), b.tex_offset.x, b.tex_offset.y, b.tex_offset.z);
-    gl_.Uniform3f(gl_.GetUniformLocation(program_, "u_eye"), float(eye.x), float(eye.y), float(eye.z));
-    gl_.Uniform3f(gl_.GetUniformLocation(program_, "u_forward"), float(fwd.x), float(fwd.y), float(fwd.z));
-    gl_.Uniform1f(gl_.GetUniformLocation(program_, "u_spacing"), float(spacing));
-    table_.use(program_);
-    setShadingUniforms(gl_, program_, shading_, b, table_.function());
-    gl_.Uniform1i(gl_.GetUniformLocation(program_, "u_surface"), 2);
-    gl_.Uniform1i(gl_.GetUniformLocation(program_, "u_has_surface"), has_surface ? 1 : 0);
+    gl_.UniformMatrix4fv(gl_.GetUniformLocation(program, "u_view_proj"), 1, GL_FALSE, &vp[0][0]);
+    gl_.Uniform1i(gl_.GetUniformLocation(program, "u_volume"), 0);
+    gl_.Uniform3f(gl_.GetUniformLocation(program, "u_tex_scale"), b.tex_scale.x, b.tex_scale.y, b.tex_scale.z);
+    gl_.Uniform3f(gl_.GetUniformLocation(program, "u_tex_offset"), b.tex_offset.x, b.tex_offset.y, b.tex_offset.z);
+    gl_.Uniform3f(gl_.GetUniformLocation(program, "u_eye"), float(eye.x), float(eye.y), float(eye.z));
+    gl_.Uniform3f(gl_.GetUniformLocation(program, "u_forward"), float(fwd.x), float(fwd.y), float(fwd.z));
+    gl_.Uniform1f(gl_.GetUniformLocation(program, "u_spacing"), float(spacing));
+    table_.use(program);
+    if (shading_.enabled) setShadingUniforms(gl_, program, shading_, b, table_.function());
+    gl_.Uniform1i(gl_.GetUniformLocation(program, "u_surface"), 2);
+    gl_.Uniform1i(gl_.GetUniformLocation(program, "u_has_surface"), has_surface ? 1 : 0);
     if (has_surface) {
       const Rect& sr = surface->rect;
-      gl_.Uniform4i(gl_.GetUniformLocation(program_, "u_surface_rect"), sr.x, sr.y, sr.w, sr.h);
+      gl_.Uniform4i(gl_.GetUniformLocation(program, "u_surface_rect"), sr.x, sr.y, sr.w, sr.h);
       gl_.ActiveTexture(GL_TEXTURE2);
       gl_.BindTexture(GL_TEXTURE_2D, surface->surface_texture);
     }

@@ -54,6 +54,7 @@ class SlicingRenderer {
   TransferTable table_;
   Shading shading_;
   unsigned program_ = 0, vao_ = 0, vbo_ = 0;
+  unsigned shaded_program_ = 0;  // render.shading's variant, linked when first shaded
   std::vector<VolumeBrick> bricks_;
 };
 

@@ -2,8 +2,8 @@
 // GLSL for 3D-texture slicing. The fragment shader classifies the interpolated sample through the
 // transfer-function table (r, g, b, tau) and corrects opacity for the actual distance between
 // slices along this pixel's ray, ds = spacing / cos(angle to the view axis), so that slicing and
-// the reference integrator are the same emission-absorption model. With render.shading the colour
-// is shaded first (shadedSample).
+// the reference integrator are the same emission-absorption model. With render.shading a variant
+// of the program shades the colour first (shadedSample).
 namespace sortlast::shaders {
 
 inline constexpr const char* kSliceVertex = R"(#version 450 core
@@ -32,15 +32,18 @@ uniform int u_has_surface;
 uniform ivec4 u_surface_rect; // x, y, w, h where u_surface is valid (stale elsewhere)
 out vec4 frag;
 
-// (r, g, b, tau) of the sample at world point p, its colour shaded with the field's gradient when
-// render.shading is on (shadeColour: worker/volume_shading.h, linked in front; light at the eye).
+// (r, g, b, tau) of the sample at world point p, its colour shaded with the field's gradient in the
+// program's shaded variant (SHADING defined; shadeColour: worker/volume_shading.h, linked in
+// front; light at the eye).
 // A sample of zero tau adds nothing whatever its colour: no gradient is read.
 vec4 shadedSample(vec3 p) {
   vec3 tc = p * u_tex_scale + u_tex_offset;
   float v = texture(u_volume, tc).r;
   float x = clamp(v * u_value_map.x + u_value_map.y, 0.0, 1.0);
   vec4 e = texture(u_table, x * u_table_map.x + u_table_map.y);
-  if (u_shading != 0 && e.a > 0.0) e.rgb = shadeColour(e.rgb, u_volume, tc, normalize(p - u_eye));
+#ifdef SHADING
+  if (e.a > 0.0) e.rgb = shadeColour(e.rgb, u_volume, tc, normalize(p - u_eye));
+#endif
   return e;
 }
 

@@ -10,7 +10,7 @@ namespace {
 // one voxel is u_voxel_tex in texture coordinates, and the difference over two voxels times
 // u_gradient_scale = 1 / (2 spacing) is the world gradient. Returns c when the weight is 0, and
 // c + w (shaded - c) otherwise, as the reference does.
-constexpr const char* kShadingGlsl = R"(uniform int u_shading;          // 0: colours as classified
+constexpr const char* kShadingGlsl = R"(#define SHADING 1
 uniform vec3 u_phong;           // ka, kd, ks
 uniform float u_shininess;      // p
 uniform vec3 u_voxel_tex;       // one voxel along each axis, in texture coordinates
@@ -45,8 +45,6 @@ std::string withShading(const char* fragment_src) {
 void setShadingUniforms(const GlApi& gl, unsigned program, const Shading& s, const VolumeBrick& b,
                         const TransferFunction& tf) {
   auto at = [&](const char* name) { return gl.GetUniformLocation(program, name); };
-  gl.Uniform1i(at("u_shading"), s.enabled ? 1 : 0);
-  if (!s.enabled) return;
   gl.Uniform3f(at("u_phong"), float(s.ambient), float(s.diffuse), float(s.specular));
   gl.Uniform1f(at("u_shininess"), float(s.shininess));
   const glm::dvec3 voxel = 1.0 / glm::dvec3(b.brick.stored.size());

@@ -9,8 +9,8 @@
 #   bricks     no seams: 2^3 and 3^3 bricks give the 1-brick shaded image within the 2/255 of the
 #              RGBA8 intermediate images (the differences one voxel beyond a brick face read the
 #              ghost layer: worker/volume_shading.h), with no exception for the ray caster and the
-#              20 silhouette pixels of tests/mpi/seams.sh for slicing; 1-4 ranks give one image
-#              within 1/255
+#              20 silhouette pixels of tests/mpi/seams.sh for slicing; 1-4 ranks (slicing: 1 and 3)
+#              give one image within 1/255
 #   onoff      shading changes the image (a lot: measured 21.9 dB and 147/255 from unshaded on
 #              neghip); with ka = 1, kd = ks = 0 (the identity model) it gives the unshaded image
 #              bit for bit, so turning it on changes nothing but the colours it shades; shading
@@ -74,17 +74,20 @@ bricks)
     done
     # Marschner-Lobb has 3^3 bricks: uneven over 2-4 ranks.
     render 1 "$DATA/marschner_lobb.yaml" "$WORK/ml1.png" --set bricks.per_axis=1 --set render.method=$method "${at[@]}"
-    for np in 1 2 3 4; do
+    # (Slicing on 1 and 3 ranks only, to keep the test short: the brick images do not depend on
+    # the rank count.)
+    nps=(1 2 3 4); [ $method = slicing ] && nps=(1 3)
+    for np in "${nps[@]}"; do
       render "$np" "$DATA/marschner_lobb.yaml" "$WORK/np$np.png" --set render.method=$method "${at[@]}"
     done
     for pair in neghip1:neghip2 neghip1:neghip3 ml1:np1; do
       "$S" compare "$WORK/${pair%%:*}.png" "$WORK/${pair##*:}.png" --max-diff 2 "${slack[@]}" --min-psnr 55 \
         || fail "$method seam: ${pair##*:} differs from ${pair%%:*}"
     done
-    for np in 2 3 4; do
+    for np in "${nps[@]:1}"; do
       "$S" compare "$WORK/np1.png" "$WORK/np$np.png" --max-diff 1 || fail "$method: $np ranks differ from 1 rank"
     done
-    echo "$method, shaded: no seams, ranks 1-4 agree"
+    echo "$method, shaded: no seams, ranks ${nps[*]} agree"
   done
   ;;
 onoff)
