@@ -267,6 +267,8 @@ bool isFrameKey(const std::string& path) {
   for (const char* prefix : {"camera.", "image.", "transfer.", "compositing.", "time.step"})
     if (path.rfind(prefix, 0) == 0) return true;
   for (const char* key : {"render.sample_spacing", "render.method", "render.ert_threshold",
+                          "render.shading", "render.shading_ambient", "render.shading_diffuse",
+                          "render.shading_specular", "render.shading_shininess",
                           "particles.radius", "particles.influence", "particles.threshold",
                           "particles.color", "particles.step", "particles.max_samples",
                           "particles.refine_iterations", "particles.cull", "particles.samples_per_pass"})
@@ -453,6 +455,17 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
   s.ert_threshold = r.as<double>("render.ert_threshold");
   if (!(s.ert_threshold > 0.0 && s.ert_threshold <= 1.0))
     throw InputError("scene key 'render.ert_threshold': must be in (0, 1] (1: no early termination)");
+  s.shading.enabled = r.as<bool>("render.shading");
+  for (auto [key, value] : {std::pair{"render.shading_ambient", &s.shading.ambient},
+                            std::pair{"render.shading_diffuse", &s.shading.diffuse},
+                            std::pair{"render.shading_specular", &s.shading.specular}}) {
+    *value = r.as<double>(key);
+    if (!(*value >= 0.0 && *value <= 100.0))
+      throw InputError(std::string("scene key '") + key + "': must be in [0, 100]");
+  }
+  s.shading.shininess = r.as<double>("render.shading_shininess");
+  if (!(s.shading.shininess >= 1.0 && s.shading.shininess <= 1000.0))
+    throw InputError("scene key 'render.shading_shininess': must be in [1, 1000]");
   s.strategy = r.as<std::string>("compositing.strategy");
   if (s.strategy != "direct" && s.strategy != "binary-swap" && s.strategy != "radix-k")
     throw InputError("scene key 'compositing.strategy': expected direct, binary-swap or radix-k, got '" +
@@ -483,6 +496,12 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
   if (s.adaptive_blocks < 1 || s.adaptive_blocks > 256 || (s.adaptive_blocks & (s.adaptive_blocks - 1)))
     throw InputError("scene key 'adaptive.blocks': must be a power of two in [1, 256], got " +
                      std::to_string(s.adaptive_blocks));
+  // The adaptive ray caster reads each block's own samples only (clamped to the block), so a
+  // difference one voxel across a block face would read the wrong field: refused, not approximated.
+  if (s.shading.enabled && s.adaptive_tolerance > 0.0)
+    throw InputError("scene keys 'render.shading' and 'adaptive.tolerance': gradient shading is not "
+                     "available with adaptive sampling; set render.shading: false or "
+                     "adaptive.tolerance: 0");
   s.adaptive_steps = r.as<std::string>("adaptive.steps");
   if (s.adaptive_steps != "own" && s.adaptive_steps != "fine")
     throw InputError("scene key 'adaptive.steps': expected own or fine, got '" + s.adaptive_steps + "'");

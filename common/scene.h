@@ -8,6 +8,7 @@
 
 #include "common/camera.h"
 #include "common/particles.h"
+#include "common/shading.h"
 #include "common/transfer_function.h"
 #include "common/volume_source.h"
 
@@ -50,6 +51,7 @@ struct Scene {
   int block_cells = 64;         // empty-space skipping granularity
   std::string volume_method = "slicing";  // slicing | raycast
   double ert_threshold = 0.99;            // ray casting: early ray termination opacity
+  Shading shading;                        // gradient shading of the volume (render.shading*)
   double adaptive_tolerance = 0.0;  // adaptive sampling: relative L2 error per block, fraction; 0: off
   int adaptive_blocks = 8;          // adaptive sampling: b, blocks per axis of the whole volume
   std::string adaptive_steps = "own";  // own: a block's samples along rays at its resolution | fine

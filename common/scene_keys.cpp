@@ -157,6 +157,22 @@ const std::vector<SceneKey>& sceneKeys() {
        "Ray casting: a ray stops once its opacity reaches this, in (0, 1]; 1: never early. It "
        "stops only inside a brick (bricks behind still render), and changes a pixel by at most "
        "1 - threshold."},
+      {"render.shading", "false",
+       "Gradient shading of the volume (both renderers and the reference): Blinn-Phong with a "
+       "headlight, two-sided. A sample of transfer-function colour c emits c' = clamp(c (ka + kd "
+       "cos) + ks cos^p, 0, 1), cos = |n . l|, n the unit gradient and l the direction to the eye "
+       "(the light, and the half vector); opacity is unchanged. The gradient is the central "
+       "difference of the trilinear field one voxel either side along each axis (one-sided at the "
+       "data set's faces); a sample whose gradient is at most 0.001 of `transfer.range` per "
+       "smallest voxel spacing is unshaded (flat regions keep their colour), fully shaded from "
+       "twice that, mixed linearly between. Not with `adaptive.tolerance` above 0. Six more "
+       "texture reads per sample: measured 2.2-3.6x the render time on llvmpipe."},
+      {"render.shading_ambient", "0.3", "Gradient shading: ka, the ambient term (>= 0)."},
+      {"render.shading_diffuse", "0.7", "Gradient shading: kd, the diffuse term (>= 0)."},
+      {"render.shading_specular", "0.2",
+       "Gradient shading: ks, the specular term (>= 0), a white highlight added to the colour."},
+      {"render.shading_shininess", "20",
+       "Gradient shading: p, the specular exponent, in [1, 1000]."},
       {"adaptive.tolerance", "0",
        "Adaptive sampling (the paper's section 4.2), in percent: each block of the volume is stored at the "
        "coarsest resolution (halved step by step, a coarse sample the mean of the fine cells "

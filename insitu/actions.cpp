@@ -112,7 +112,8 @@ void checkFrameKey(const YAML::Node& at, const std::string& key, const Where& w)
         "fixed by the simulation's data and decomposition (volume.*, bricks.*, the particles' "
         "data keys, render.backend, adaptive.* cannot be set in situ); a render may set camera.*, "
         "image.*, transfer.*, compositing.*, render.method, render.sample_spacing, "
-        "render.ert_threshold and the particles' shading keys (docs/insitu_actions.md)");
+        "render.ert_threshold, render.shading* and the particles' shading keys "
+        "(docs/insitu_actions.md)");
 }
 
 // The nested `scene:` map as key.path=VALUE overrides; dotted keys (`image.width: 64`) work too.

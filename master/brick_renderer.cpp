@@ -11,6 +11,7 @@ VolumeMethod volumeMethod(const Scene& scene) {
   m.raycast = scene.volume_method == "raycast";
   m.raycast_settings.ert_threshold = scene.ert_threshold;
   m.raycast_settings.own_resolution_steps = scene.adaptive_steps == "own";
+  m.shading = scene.shading;
   return m;
 }
 
@@ -37,7 +38,10 @@ void BrickRenderer::enableVolume(const TransferFunction& tf, int table_size, int
     volume_ = std::make_unique<RaycastRenderer>(*ctx_, width_, height_, block_cells, method.raycast_settings);
   else
     volume_ = std::make_unique<SlicingRenderer>(*ctx_, width_, height_, block_cells);
-  std::visit([&](auto& r) { r->setTransferFunction(tf, table_size, preintegrated); }, volume_);
+  std::visit([&](auto& r) {
+    r->setTransferFunction(tf, table_size, preintegrated);
+    r->setShading(method.shading);
+  }, volume_);
 }
 
 void BrickRenderer::enableParticles(const MetaballSettings& settings) {
@@ -61,6 +65,7 @@ void BrickRenderer::setTransferFunction(const TransferFunction& tf, int table_si
 void BrickRenderer::setVolumeMethodSettings(const VolumeMethod& method) {
   if (auto* ray = std::get_if<std::unique_ptr<RaycastRenderer>>(&volume_); ray && *ray)
     (*ray)->setSettings(method.raycast_settings);
+  std::visit([&](auto& r) { if (r) r->setShading(method.shading); }, volume_);
 }
 
 void BrickRenderer::setMetaballSettings(const MetaballSettings& settings) {

@@ -26,6 +26,7 @@ struct Scene;
 struct VolumeMethod {
   bool raycast = false;  // false: 3D-texture slicing
   RaycastSettings raycast_settings;
+  Shading shading;       // either renderer
 };
 VolumeMethod volumeMethod(const Scene& scene);
 
@@ -56,7 +57,7 @@ class BrickRenderer {
   // What a resident session changes between frames without re-uploading any brick.
   void setImageSize(int width, int height);
   void setTransferFunction(const TransferFunction& tf, int table_size, bool preintegrated = false);
-  void setVolumeMethodSettings(const VolumeMethod& method);  // same renderer kind; its settings
+  void setVolumeMethodSettings(const VolumeMethod& method);  // same renderer kind; its settings, shading
   void setMetaballSettings(const MetaballSettings& settings);  // same h
   // Drops the renderers and every brick (their GL objects), keeping the GL context: the session
   // then enables and adds bricks anew (a new time step, another volume renderer, another h).

@@ -53,6 +53,7 @@ FrameReference::FrameReference(Scene scene, int threads)
     auto [lo, hi] = std::minmax_element(in.vol.samples.begin(), in.vol.samples.end());
     in.tf = scene.transfer.build(*lo, *hi, scene.volume.grid.minSpacing());
     in.step = scene.reference_step * scene.volume.grid.minSpacing();
+    in.shading = scene.shading;
     Box3 v = in.vol.grid.worldBox();
     bounds_ = {glm::min(bounds_.lo, v.lo), glm::max(bounds_.hi, v.hi)};
     volume_ = std::move(in);
@@ -64,12 +65,12 @@ ImageF FrameReference::render(const Camera& cam, SurfaceImage* surface_out) cons
     throw InputError("camera.position is inside the volume; move the camera outside it");
   if (!balls_) {
     if (!volume_) return ImageF(cam.width, cam.height);
-    return renderReference(volume_->vol, volume_->tf, cam, volume_->step, threads_);
+    return renderReference(volume_->vol, volume_->tf, cam, volume_->step, threads_, volume_->shading);
   }
   SurfaceImage surface = referenceSurface(*balls_, cam, bounds_, threads_);
   ImageF colour = shadeSurfaceFloat(surface, cam, colour_);
   ImageF out = volume_ ? renderReference(volume_->vol, volume_->tf, cam, volume_->step, threads_,
-                                         surface, colour)
+                                         surface, colour, volume_->shading)
                        : std::move(colour);
   if (surface_out) *surface_out = std::move(surface);
   return out;

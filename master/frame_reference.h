@@ -38,6 +38,7 @@ class FrameReference {
     WholeVolume vol;
     TransferFunction tf;
     double step = 0.0;  // world units
+    Shading shading;    // render.shading*
   };
   std::optional<VolumeInput> volume_;
   std::optional<MetaballModel> balls_;

@@ -27,13 +27,25 @@ double WholeVolume::at(const glm::dvec3& u) const {
   return trilinear(s, f);
 }
 
+glm::dvec3 WholeVolume::gradient(const glm::dvec3& u) const {
+  glm::dvec3 g;
+  for (int a = 0; a < 3; ++a) {
+    glm::dvec3 e(0.0);
+    e[a] = 1.0;
+    g[a] = (at(u + e) - at(u - e)) / (2.0 * grid.spacing[a]);
+  }
+  return g;
+}
+
 namespace {
 
 // One implementation for both overloads: with no stop (nullptr) every step below reduces to the
 // volume-only arithmetic exactly (min(t1, inf) = t1; adding a zero surface changes no bit).
 ImageF integrate(const WholeVolume& vol, const TransferFunction& tf, const Camera& cam, double step,
-                 int threads, const SurfaceImage* stop, const ImageF* stop_colour) {
+                 int threads, const SurfaceImage* stop, const ImageF* stop_colour,
+                 const Shading& shading) {
   ImageF img(cam.width, cam.height);
+  const double flat = flatGradient(tf.rangeLo(), tf.rangeHi(), vol.grid.spacing);
   Box3 box = vol.grid.worldBox();
   std::atomic<int> next_row{0};
   auto worker = [&] {
@@ -49,10 +61,12 @@ ImageF integrate(const WholeVolume& vol, const TransferFunction& tf, const Camer
           long long n = t1 > t0 ? std::max(1LL, (long long)std::ceil((t1 - t0) / step)) : 0;
           double h = n > 0 ? (t1 - t0) / double(n) : 0.0;
           for (long long i = 0; i < n && transmit > 1e-15; ++i) {
-            double v = vol.at(vol.grid.indexOfWorld(o + (t0 + (i + 0.5) * h) * d));
+            const glm::dvec3 u = vol.grid.indexOfWorld(o + (t0 + (i + 0.5) * h) * d);
+            double v = vol.at(u);
             double a = 1.0 - std::exp(-tf.extinction(v) * h);
             if (a <= 0.0) continue;
             auto c = tf.colour(v);
+            if (shading.enabled) c = shadeSample(c, vol.gradient(u), d, shading, flat);
             for (int k = 0; k < 3; ++k) rgb[k] += transmit * a * c[k];
             transmit *= 1.0 - a;
           }
@@ -78,20 +92,20 @@ ImageF integrate(const WholeVolume& vol, const TransferFunction& tf, const Camer
 }  // namespace
 
 ImageF renderReference(const WholeVolume& vol, const TransferFunction& tf, const Camera& cam,
-                       double step, int threads) {
-  return integrate(vol, tf, cam, step, threads, nullptr, nullptr);
+                       double step, int threads, const Shading& shading) {
+  return integrate(vol, tf, cam, step, threads, nullptr, nullptr, shading);
 }
 
 ImageF renderReference(const WholeVolume& vol, const TransferFunction& tf, const Camera& cam,
                        double step, int threads, const SurfaceImage& stop,
-                       const ImageF& stop_colour) {
+                       const ImageF& stop_colour, const Shading& shading) {
   if (stop.width != cam.width || stop.height != cam.height || stop_colour.width != cam.width ||
       stop_colour.height != cam.height)
     throw InputError("reference: the surface images (" + std::to_string(stop.width) + "x" +
                      std::to_string(stop.height) + ", colour " + std::to_string(stop_colour.width) +
                      "x" + std::to_string(stop_colour.height) + ") are not the camera's size (" +
                      std::to_string(cam.width) + "x" + std::to_string(cam.height) + ")");
-  return integrate(vol, tf, cam, step, threads, &stop, &stop_colour);
+  return integrate(vol, tf, cam, step, threads, &stop, &stop_colour, shading);
 }
 
 }  // namespace sortlast

@@ -3,7 +3,9 @@
 // GL renderer approximates (same trilinear field, same transfer function, same opacity
 // correction), in the continuous limit of the sample spacing: each ray is cut into steps of
 // `step` world units (default 1/16 voxel) and each step is composited exactly with its midpoint
-// value, T *= exp(-tau h). This is what accuracy is measured against.
+// value, T *= exp(-tau h). This is what accuracy is measured against. With `shading` on, each
+// step's colour is shaded (common/shading.h) with the gradient of the same trilinear field by
+// central differences (WholeVolume::gradient), in double like the rest.
 #include <memory>
 #include <vector>
 
@@ -11,6 +13,7 @@
 #include "common/camera.h"
 #include "common/grid.h"
 #include "common/image.h"
+#include "common/shading.h"
 #include "common/surface_image.h"
 #include "common/transfer_function.h"
 
@@ -23,10 +26,13 @@ struct WholeVolume {
   // only give the transfer function its range).
   std::shared_ptr<const AdaptiveVolume> adaptive;
   double at(const glm::dvec3& index) const;  // trilinear, index clamped to the grid
+  // World gradient at `index`: (at(index + e_a) - at(index - e_a)) / (2 spacing_a) per axis, so
+  // one-sided where index +- 1 leaves the grid (at() clamps).
+  glm::dvec3 gradient(const glm::dvec3& index) const;
 };
 
 ImageF renderReference(const WholeVolume& vol, const TransferFunction& tf, const Camera& cam,
-                       double step, int threads);
+                       double step, int threads, const Shading& shading = {});
 
 // Mixed scenes: an opaque surface (metaballs) in the volume. Per pixel the integral runs only for
 // t < stop.t (the same unit-ray distance the surface reference reports; +inf: no surface) and
@@ -35,6 +41,7 @@ ImageF renderReference(const WholeVolume& vol, const TransferFunction& tf, const
 // Without a surface in a pixel the result is bit-identical to the overload above. Throws
 // InputError if either image is not the camera's size.
 ImageF renderReference(const WholeVolume& vol, const TransferFunction& tf, const Camera& cam,
-                       double step, int threads, const SurfaceImage& stop, const ImageF& stop_colour);
+                       double step, int threads, const SurfaceImage& stop, const ImageF& stop_colour,
+                       const Shading& shading = {});
 
 }  // namespace sortlast

@@ -466,6 +466,7 @@ nlohmann::json RenderSession::describe(const std::vector<std::string>& base) con
                    {"render.method", b.volume_method},
                    {"render.sample_spacing", b.sample_spacing},
                    {"render.ert_threshold", b.ert_threshold},
+                   {"render.shading", b.shading.enabled},
                    {"compositing.strategy", b.strategy},
                    {"compositing.radix", b.radix},
                    {"compositing.precision", b.precision},

@@ -8,6 +8,7 @@
 #include "worker/adaptive_gpu_brick.h"
 #include "worker/gl_program.h"
 #include "worker/raycast_shaders.h"
+#include "worker/volume_shading.h"
 
 namespace sortlast {
 
@@ -34,7 +35,8 @@ RaycastRenderer::~RaycastRenderer() {
   gl_.DeleteVertexArrays(1, &vao_);
   gl_.DeleteProgram(program_);
   if (adaptive_program_) gl_.DeleteProgram(adaptive_program_);
-  if (preint_program_) gl_.DeleteProgram(preint_program_);
+  for (unsigned p : variant_programs_)
+    if (p) gl_.DeleteProgram(p);
 }
 
 void RaycastRenderer::setTransferFunction(const TransferFunction& tf, int table_size,
@@ -153,9 +155,16 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
     }
     gl_.Enable(GL_BLEND);
     gl_.BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // the ray's colour over the surface's
-    if (preint && !preint_program_)
-      preint_program_ = linkProgram(gl_, shaders::kRaycastVertex, variant("PREINTEGRATED").c_str());
-    const unsigned program = g.adaptive ? adaptive_program_ : preint ? preint_program_ : program_;
+    // Adaptive blocks cannot be shaded (raycast_shaders.h shadedSample); the scene refuses it.
+    if (g.adaptive && shading_.enabled)
+      throw std::logic_error("ray caster: gradient shading of an adaptive brick");
+    const int v = (preint ? 1 : 0) + (shading_.enabled ? 2 : 0);
+    if (!g.adaptive && v != 0 && !variant_programs_[v]) {
+      const std::string src = preint ? variant("PREINTEGRATED") : std::string(shaders::kRaycastFragment);
+      variant_programs_[v] = linkProgram(gl_, shaders::kRaycastVertex,
+                                         shading_.enabled ? withShading(src.c_str()).c_str() : src.c_str());
+    }
+    const unsigned program = g.adaptive ? adaptive_program_ : v != 0 ? variant_programs_[v] : program_;
     gl_.UseProgram(program);
     auto u3 = [&](const char* name, const glm::dvec3& v) {
       gl_.Uniform3f(gl_.GetUniformLocation(program, name), float(v.x), float(v.y), float(v.z));
@@ -193,6 +202,7 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
     gl_.Uniform1i(gl_.GetUniformLocation(program, "u_has_surface"), has_surface ? 1 : 0);
     table_.use(program);
     if (preint) table_.usePreintegrated(program, spacing);  // segments delta long
+    if (shading_.enabled) setShadingUniforms(gl_, program, shading_, b, table_.function());
     if (has_surface) {
       const Rect& sr = surface->rect;
       gl_.Uniform4i(gl_.GetUniformLocation(program, "u_surface_rect"), sr.x, sr.y, sr.w, sr.h);

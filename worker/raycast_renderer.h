@@ -22,6 +22,7 @@
 #include "common/adaptive_brick.h"
 #include "common/brick.h"
 #include "common/camera.h"
+#include "common/shading.h"
 #include "common/transfer_function.h"
 #include "worker/brick_output.h"
 #include "worker/float_target.h"
@@ -51,6 +52,8 @@ class RaycastRenderer {
   void resize(int width, int height) { target_.resize(width, height); }
   // Early ray termination and adaptive stepping can change between frames.
   void setSettings(const RaycastSettings& settings) { settings_ = settings; }
+  // Gradient shading (common/shading.h) for the next frames; not for adaptive bricks.
+  void setShading(const Shading& shading) { shading_ = shading; }
   // Uploads a brick's stored samples (x fastest); returns a handle for render().
   int addBrick(const Brick& brick, const GridGeometry& grid, const std::vector<float>& samples);
   int addBrick(const Brick& brick, const GridGeometry& grid, const BrickSamples& samples);
@@ -85,11 +88,14 @@ class RaycastRenderer {
   const GlApi& gl_;
   int block_cells_;
   RaycastSettings settings_;
+  Shading shading_;
   FloatTarget target_;
   TransferTable table_;
   unsigned program_ = 0, vao_ = 0;
   unsigned adaptive_program_ = 0;  // linked with the first adaptive brick
-  unsigned preint_program_ = 0;    // linked with the first pre-integrated frame
+  // Variants linked when first used: pre-integrated (PREINTEGRATED), shaded (render.shading:
+  // worker/volume_shading.h in front) and both; index preintegrated + 2 * shaded, 0 unused.
+  unsigned variant_programs_[4] = {0, 0, 0, 0};
   std::vector<GpuBrick> bricks_;
 };
 

@@ -14,6 +14,8 @@
 // nothing). Each sample stands for delta of the ray: alpha = 1 - exp(-tau * delta), the slicing
 // renderer's and the reference's opacity correction, composited front to back. The ray stops once
 // alpha >= u_ert (early ray termination), at the brick's exit, or at the particle surface's t.
+// With render.shading, each sample's colour is shaded (shadedSample, in a variant of the program
+// linked with worker/volume_shading.h's shadeColour in front).
 //
 // Pre-integration (the program compiled with PREINTEGRATED defined; transfer.preintegrated):
 // lattice sample k stands for the segment [t_k - delta/2, t_k + delta/2] of the ray, as it does in
@@ -34,7 +36,8 @@
 // next segment reads its front value afresh. Early termination and the particle surface end the
 // ray as in the midpoint rule: a sample k with t_k < t1 contributes its whole segment (no partial
 // last segment, so the segment ends are the midpoint samples' and the two rules converge alike).
-// Not with ADAPTIVE (refused when the scene is read).
+// Not with ADAPTIVE (refused when the scene is read). With SHADING too, a segment's colour is
+// shaded with the gradient at its middle sample.
 //
 // Adaptive sampling (the program compiled with ADAPTIVE defined; worker/adaptive_gpu_brick.h):
 // the blocks of the DDA are the adaptive blocks cut by the brick's faces, sampleVolume() reads the
@@ -160,6 +163,22 @@ vec4 segment(float vf, float vm, float vb, float len) {
   return segment(clamp(vf + shift, lo, hi), clamp(vb + shift, lo, hi), len);
 }
 #endif
+// (r, g, b, tau) of the sample at world point p, its colour shaded with the field's gradient in the
+// program's shaded variant (SHADING defined; shadeColour: worker/volume_shading.h; light at the
+// eye, so the direction from it to p). A sample of zero tau adds nothing whatever its colour: no gradient is read.
+// Adaptive bricks are never shaded (the scene refuses the combination): their blocks hold only
+// their own samples, not the field one voxel across a block face.
+#if defined(SHADING) && defined(ADAPTIVE)
+#error gradient shading of adaptive blocks
+#endif
+vec4 shadedSample(vec3 p) {
+  vec4 e = classify(sampleVolume(p));
+#ifdef SHADING
+  if (e.a > 0.0)
+    e.rgb = shadeColour(e.rgb, u_volume, p * u_tex_scale + u_tex_offset, normalize(p - u_eye));
+#endif
+  return e;
+}
 
 // Ray distance to block plane i of an axis: the one formula every brick uses for a plane.
 float planeT(int axis, int i) {
@@ -234,7 +253,14 @@ void main() {
       float vf = k == k_back ? v_back : sampleVolume(u_eye + (float(k) - 0.5) * u_delta * dir);
       for (float ts = float(k) * u_delta; ts < tb; ts = float(++k) * u_delta) {
         float vb = sampleVolume(u_eye + (float(k) + 0.5) * u_delta * dir);
-        acc += (1.0 - acc.a) * segment(vf, sampleVolume(u_eye + ts * dir), vb, u_delta);
+        vec4 e = segment(vf, sampleVolume(u_eye + ts * dir), vb, u_delta);
+#ifdef SHADING
+        // The segment's colour shaded with the gradient at its middle (premultiplied: shaded as
+        // the colour e.rgb / e.a, then weighted again).
+        if (e.a > 0.0)
+          e.rgb = e.a * shadeColour(e.rgb / e.a, u_volume, (u_eye + ts * dir) * u_tex_scale + u_tex_offset, dir);
+#endif
+        acc += (1.0 - acc.a) * e;
         vf = vb;
         if (acc.a >= u_ert) { ++k; break; }
       }
@@ -242,7 +268,7 @@ void main() {
       v_back = vf;
 #else
       for (float ts = float(k) * u_delta; ts < tb; ts = float(++k) * u_delta) {
-        vec4 e = classify(sampleVolume(u_eye + ts * dir));
+        vec4 e = shadedSample(u_eye + ts * dir);
         float alpha = 1.0 - exp(-e.a * u_delta);
         acc += (1.0 - acc.a) * vec4(e.rgb * alpha, alpha);
         if (acc.a >= u_ert) break;

@@ -8,6 +8,7 @@
 #include "worker/gl_program.h"
 #include "worker/slice_geometry.h"
 #include "worker/slicing_shaders.h"
+#include "worker/volume_shading.h"
 
 namespace sortlast {
 
@@ -28,7 +29,8 @@ SlicingRenderer::~SlicingRenderer() {
   gl_.DeleteBuffers(1, &vbo_);
   gl_.DeleteVertexArrays(1, &vao_);
   gl_.DeleteProgram(program_);
-  if (preint_program_) gl_.DeleteProgram(preint_program_);
+  for (unsigned p : variant_programs_)
+    if (p) gl_.DeleteProgram(p);
 }
 
 void SlicingRenderer::setTransferFunction(const TransferFunction& tf, int table_size,
@@ -76,15 +78,19 @@ RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spac
   if (!tris.empty()) {
     gl_.Enable(GL_BLEND);
     gl_.BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // premultiplied "over", back to front
-    if (preint && !preint_program_) {
+    const int v = (preint ? 1 : 0) + (shading_.enabled ? 2 : 0);
+    if (v != 0 && !variant_programs_[v]) {
       // The same source with PREINTEGRATED defined (the #define must follow the #version line).
       std::string src = shaders::kSliceFragment;
-      const std::string version = "#version 450 core\n";
+      const std::string version = "#version 450 core
+";
       if (src.rfind(version, 0) != 0) throw std::logic_error("slicing shader: no #version line");
-      src.insert(version.size(), "#define PREINTEGRATED 1\n");
-      preint_program_ = linkProgram(gl_, shaders::kSliceVertex, src.c_str());
+      if (preint) src.insert(version.size(), "#define PREINTEGRATED 1
+");
+      variant_programs_[v] = linkProgram(gl_, shaders::kSliceVertex,
+                                         shading_.enabled ? withShading(src.c_str()).c_str() : src.c_str());
     }
-    const unsigned program = preint ? preint_program_ : program_;
+    const unsigned program = v != 0 ? variant_programs_[v] : program_;
     gl_.UseProgram(program);
     glm::mat4 vp = cam.viewProjection(near_plane, far_plane);
     gl_.UniformMatrix4fv(gl_.GetUniformLocation(program, "u_view_proj"), 1, GL_FALSE, &vp[0][0]);
@@ -96,6 +102,7 @@ RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spac
     gl_.Uniform1f(gl_.GetUniformLocation(program, "u_spacing"), float(spacing));
     table_.use(program);
     if (preint) table_.usePreintegrated(program, spacing);  // L0: the slice spacing
+    if (shading_.enabled) setShadingUniforms(gl_, program, shading_, b, table_.function());
     gl_.Uniform1i(gl_.GetUniformLocation(program, "u_surface"), 2);
     gl_.Uniform1i(gl_.GetUniformLocation(program, "u_has_surface"), has_surface ? 1 : 0);
     if (has_surface) {

@@ -14,6 +14,7 @@
 #include "common/brick.h"
 #include "common/camera.h"
 #include "common/image.h"
+#include "common/shading.h"
 #include "common/transfer_function.h"
 #include "worker/brick_output.h"
 #include "worker/float_target.h"
@@ -34,6 +35,8 @@ class SlicingRenderer {
   void setTransferFunction(const TransferFunction& tf, int table_size, bool preintegrated = false);
   // A new image size for the next frames (the bricks' textures stay).
   void resize(int width, int height) { target_.resize(width, height); }
+  // Gradient shading (common/shading.h) for the next frames.
+  void setShading(const Shading& shading) { shading_ = shading; }
   // Uploads a brick's stored samples (x fastest); returns a handle for render(). The samples'
   // min and max are kept so invisible bricks can be skipped.
   int addBrick(const Brick& brick, const GridGeometry& grid, const std::vector<float>& samples);
@@ -50,8 +53,11 @@ class SlicingRenderer {
   int block_cells_;
   FloatTarget target_;
   TransferTable table_;
+  Shading shading_;
   unsigned program_ = 0, vao_ = 0, vbo_ = 0;
-  unsigned preint_program_ = 0;  // linked with the first pre-integrated frame
+  // Variants linked when first used: pre-integrated (PREINTEGRATED), shaded (render.shading:
+  // worker/volume_shading.h in front) and both; index preintegrated + 2 * shaded, 0 unused.
+  unsigned variant_programs_[4] = {0, 0, 0, 0};
   std::vector<VolumeBrick> bricks_;
 };
 

@@ -2,7 +2,9 @@
 // GLSL for 3D-texture slicing. The fragment shader classifies the interpolated sample through the
 // transfer-function table (r, g, b, tau) and corrects opacity for the actual distance between
 // slices along this pixel's ray, ds = spacing / cos(angle to the view axis), so that slicing and
-// the reference integrator are the same emission-absorption model.
+// the reference integrator are the same emission-absorption model. With render.shading a variant
+// of the program shades the colour first (shadedSample; with pre-integration, the segment's colour
+// with the gradient at its middle).
 //
 // Pre-integration (PREINTEGRATED defined; transfer.preintegrated): the fragment stands for the
 // segment of its pixel's ray from ds/2 before the slice to ds/2 beyond it, the stretch its
@@ -74,6 +76,22 @@ vec4 segment(float vf, float vm, float vb, float len) {
   return segment(clamp(vf + shift, lo, hi), clamp(vb + shift, lo, hi), len);
 }
 #endif
+
+// (r, g, b, tau) of the sample at world point p, its colour shaded with the field's gradient in the
+// program's shaded variant (SHADING defined; shadeColour: worker/volume_shading.h, linked in
+// front; light at the eye).
+// A sample of zero tau adds nothing whatever its colour: no gradient is read.
+vec4 shadedSample(vec3 p) {
+  vec3 tc = p * u_tex_scale + u_tex_offset;
+  float v = texture(u_volume, tc).r;
+  float x = clamp(v * u_value_map.x + u_value_map.y, 0.0, 1.0);
+  vec4 e = texture(u_table, x * u_table_map.x + u_table_map.y);
+#ifdef SHADING
+  if (e.a > 0.0) e.rgb = shadeColour(e.rgb, u_volume, tc, normalize(p - u_eye));
+#endif
+  return e;
+}
+
 void main() {
   // An opaque particle surface in this brick ends the ray: nothing behind it is drawn.
   ivec2 px = ivec2(gl_FragCoord.xy);
@@ -88,11 +106,14 @@ void main() {
   float vf = texture(u_volume, (v_world - half_step) * u_tex_scale + u_tex_offset).r;
   float vm = texture(u_volume, v_world * u_tex_scale + u_tex_offset).r;
   float vb = texture(u_volume, (v_world + half_step) * u_tex_scale + u_tex_offset).r;
-  frag = segment(vf, vm, vb, ds);
+  vec4 e = segment(vf, vm, vb, ds);
+#ifdef SHADING
+  if (e.a > 0.0)
+    e.rgb = e.a * shadeColour(e.rgb / e.a, u_volume, v_world * u_tex_scale + u_tex_offset, normalize(d));
+#endif
+  frag = e;
 #else
-  float v = texture(u_volume, v_world * u_tex_scale + u_tex_offset).r;
-  float x = clamp(v * u_value_map.x + u_value_map.y, 0.0, 1.0);
-  vec4 e = texture(u_table, x * u_table_map.x + u_table_map.y);
+  vec4 e = shadedSample(v_world);
   vec3 d = v_world - u_eye;
   float ds = u_spacing * length(d) / dot(d, u_forward);
   float a = 1.0 - exp(-e.a * ds);

@@ -32,6 +32,7 @@ class TransferTable {
   // Builds the 2D table for segments of `base_length` (world units) if it is stale, binds it to
   // texture unit 6 and sets `program`'s u_preint, u_preint_map and u_preint_length.
   void usePreintegrated(unsigned program, double base_length);
+  const TransferFunction& function() const { return tf_; }
 
  private:
   const GlApi& gl_;

@@ -36,6 +36,7 @@ VolumeBrick uploadVolumeBrick(const GlApi& gl, const Brick& brick, const GridGeo
                               const BrickSamples& samples, int block_cells) {
   VolumeBrick g;
   g.brick = brick;
+  g.spacing = grid.spacing;
   glm::ivec3 n = brick.stored.size();
   // Block grid over the brick's cells; each block keeps the range of the samples it spans.
   glm::ivec3 cells = brick.domain.size() - 1, nb = (cells + block_cells - 1) / block_cells;

@@ -30,6 +30,7 @@ struct VolumeBrick {
   std::vector<VolumeBlock> blocks;                  // x fastest over the block grid
   unsigned texture = 0;                             // GL_R32F 3D texture; the owner deletes it
   glm::vec3 tex_scale, tex_offset;                  // texture coordinate = world * scale + offset
+  glm::dvec3 spacing{1.0};                          // the grid's (gradients: worker/volume_shading.h)
 };
 
 // Cuts the brick's cells into blocks of up to `block_cells` cells per axis (as even as the

@@ -39,6 +39,7 @@ cases=(
   '400|compositing\.strategy|{"compositing.strategy":"telepathy"}'
   '400|transfer\.points|{"transfer.points":[[0,0,0]]}'
   '400|ert_threshold|{"render.ert_threshold":0}'
+  '400|shading_shininess|{"render.shading":true,"render.shading_shininess":0}'
   '400|format|gif|{"format":"gif"}'
   '400|quality|{"format":"jpeg","quality":500}'
 )

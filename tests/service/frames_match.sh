@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # A frame from POST /api/frame is the frame `sortlast render` makes of the same settings (within
 # 1/255): the default scene and neghip, on 1 and 3 ranks, with the scene's own settings, another
-# camera, render.method=raycast, compositing.strategy=binary-swap and a transfer function with a
-# built-in colour map. Requests are not cumulative:
+# camera, render.method=raycast, compositing.strategy=binary-swap, a transfer function with a
+# built-in colour map, and gradient shading (slicing, the shading keys set in place). Requests are
+# not cumulative:
 # the scene's settings asked for again after the others give the first frame, byte for byte.
 # Usage: frames_match.sh SORTLAST DATA_DIR
 source "$(dirname "$0")/service_lib.sh" "$1"
@@ -13,6 +14,7 @@ requests=(
   '{"image.width":160,"image.height":128,"camera.position":[-150,90,-210],"render.method":"raycast"}'
   '{"image":{"width":144,"height":144},"compositing.strategy":"binary-swap","camera.position":[60,-200,150],"format":"png"}'
   '{"image.width":128,"image.height":128,"render.method":"raycast","compositing.strategy":"binary-swap","transfer.points":[[0,0,0,0,0],[0.5,1,0.5,0,0.2],[1,1,1,1,0.9]],"transfer.colormap":"Cool to Warm"}'
+  '{"image.width":128,"image.height":128,"render":{"shading":true,"shading_specular":0.5,"shading_shininess":8}}'
 )
 for scene in default "$DATA/neghip.yaml"; do
   sargs=("$scene"); [ "$scene" = default ] && sargs=()
