@@ -82,11 +82,9 @@ RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spac
     if (v != 0 && !variant_programs_[v]) {
       // The same source with PREINTEGRATED defined (the #define must follow the #version line).
       std::string src = shaders::kSliceFragment;
-      const std::string version = "#version 450 core
-";
+      const std::string version = "#version 450 core\n";
       if (src.rfind(version, 0) != 0) throw std::logic_error("slicing shader: no #version line");
-      if (preint) src.insert(version.size(), "#define PREINTEGRATED 1
-");
+      if (preint) src.insert(version.size(), "#define PREINTEGRATED 1\n");
       variant_programs_[v] = linkProgram(gl_, shaders::kSliceVertex,
                                          shading_.enabled ? withShading(src.c_str()).c_str() : src.c_str());
     }
