@@ -9,19 +9,34 @@
 // plane shared by two blocks or bricks is the same float in both, so each sample is taken by
 // exactly one brick and one block: no seam, no double sample, whatever the decomposition.
 //
-// The ray walks the brick's block grid (a DDA over the block planes); a block whose values all map
-// to zero opacity is jumped (to the first lattice sample beyond it: its samples would add exactly
-// nothing). Each sample stands for delta of the ray: alpha = 1 - exp(-tau * delta), the slicing
-// renderer's and the reference's opacity correction, composited front to back. The ray stops once
-// alpha >= u_ert (early ray termination), at the brick's exit, or at the particle surface's t.
+// The loop (main): the ray walks the brick's block grid (a DDA over the block planes,
+// worker/ray_blocks.h: blocks of render.ray_block_cells cells aligned to the volume, cut by the
+// brick's faces). Per block, one texel of u_skip says
+//   - r: the chessboard distance d to the nearest block that is not empty under the transfer
+//     function. d = 0: the block's samples are taken (below). d > 0: every block within d - 1 of
+//     it is empty, so the ray jumps to where it leaves that cube of blocks (to the first lattice
+//     sample beyond it: the samples it passes would add exactly nothing), then finds the block it
+//     is in on each axis (past every slab it has left). One lookup jumps many empty blocks;
+//   - g: log2 of the block's step multiple m (render.adaptive_step; 0 otherwise, and always in
+//     the ADAPTIVE variant, whose blocks carry their own m). The block evaluates only the lattice
+//     samples at multiples of m, the "anchors", of the samples k0 .. k1 - 1 it owns (decided as
+//     above). Anchor a stands for the m lattice steps around it, a - m/2 <= k < a + m/2 (integer
+//     m/2: 0 for m = 1), as far as the block owns them: n such steps give
+//     alpha = 1 - exp(-tau(v(a)) * n * delta). So every lattice step of the ray is counted exactly
+//     once, in the block that owns it, whatever the neighbours' m (the rule the ADAPTIVE variant
+//     found; below). The anchor may lie up to m/2 steps outside the block or brick: m is capped so
+//     that m/2 steps stay within the one-sample ghost layer (worker/step_rule.h), so every brick
+//     owning part of an anchor's steps reads the same value there, and m is chosen from the whole
+//     block's range, the same in every brick: brick faces stay seam-free. With m = 1 the loop is
+//     the plain one: each sample stands for delta, alpha = 1 - exp(-tau * delta).
+// Each sample is evaluated by sampleAt() alone (value, then classification), composited front to
+// back. The ray stops once alpha >= u_ert (early ray termination), at the brick's exit, or at the
+// particle surface's t.
 //
 // Adaptive sampling (the program compiled with ADAPTIVE defined; worker/adaptive_gpu_brick.h):
 // the blocks of the DDA are the adaptive blocks cut by the brick's faces, sampleVolume() reads the
 // current block's samples from the atlas, and a block at level L, whose samples are r = 2^L cells
-// apart, is rendered at its own resolution: of the lattice samples it owns (k0 .. k1, decided as
-// above) it evaluates only those at multiples of r, the "anchors". Anchor a stands for the r
-// lattice steps around it, a - r/2 <= k < a + r/2 (integer r/2: 0 at level 0), as far as the block
-// owns them: n such steps give alpha = 1 - exp(-tau(v(a)) * n * delta). So
+// apart, is rendered at its own resolution: it takes m = r (the loop above). Of that rule:
 //   - every lattice step of the ray is still counted exactly once, in the block that owns it: no
 //     gap and no overlap where the level changes (a rule that starts each block at its first
 //     anchor and gives every anchor r steps leaves both, and cost 8-16 dB in tests/mpi/adaptive.sh
@@ -54,7 +69,7 @@ inline constexpr const char* kRaycastFragment = R"(#version 450 core
 uniform sampler3D u_volume;
 uniform sampler1D u_table;
 uniform sampler2D u_planes;     // texel (i, axis): world coordinate of block plane i on that axis
-uniform usampler3D u_visible;   // per block: 1 if some value in it has non-zero opacity
+uniform usampler3D u_skip;      // per block: r = distance to the nearest non-empty block, g = log2 m
 uniform vec3 u_tex_scale;
 uniform vec3 u_tex_offset;
 uniform vec3 u_eye;
@@ -107,6 +122,9 @@ vec4 classify(float v) {
   return texture(u_table, x * u_table_map.x + u_table_map.y);
 }
 
+// (r, g, b, tau) at world point p: the one place a sample is evaluated.
+vec4 sampleAt(vec3 p) { return classify(sampleVolume(p)); }
+
 // Ray distance to block plane i of an axis: the one formula every brick uses for a plane.
 float planeT(int axis, int i) {
   return (texelFetch(u_planes, ivec2(i, axis), 0).r - u_eye[axis]) * g_inv[axis];
@@ -126,7 +144,7 @@ int firstSample(float t) {
 void main() {
   vec2 s = vec2(gl_FragCoord.x * u_pixel_scale.x - 1.0, 1.0 - gl_FragCoord.y * u_pixel_scale.y);
   vec3 dir = normalize(u_forward + s.x * u_right + s.y * u_up);
-  ivec3 nb = textureSize(u_visible, 0);
+  ivec3 nb = textureSize(u_skip, 0);
   float t0 = 0.0, t1 = 1e30;
   for (int a = 0; a < 3; ++a) {
     // A zero component gets a tiny one: its slabs then span (almost) the whole line, as they should.
@@ -154,38 +172,39 @@ void main() {
   int k = firstSample(t0);
   float t = t0;
   while (t < t1 && acc.a < u_ert) {
-    vec3 te = vec3(exitT(0, idx.x), exitT(1, idx.y), exitT(2, idx.z));
+    uvec2 info = texelFetch(u_skip, idx, 0).rg;
+    // Empty at distance d > 0: the ray leaves the cube of blocks within d - 1 before it can meet a
+    // sample with opacity (d = 1: this block alone). Otherwise this block.
+    ivec3 last = info.r == 0u ? idx : clamp(idx + g_step * (int(info.r) - 1), ivec3(0), nb - 1);
+    vec3 te = vec3(exitT(0, last.x), exitT(1, last.y), exitT(2, last.z));
     float tb = min(min(te.x, te.y), min(te.z, t1));
-    if (texelFetch(u_visible, idx, 0).r != 0u) {
+    int k_end = firstSample(tb);  // the first lattice sample this block (or cube) does not own
+    if (info.r == 0u) {
 #ifdef ADAPTIVE
       g_block = texelFetch(u_blocks, idx, 0);
       g_origin = vec3(idx) * u_block_cells;
-      int r = u_own_steps != 0 ? int(1.0 / g_block.w + 0.5) : 1;  // 2^level
-      int k_end = firstSample(tb);         // the first lattice sample this block does not own
+      int m = u_own_steps != 0 ? int(1.0 / g_block.w + 0.5) : 1;  // 2^level
+#else
+      int m = 1 << int(info.g);
+#endif
       while (k < k_end) {
-        int anchor = (k + r / 2) / r * r;
-        int next = min(anchor - r / 2 + r, k_end);
-        vec4 e = classify(sampleVolume(u_eye + float(anchor) * u_delta * dir));
+        int anchor = (k + m / 2) / m * m;
+        int next = min(anchor - m / 2 + m, k_end);
+        vec4 e = sampleAt(u_eye + float(anchor) * u_delta * dir);
         float alpha = 1.0 - exp(-e.a * float(next - k) * u_delta);
         acc += (1.0 - acc.a) * vec4(e.rgb * alpha, alpha);
         k = next;
         if (acc.a >= u_ert) break;
       }
-#else
-      for (float ts = float(k) * u_delta; ts < tb; ts = float(++k) * u_delta) {
-        vec4 e = classify(sampleVolume(u_eye + ts * dir));
-        float alpha = 1.0 - exp(-e.a * u_delta);
-        acc += (1.0 - acc.a) * vec4(e.rgb * alpha, alpha);
-        if (acc.a >= u_ert) break;
-      }
-#endif
-    } else {
-      k = firstSample(tb);
     }
-    // Into the next block: every axis whose slab ends here steps on.
-    bvec3 leave = equal(te, vec3(tb));
-    idx += ivec3(leave) * g_step;
-    if (any(lessThan(idx, ivec3(0))) || any(greaterThanEqual(idx, nb))) break;
+    k = k_end;
+    // Into the block holding tb: on each axis, past every slab the ray has left by then.
+    bool inside = true;
+    for (int a = 0; a < 3; ++a) {
+      while (idx[a] >= 0 && idx[a] < nb[a] && exitT(a, idx[a]) <= tb) idx[a] += g_step[a];
+      inside = inside && idx[a] >= 0 && idx[a] < nb[a];
+    }
+    if (!inside) break;
     t = tb;
   }
   frag = acc;

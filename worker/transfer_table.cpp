@@ -8,10 +8,26 @@ TransferTable::TransferTable(const GlApi& gl) : gl_(gl) { gl_.GenTextures(1, &te
 
 TransferTable::~TransferTable() { gl_.DeleteTextures(1, &texture_); }
 
+namespace {
+bool same(const TransferFunction& a, const TransferFunction& b) {
+  if (a.rangeLo() != b.rangeLo() || a.rangeHi() != b.rangeHi() || a.unitLength() != b.unitLength() ||
+      a.points().size() != b.points().size())
+    return false;
+  for (size_t i = 0; i < a.points().size(); ++i) {
+    const TfPoint &p = a.points()[i], &q = b.points()[i];
+    if (p.value != q.value || p.r != q.r || p.g != q.g || p.b != q.b || p.a != q.a) return false;
+  }
+  return true;
+}
+}  // namespace
+
 void TransferTable::set(const TransferFunction& tf, int table_size) {
+  if (version_ > 0 && table_size == size_ && same(tf, tf_)) return;
   tf_ = tf;
   size_ = table_size;
-  std::vector<float> table = tf.bakeTable(table_size);
+  ++version_;
+  table_ = tf.bakeTable(table_size);
+  const std::vector<float>& table = table_;
   gl_.ActiveTexture(GL_TEXTURE1);
   gl_.BindTexture(GL_TEXTURE_1D, texture_);
   gl_.TexImage1D(GL_TEXTURE_1D, 0, GL_RGBA32F, table_size, 0, GL_RGBA, GL_FLOAT, table.data());
