@@ -98,4 +98,18 @@ std::vector<unsigned char> chessboardDistance(const glm::ivec3& count,
   return out;
 }
 
+std::vector<unsigned char> classReach(const glm::ivec3& count, const std::vector<unsigned char>& cls) {
+  std::vector<unsigned char> reach(cls.size(), 255), other(cls.size());
+  std::vector<bool> seen(256, false);
+  for (unsigned char c : cls) seen[c] = true;
+  for (int c = 0; c < 256; ++c) {
+    if (!seen[size_t(c)]) continue;
+    for (size_t i = 0; i < cls.size(); ++i) other[i] = cls[i] != c;
+    const std::vector<unsigned char> d = chessboardDistance(count, other);
+    for (size_t i = 0; i < cls.size(); ++i)
+      if (cls[i] == c) reach[i] = d[i];
+  }
+  return reach;
+}
+
 }  // namespace sortlast

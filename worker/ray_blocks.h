@@ -3,10 +3,11 @@
 // blocks of B cells per axis on one grid aligned to the volume (block c spans cells [c B, (c+1) B)),
 // the same grid in every decomposition; a brick holds the blocks its cells touch, cut by its faces.
 // Two things are decided per block, on the CPU, whenever the transfer function changes:
-//   - whether it is empty (all its values map to zero opacity), kept as a chessboard distance in
-//     blocks to the nearest non-empty block of the brick: a ray in a block at distance d > 0 jumps
-//     the whole cube of d - 1 blocks around it in one step (every block in it is empty);
-//   - its step multiple m = 2^j (render.adaptive_step; worker/step_rule.h picks it from the block's
+//   - whether it is empty (all its values map to zero opacity), and its step multiple m, together
+//     its class; kept with the chessboard distance d in blocks to the nearest block of another
+//     class in the brick: a ray crosses the whole cube of blocks within d - 1 around it in one step
+//     (jumping it if empty, sampling it with one m otherwise);
+//   - the step multiple m = 2^j (render.adaptive_step; worker/step_rule.h picks it from the block's
 //     value range), which must be the same in every brick sharing the block: it is chosen from the
 //     range of the whole block (grown by one sample, where its anchors may lie), which no brick
 //     holds alone, so the ranks reduce it (globalRanges / setGlobalRanges in RaycastRenderer).
@@ -53,5 +54,9 @@ void mergeGrownRanges(const BrickBlocks& b, const RayBlockGrid& grid, std::vecto
 // visible != 0 (0 there); 255 everywhere when there is none.
 std::vector<unsigned char> chessboardDistance(const glm::ivec3& count,
                                               const std::vector<unsigned char>& visible);
+// For each block, the chessboard distance d (>= 1, capped at 255) to the nearest block of another
+// class: every block within d - 1 of it has its class, so a ray can cross that whole cube of blocks
+// at once (classes: empty, or the step multiple of a non-empty block).
+std::vector<unsigned char> classReach(const glm::ivec3& count, const std::vector<unsigned char>& cls);
 
 }  // namespace sortlast

@@ -157,7 +157,6 @@ void RaycastRenderer::classify(GpuBrick& g, float delta) {
           g.bound.hi[a] = std::max(g.bound.hi[a], b.planes[a][size_t(c[a]) + 1]);
         }
       }
-  const std::vector<unsigned char> distance = chessboardDistance(b.count, visible);
   // Adaptive steps need the whole blocks' ranges (the same m in every brick sharing a block).
   const StepRule* rule = nullptr;
   if (settings_.adaptive_step && b.global && !global_min_.empty()) {
@@ -173,17 +172,23 @@ void RaycastRenderer::classify(GpuBrick& g, float delta) {
   auto globalIndex = [&](const glm::ivec3& c) {
     return size_t(c.x) + size_t(global_count_.x) * (size_t(c.y) + size_t(global_count_.y) * c.z);
   };
-  std::vector<unsigned char> texels(2 * n);
+  // Class: 0 empty, else 1 + log2 m.
+  std::vector<unsigned char> cls(n);
   for (int z = 0; z < b.count.z; ++z)
     for (int y = 0; y < b.count.y; ++y)
       for (int x = 0; x < b.count.x; ++x) {
         const size_t i = b.index({x, y, z});
-        texels[2 * i] = distance[i];
-        if (rule && visible[i]) {
-          const size_t gi = globalIndex(b.first + glm::ivec3(x, y, z));
-          texels[2 * i + 1] = (unsigned char)rule->level(global_min_[gi], global_max_[gi]);
-        }
+        if (!visible[i]) continue;
+        const size_t gi = rule ? globalIndex(b.first + glm::ivec3(x, y, z)) : 0;
+        cls[i] = (unsigned char)(1 + (rule ? rule->level(global_min_[gi], global_max_[gi]) : 0));
       }
+  const std::vector<unsigned char> reach = classReach(b.count, cls);
+  std::vector<unsigned char> texels(2 * n);
+  for (size_t i = 0; i < n; ++i) {
+    // The ADAPTIVE variant reads each block's own samples: its rays sample one block at a time.
+    texels[2 * i] = !b.global && cls[i] ? 1 : reach[i];
+    texels[2 * i + 1] = cls[i];
+  }
   gl_.ActiveTexture(GL_TEXTURE4);
   gl_.BindTexture(GL_TEXTURE_3D, g.skip);
   gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 1);

@@ -11,24 +11,27 @@
 //
 // The loop (main): the ray walks the brick's block grid (a DDA over the block planes,
 // worker/ray_blocks.h: blocks of render.ray_block_cells cells aligned to the volume, cut by the
-// brick's faces). Per block, one texel of u_skip says
-//   - r: the chessboard distance d to the nearest block that is not empty under the transfer
-//     function. d = 0: the block's samples are taken (below). d > 0: every block within d - 1 of
-//     it is empty, so the ray jumps to where it leaves that cube of blocks (to the first lattice
-//     sample beyond it: the samples it passes would add exactly nothing), then finds the block it
-//     is in on each axis (past every slab it has left). One lookup jumps many empty blocks;
-//   - g: log2 of the block's step multiple m (render.adaptive_step; 0 otherwise, and always in
-//     the ADAPTIVE variant, whose blocks carry their own m). The block evaluates only the lattice
-//     samples at multiples of m, the "anchors", of the samples k0 .. k1 - 1 it owns (decided as
-//     above). Anchor a stands for the m lattice steps around it, a - m/2 <= k < a + m/2 (integer
-//     m/2: 0 for m = 1), as far as the block owns them: n such steps give
-//     alpha = 1 - exp(-tau(v(a)) * n * delta). So every lattice step of the ray is counted exactly
-//     once, in the block that owns it, whatever the neighbours' m (the rule the ADAPTIVE variant
-//     found; below). The anchor may lie up to m/2 steps outside the block or brick: m is capped so
-//     that m/2 steps stay within the one-sample ghost layer (worker/step_rule.h), so every brick
-//     owning part of an anchor's steps reads the same value there, and m is chosen from the whole
-//     block's range, the same in every brick: brick faces stay seam-free. With m = 1 the loop is
-//     the plain one: each sample stands for delta, alpha = 1 - exp(-tau * delta).
+// brick's faces). Per block, one texel of u_skip holds its class g (0: empty under the transfer
+// function; else 1 + log2 of its step multiple m) and its reach r >= 1, the chessboard distance to
+// the nearest block of another class: every block within r - 1 of it has its class, so the ray
+// crosses that whole cube of blocks in one step, to where it leaves it (then finds the block it is
+// in on each axis: past every slab it has left by then). One lookup jumps many empty blocks, and
+// samples run across many non-empty ones without stopping at each block plane.
+//   - Empty: the ray jumps to the first lattice sample beyond the cube (the samples it passes
+//     would add exactly nothing).
+//   - Non-empty: m = 1 unless render.adaptive_step (worker/step_rule.h; always 1 in the ADAPTIVE
+//     variant's texel, whose blocks carry their own m and are taken one at a time). The block
+//     evaluates only the lattice samples at multiples of m, the "anchors", of the samples k0 ..
+//     k1 - 1 it owns (decided as above). Anchor a stands for the m lattice steps around it,
+//     a - m/2 <= k < a + m/2 (integer m/2: 0 for m = 1), as far as the cube owns them: n such
+//     steps give alpha = 1 - exp(-tau(v(a)) * n * delta). So every lattice step of the ray is
+//     counted exactly once, where it is owned, whatever the neighbours' m (the rule the ADAPTIVE
+//     variant found; below). The anchor may lie up to m/2 steps outside the block or brick: m is
+//     capped so that m/2 steps stay within the one-sample ghost layer (worker/step_rule.h), so
+//     every brick owning part of an anchor's steps reads the same value there, and m is chosen
+//     from the whole block's range, the same in every brick: brick faces stay seam-free. With
+//     m = 1 the loop is the plain one, each sample standing for delta:
+//     alpha = 1 - exp(-tau * delta), the same samples in the same order as block by block.
 // Each sample is evaluated by sampleAt() alone (value, then classification), composited front to
 // back. The ray stops once alpha >= u_ert (early ray termination), at the brick's exit, or at the
 // particle surface's t.
@@ -69,7 +72,7 @@ inline constexpr const char* kRaycastFragment = R"(#version 450 core
 uniform sampler3D u_volume;
 uniform sampler1D u_table;
 uniform sampler2D u_planes;     // texel (i, axis): world coordinate of block plane i on that axis
-uniform usampler3D u_skip;      // per block: r = distance to the nearest non-empty block, g = log2 m
+uniform usampler3D u_skip;      // per block: r = reach (distance to another class), g = class
 uniform vec3 u_tex_scale;
 uniform vec3 u_tex_offset;
 uniform vec3 u_eye;
@@ -125,6 +128,12 @@ vec4 classify(float v) {
 // (r, g, b, tau) at world point p: the one place a sample is evaluated.
 vec4 sampleAt(vec3 p) { return classify(sampleVolume(p)); }
 
+// A sample standing for `len` of the ray, front to back (opacity corrected for len).
+void composite(inout vec4 acc, vec4 e, float len) {
+  float alpha = 1.0 - exp(-e.a * len);
+  acc += (1.0 - acc.a) * vec4(e.rgb * alpha, alpha);
+}
+
 // Ray distance to block plane i of an axis: the one formula every brick uses for a plane.
 float planeT(int axis, int i) {
   return (texelFetch(u_planes, ivec2(i, axis), 0).r - u_eye[axis]) * g_inv[axis];
@@ -173,28 +182,33 @@ void main() {
   float t = t0;
   while (t < t1 && acc.a < u_ert) {
     uvec2 info = texelFetch(u_skip, idx, 0).rg;
-    // Empty at distance d > 0: the ray leaves the cube of blocks within d - 1 before it can meet a
-    // sample with opacity (d = 1: this block alone). Otherwise this block.
-    ivec3 last = info.r == 0u ? idx : clamp(idx + g_step * (int(info.r) - 1), ivec3(0), nb - 1);
+    // Every block within d - 1 of this one has its class: the ray crosses that cube at once (d = 1:
+    // this block alone), jumping it if empty, else sampling it with one m.
+    ivec3 last = clamp(idx + g_step * (int(info.r) - 1), ivec3(0), nb - 1);
     vec3 te = vec3(exitT(0, last.x), exitT(1, last.y), exitT(2, last.z));
     float tb = min(min(te.x, te.y), min(te.z, t1));
     int k_end = firstSample(tb);  // the first lattice sample this block (or cube) does not own
-    if (info.r == 0u) {
+    if (info.g != 0u) {
 #ifdef ADAPTIVE
       g_block = texelFetch(u_blocks, idx, 0);
       g_origin = vec3(idx) * u_block_cells;
       int m = u_own_steps != 0 ? int(1.0 / g_block.w + 0.5) : 1;  // 2^level
 #else
-      int m = 1 << int(info.g);
+      int m = 1 << int(info.g - 1u);
 #endif
-      while (k < k_end) {
-        int anchor = (k + m / 2) / m * m;
-        int next = min(anchor - m / 2 + m, k_end);
-        vec4 e = sampleAt(u_eye + float(anchor) * u_delta * dir);
-        float alpha = 1.0 - exp(-e.a * float(next - k) * u_delta);
-        acc += (1.0 - acc.a) * vec4(e.rgb * alpha, alpha);
-        k = next;
-        if (acc.a >= u_ert) break;
+      if (m == 1) {  // every sample (the same arithmetic as below with m = 1, without its cost)
+        for (; k < k_end; ++k) {
+          composite(acc, sampleAt(u_eye + float(k) * u_delta * dir), u_delta);
+          if (acc.a >= u_ert) break;
+        }
+      } else {
+        while (k < k_end) {
+          int anchor = (k + m / 2) / m * m;
+          int next = min(anchor - m / 2 + m, k_end);
+          composite(acc, sampleAt(u_eye + float(anchor) * u_delta * dir), float(next - k) * u_delta);
+          k = next;
+          if (acc.a >= u_ert) break;
+        }
       }
     }
     k = k_end;

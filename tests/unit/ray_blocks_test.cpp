@@ -39,6 +39,29 @@ TEST(RayBlocks, ChessboardDistanceIsTheBruteForceOne) {
   }
 }
 
+TEST(RayBlocks, ClassReachIsTheDistanceToAnotherClass) {
+  const glm::ivec3 n(8, 6, 5);
+  uint32_t s = 99;
+  std::vector<unsigned char> cls(size_t(n.x * n.y * n.z));
+  for (auto& c : cls) {
+    s = s * 1664525u + 1013904223u;
+    c = (s >> 24) < 240 ? 0 : (unsigned char)(1 + (s >> 8) % 3);  // mostly empty, three classes
+  }
+  auto r = classReach(n, cls);
+  for (int z = 0; z < n.z; ++z)
+    for (int y = 0; y < n.y; ++y)
+      for (int x = 0; x < n.x; ++x) {
+        const unsigned char c = cls[size_t(x + n.x * (y + n.y * z))];
+        int best = 255;
+        for (int w = 0; w < n.z; ++w)
+          for (int v = 0; v < n.y; ++v)
+            for (int u = 0; u < n.x; ++u)
+              if (cls[size_t(u + n.x * (v + n.y * w))] != c)
+                best = std::min(best, std::max({std::abs(u - x), std::abs(v - y), std::abs(w - z)}));
+        ASSERT_EQ(int(r[size_t(x + n.x * (y + n.y * z))]), best) << x << " " << y << " " << z;
+      }
+}
+
 TEST(RayBlocks, BricksCutTheVolumeGridAtItsPlanes) {
   GridGeometry grid{{30, 20, 12}, {1.0, 1.0, 2.0}};
   auto bricks = makeBricks(grid, 2);
