@@ -269,6 +269,7 @@ bool isFrameKey(const std::string& path) {
   for (const char* key : {"render.sample_spacing", "render.method", "render.ert_threshold",
                           "render.shading", "render.shading_ambient", "render.shading_diffuse",
                           "render.shading_specular", "render.shading_shininess",
+                          "render.adaptive_step", "render.adaptive_tolerance",
                           "particles.radius", "particles.influence", "particles.threshold",
                           "particles.color", "particles.step", "particles.max_samples",
                           "particles.refine_iterations", "particles.cull", "particles.samples_per_pass"})
@@ -449,6 +450,8 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
     throw InputError("scene key 'render.sample_spacing': must be in [0.01, 100] voxels");
   s.block_cells = r.as<int>("render.block_cells");
   if (s.block_cells < 1) throw InputError("scene key 'render.block_cells': must be >= 1");
+  s.ray_block_cells = r.as<int>("render.ray_block_cells");
+  if (s.ray_block_cells < 1) throw InputError("scene key 'render.ray_block_cells': must be >= 1");
   s.volume_method = r.as<std::string>("render.method");
   if (s.volume_method != "slicing" && s.volume_method != "raycast")
     throw InputError("scene key 'render.method': expected slicing or raycast, got '" + s.volume_method + "'");
@@ -466,6 +469,10 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
   s.shading.shininess = r.as<double>("render.shading_shininess");
   if (!(s.shading.shininess >= 1.0 && s.shading.shininess <= 1000.0))
     throw InputError("scene key 'render.shading_shininess': must be in [1, 1000]");
+  s.adaptive_step = r.as<bool>("render.adaptive_step");
+  s.adaptive_step_tolerance = r.as<double>("render.adaptive_tolerance");
+  if (!(s.adaptive_step_tolerance > 0.0 && s.adaptive_step_tolerance <= 1.0))
+    throw InputError("scene key 'render.adaptive_tolerance': must be in (0, 1]");
   s.strategy = r.as<std::string>("compositing.strategy");
   if (s.strategy != "direct" && s.strategy != "binary-swap" && s.strategy != "radix-k")
     throw InputError("scene key 'compositing.strategy': expected direct, binary-swap or radix-k, got '" +

@@ -48,10 +48,13 @@ struct Scene {
   int bricks_per_axis = 2;
   std::string backend = "osmesa";
   double sample_spacing = 1.0;  // in units of the smallest voxel spacing
-  int block_cells = 64;         // empty-space skipping granularity
+  int block_cells = 64;         // empty-space skipping granularity (slicing)
+  int ray_block_cells = 8;      // the ray caster's skipping and step blocks
   std::string volume_method = "slicing";  // slicing | raycast
   double ert_threshold = 0.99;            // ray casting: early ray termination opacity
   Shading shading;                        // gradient shading of the volume (render.shading*)
+  bool adaptive_step = false;             // ray casting: a block takes every m-th lattice sample
+  double adaptive_step_tolerance = 0.02;  // the step rule's bound (worker/step_rule.h)
   double adaptive_tolerance = 0.0;  // adaptive sampling: relative L2 error per block, fraction; 0: off
   int adaptive_blocks = 8;          // adaptive sampling: b, blocks per axis of the whole volume
   std::string adaptive_steps = "own";  // own: a block's samples along rays at its resolution | fine

@@ -147,8 +147,15 @@ const std::vector<SceneKey>& sceneKeys() {
        "Distance between slices (ray casting: between samples along each ray), in units of "
        "the smallest voxel spacing (the paper: 1)."},
       {"render.block_cells", "64",
-       "Empty-space skipping: bricks are cut into blocks of this many cells per axis, and blocks "
-       "whose values all map to zero opacity are not drawn."},
+       "Slicing: empty-space skipping; bricks are cut into blocks of this many cells per axis, and "
+       "blocks whose values all map to zero opacity are not drawn (ray casting: "
+       "`render.ray_block_cells`)."},
+      {"render.ray_block_cells", "8",
+       "Ray casting: cells per axis of the blocks rays walk, on one grid aligned to the volume (the "
+       "same in every decomposition; a brick's outer blocks are cut by its faces). A block whose "
+       "values all map to zero opacity is jumped, and with its neighbours at once: each block knows "
+       "its distance to the nearest block that is not empty. Also the blocks whose range picks the "
+       "step of `render.adaptive_step`. (`render.block_cells` is the slicing renderer's.)"},
       {"render.method", "slicing",
        "Volume renderer: `slicing` (3D-texture slicing, the paper's) or `raycast` (a GL ray caster "
        "per brick, front to back on samples `render.sample_spacing` apart along each ray, with "
@@ -173,6 +180,17 @@ const std::vector<SceneKey>& sceneKeys() {
        "Gradient shading: ks, the specular term (>= 0), a white highlight added to the colour."},
       {"render.shading_shininess", "20",
        "Gradient shading: p, the specular exponent, in [1, 1000]."},
+      {"render.adaptive_step", "false",
+       "Ray casting: adaptive steps. Each block (`render.ray_block_cells`) takes every m-th sample "
+       "of the rays' lattice (m = 1, 2, 4 or 8; each sample standing for the m steps around it, "
+       "opacity corrected for their length), the largest m with m x spacing x (the most the "
+       "transfer function's opacity or emission varies over the block's values) <= "
+       "`render.adaptive_tolerance`, and m x spacing <= 2 voxels. Blocks over steep parts of the "
+       "transfer function keep every sample; the lattice stays shared, so ranks and brick faces "
+       "agree as without it."},
+      {"render.adaptive_tolerance", "0.02",
+       "Ray casting with `render.adaptive_step`: the most one coarse sample's optical depth (and "
+       "emission) may be off, by the bound above; in (0, 1]."},
       {"adaptive.tolerance", "0",
        "Adaptive sampling (the paper's section 4.2), in percent: each block of the volume is stored at the "
        "coarsest resolution (halved step by step, a coarse sample the mean of the fine cells "

@@ -12,6 +12,9 @@ VolumeMethod volumeMethod(const Scene& scene) {
   m.raycast_settings.ert_threshold = scene.ert_threshold;
   m.raycast_settings.own_resolution_steps = scene.adaptive_steps == "own";
   m.shading = scene.shading;
+  m.raycast_settings.adaptive_step = scene.adaptive_step;
+  m.raycast_settings.adaptive_tolerance = scene.adaptive_step_tolerance;
+  m.ray_block_cells = scene.ray_block_cells;
   return m;
 }
 
@@ -35,7 +38,8 @@ BrickRenderer::BrickRenderer(const std::string& backend, int width, int height)
 void BrickRenderer::enableVolume(const TransferFunction& tf, int table_size, int block_cells,
                                  const VolumeMethod& method, bool preintegrated) {
   if (method.raycast)
-    volume_ = std::make_unique<RaycastRenderer>(*ctx_, width_, height_, block_cells, method.raycast_settings);
+    volume_ = std::make_unique<RaycastRenderer>(*ctx_, width_, height_, method.ray_block_cells,
+                                                method.raycast_settings);
   else
     volume_ = std::make_unique<SlicingRenderer>(*ctx_, width_, height_, block_cells);
   std::visit([&](auto& r) {
@@ -66,6 +70,15 @@ void BrickRenderer::setVolumeMethodSettings(const VolumeMethod& method) {
   if (auto* ray = std::get_if<std::unique_ptr<RaycastRenderer>>(&volume_); ray && *ray)
     (*ray)->setSettings(method.raycast_settings);
   std::visit([&](auto& r) { if (r) r->setShading(method.shading); }, volume_);
+}
+
+void BrickRenderer::shareBlockRanges(const GridGeometry& grid, MPI_Comm comm) {
+  auto* ray = std::get_if<std::unique_ptr<RaycastRenderer>>(&volume_);
+  if (!ray || !*ray) return;
+  auto [vmin, vmax] = (*ray)->globalRangesPart(grid);
+  MPI_Allreduce(MPI_IN_PLACE, vmin.data(), int(vmin.size()), MPI_FLOAT, MPI_MIN, comm);
+  MPI_Allreduce(MPI_IN_PLACE, vmax.data(), int(vmax.size()), MPI_FLOAT, MPI_MAX, comm);
+  (*ray)->setGlobalRanges(std::move(vmin), std::move(vmax));
 }
 
 void BrickRenderer::setMetaballSettings(const MetaballSettings& settings) {

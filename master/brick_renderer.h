@@ -3,6 +3,8 @@
 // casting, as the scene chooses) and the particle part (metaball ray caster, either method) of a brick become one premultiplied brick image. In a brick
 // holding both, the particle surface is drawn first and ends the volume's rays, so the image is
 // correctly ordered inside the brick; between bricks the compositor's visibility order does it.
+#include <mpi.h>
+
 #include <memory>
 #include <optional>
 #include <variant>
@@ -27,6 +29,7 @@ struct VolumeMethod {
   bool raycast = false;  // false: 3D-texture slicing
   RaycastSettings raycast_settings;
   Shading shading;       // either renderer
+  int ray_block_cells = 8;  // the ray caster's blocks (the slicing renderer takes block_cells)
 };
 VolumeMethod volumeMethod(const Scene& scene);
 
@@ -59,6 +62,9 @@ class BrickRenderer {
   void setTransferFunction(const TransferFunction& tf, int table_size, bool preintegrated = false);
   void setVolumeMethodSettings(const VolumeMethod& method);  // same renderer kind; its settings, shading
   void setMetaballSettings(const MetaballSettings& settings);  // same h
+  // Ray casting: every rank's bricks are added; reduces the block ranges adaptive steps need over
+  // `comm` (every rank calls it, with or without bricks; nothing to do for slicing).
+  void shareBlockRanges(const GridGeometry& grid, MPI_Comm comm);
   // Drops the renderers and every brick (their GL objects), keeping the GL context: the session
   // then enables and adds bricks anew (a new time step, another volume renderer, another h).
   void reset();

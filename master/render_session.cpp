@@ -309,6 +309,7 @@ void RenderSession::State::bringGpuTo(const Scene& scene) {
       if (has_particles) renderer->enableParticles(metaballSettings(scene.particles));
       ext->add_bricks(*renderer, scene, handles, particles_held);
     });
+    if (scene.hasVolume()) renderer->shareBlockRanges(layout.grid, comm);
     gpu = want;
     return;
   }
@@ -320,6 +321,8 @@ void RenderSession::State::bringGpuTo(const Scene& scene) {
   });
   if (has_particles && d.scattered_h != want.h) scatterStepParticles(d, layout, want.h, comm);
   collectively(comm, [&] { uploadBricks(scene, d); });
+  // Adaptive steps choose per block from the whole block's range, which no rank holds alone.
+  if (scene.hasVolume()) renderer->shareBlockRanges(layout.grid, comm);
   gpu = want;
   // The textures hold the data now; a batch session keeps no second copy.
   if (!opts.resident) d.dropHostCopies();
@@ -467,6 +470,8 @@ nlohmann::json RenderSession::describe(const std::vector<std::string>& base) con
                    {"render.sample_spacing", b.sample_spacing},
                    {"render.ert_threshold", b.ert_threshold},
                    {"render.shading", b.shading.enabled},
+                   {"render.adaptive_step", b.adaptive_step},
+                   {"render.adaptive_tolerance", b.adaptive_step_tolerance},
                    {"compositing.strategy", b.strategy},
                    {"compositing.radix", b.radix},
                    {"compositing.precision", b.precision},

@@ -6,17 +6,24 @@
 // transfer-function table and opacity correction, so both converge to the same reference.
 //
 // What ray casting adds: early ray termination (a ray stops once its opacity reaches
-// `ert_threshold`; it can only act inside a brick, as later bricks are drawn apart) and
-// empty-space skipping along the ray: blocks whose values all map to zero opacity under the
-// current transfer function (rechecked every render) are jumped, and the brick's rectangle covers
-// only the blocks that are visible.
+// `ert_threshold`; it can only act inside a brick, as later bricks are drawn apart), empty-space
+// skipping along the ray over fine blocks (worker/ray_blocks.h: blocks whose values all map to
+// zero opacity under the current transfer function are jumped, many at once by their distance to
+// the nearest non-empty block, reclassified whenever the function changes), and the brick's
+// rectangle covers only the non-empty blocks; and adaptive steps (RaycastSettings::adaptive_step:
+// a block takes every m-th lattice sample, m from its value range and the transfer function,
+// worker/step_rule.h). m must not depend on the decomposition, so it is chosen from the whole
+// block's range, which the ranks reduce: globalRangesPart() on every rank, the min and max over
+// ranks to setGlobalRanges(); until then every block takes m = 1.
 //
 // Adaptive sampling: a brick added with addAdaptiveBrick() is drawn from its adaptive blocks
 // (common/adaptive_brick.h) with a variant of the program: the blocks are the adaptive ones, each
 // read at its own resolution and sampled at it (worker/raycast_shaders.h has the rule; or at
 // every lattice step: RaycastSettings::own_resolution_steps); the renderer's block_cells does not
 // apply to such a brick.
+#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/adaptive_brick.h"
@@ -27,6 +34,8 @@
 #include "worker/brick_output.h"
 #include "worker/float_target.h"
 #include "worker/gl_context.h"
+#include "worker/ray_blocks.h"
+#include "worker/step_rule.h"
 #include "worker/transfer_table.h"
 #include "worker/volume_brick.h"
 
@@ -36,10 +45,15 @@ struct RaycastSettings {
   double ert_threshold = 0.99;  // stop a ray at this opacity, in (0, 1]; 1: never stop early
   // Adaptive bricks: a block at level L takes every 2^L-th lattice sample (true), or every one.
   bool own_resolution_steps = true;
+  // Plain bricks: a block takes every m-th lattice sample (worker/step_rule.h), m <= 8, the
+  // largest with m delta osc <= adaptive_tolerance.
+  bool adaptive_step = false;
+  double adaptive_tolerance = 0.02;
 };
 
 class RaycastRenderer {
  public:
+  // block_cells: cells per axis of the skipping (and step) blocks, aligned to the volume.
   RaycastRenderer(const GlContext& ctx, int width, int height, int block_cells,
                   const RaycastSettings& settings);
   ~RaycastRenderer();
@@ -61,6 +75,12 @@ class RaycastRenderer {
   int addAdaptiveBrick(const Brick& brick, const GridGeometry& grid,
                        const AdaptiveBrickBlocks& blocks);
 
+  // This rank's part of the block ranges adaptive steps need, over the volume's block grid (x
+  // fastest; +/-FLT_MAX where it holds no sample): the min of `first` and the max of `second`
+  // over all ranks go to setGlobalRanges().
+  std::pair<std::vector<float>, std::vector<float>> globalRangesPart(const GridGeometry& grid) const;
+  void setGlobalRanges(std::vector<float> vmin, std::vector<float> vmax);
+
   // Renders one brick for `cam` with samples `spacing` world units apart along every ray. The
   // depth range is not needed (rays are not rasterised); it is taken so both volume renderers
   // have one call. Rays end at `surface`, whose colour goes behind what they gathered.
@@ -73,22 +93,41 @@ class RaycastRenderer {
     unsigned table = 0;
     glm::vec3 index_scale, index_offset, block_cells, atlas_inv;
   };
+  // What a brick's skip texture was classified for: it is redone when any of these changes.
+  struct ClassKey {
+    int table_version = -1, ranges_version = -1;
+    float delta = 0.0f;
+    bool adaptive_step = false;
+    double tolerance = 0.0;
+    bool operator==(const ClassKey&) const = default;
+  };
   struct GpuBrick {
     VolumeBrick volume;
-    unsigned planes = 0;               // block planes: R32F, (largest block count + 1) x 3
-    unsigned visible = 0;              // per block: R8UI 1 if visible under the current table
-    std::vector<unsigned char> shown;  // what `visible` holds now (uploaded only when it changes)
+    BrickBlocks blocks;
+    unsigned planes = 0;  // block planes: R32F, (largest block count + 1) x 3
+    unsigned skip = 0;    // per block: RG8UI (distance to the nearest non-empty block, log2 m)
+    ClassKey classified;  // what `skip`, `any` and `bound` hold now
+    bool any = false;     // some block is not empty
+    Box3 bound;           // the box around the non-empty blocks
     bool adaptive = false;
-    AdaptiveInputs lookup;             // adaptive bricks only
+    AdaptiveInputs lookup;  // adaptive bricks only
   };
 
-  // The block planes and visibility textures of a brick whose volume is uploaded.
+  // The block planes and skip textures of a brick whose volume and blocks are set.
   int addGpuBrick(GpuBrick g);
+  // Classifies the brick's blocks for the current table, spacing and settings, if not done yet.
+  void classify(GpuBrick& g, float delta);
 
   const GlApi& gl_;
   int block_cells_;
   RaycastSettings settings_;
   Shading shading_;
+  double min_spacing_ = 0.0;  // of the volume's grid (the step rule's cap)
+  glm::ivec3 global_count_{0};  // the volume's block grid
+  std::vector<float> global_min_, global_max_;  // whole blocks, grown by one sample; empty: not yet
+  int ranges_version_ = 0;
+  std::unique_ptr<StepRule> rule_;  // for rule_key_'s table, spacing and tolerance
+  ClassKey rule_key_;
   FloatTarget target_;
   TransferTable table_;
   unsigned program_ = 0, vao_ = 0;

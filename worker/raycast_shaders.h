@@ -9,13 +9,33 @@
 // plane shared by two blocks or bricks is the same float in both, so each sample is taken by
 // exactly one brick and one block: no seam, no double sample, whatever the decomposition.
 //
-// The ray walks the brick's block grid (a DDA over the block planes); a block whose values all map
-// to zero opacity is jumped (to the first lattice sample beyond it: its samples would add exactly
-// nothing). Each sample stands for delta of the ray: alpha = 1 - exp(-tau * delta), the slicing
-// renderer's and the reference's opacity correction, composited front to back. The ray stops once
-// alpha >= u_ert (early ray termination), at the brick's exit, or at the particle surface's t.
-// With render.shading, each sample's colour is shaded (shadedSample, in a variant of the program
-// linked with worker/volume_shading.h's shadeColour in front).
+// The loop (main): the ray walks the brick's block grid (a DDA over the block planes,
+// worker/ray_blocks.h: blocks of render.ray_block_cells cells aligned to the volume, cut by the
+// brick's faces). Per block, one texel of u_skip holds its class g (0: empty under the transfer
+// function; else 1 + log2 of its step multiple m) and its reach r >= 1, the chessboard distance to
+// the nearest block of another class: every block within r - 1 of it has its class, so the ray
+// crosses that whole cube of blocks in one step, to where it leaves it (then finds the block it is
+// in on each axis: past every slab it has left by then). One lookup jumps many empty blocks, and
+// samples run across many non-empty ones without stopping at each block plane.
+//   - Empty: the ray jumps to the first lattice sample beyond the cube (the samples it passes
+//     would add exactly nothing).
+//   - Non-empty: m = 1 unless render.adaptive_step (worker/step_rule.h; always 1 in the ADAPTIVE
+//     variant's texel, whose blocks carry their own m and are taken one at a time). The block
+//     evaluates only the lattice samples at multiples of m, the "anchors", of the samples k0 ..
+//     k1 - 1 it owns (decided as above). Anchor a stands for the m lattice steps around it,
+//     a - m/2 <= k < a + m/2 (integer m/2: 0 for m = 1), as far as the cube owns them: n such
+//     steps give alpha = 1 - exp(-tau(v(a)) * n * delta). So every lattice step of the ray is
+//     counted exactly once, where it is owned, whatever the neighbours' m (the rule the ADAPTIVE
+//     variant found; below). The anchor may lie up to m/2 steps outside the block or brick: m is
+//     capped so that m/2 steps stay within the one-sample ghost layer (worker/step_rule.h), so
+//     every brick owning part of an anchor's steps reads the same value there, and m is chosen
+//     from the whole block's range, the same in every brick: brick faces stay seam-free. With
+//     m = 1 the loop is the plain one, each sample standing for delta:
+//     alpha = 1 - exp(-tau * delta), the same samples in the same order as block by block.
+// Each sample is evaluated by sampleAt() alone (value, then classification; shaded with
+// render.shading: shadeColour, worker/volume_shading.h, in a variant of the program), composited
+// front to back. The ray stops once alpha >= u_ert (early ray termination), at the brick's exit, or at the
+// particle surface's t.
 //
 // Pre-integration (the program compiled with PREINTEGRATED defined; transfer.preintegrated):
 // lattice sample k stands for the segment [t_k - delta/2, t_k + delta/2] of the ray, as it does in
@@ -30,22 +50,21 @@
 // voxels, which the scene enforces (beyond, an end near a brick face would read the texture's
 // clamped edge: seams of 55-74/255 at 3-4 voxels on neghip). The back value of sample k is the front value of sample k + 1 (the same
 // float position, (float(k) + 0.5) * delta), so consecutive samples read the volume twice each.
-// Skipping stays exact: a block is jumped only if the range of its samples grown by one voxel
-// (VolumeBlock::gmin/gmax, which hold both ends of every segment it owns) maps to zero opacity, and
+// Skipping stays exact: a block is jumped only if the range of the whole block's samples grown by
+// one sample (BrickBlocks::grown_min/max, which hold both ends of every segment it owns) maps to zero opacity, and
 // a segment between two values of that range then integrates to exactly zero; after a jump the
 // next segment reads its front value afresh. Early termination and the particle surface end the
 // ray as in the midpoint rule: a sample k with t_k < t1 contributes its whole segment (no partial
 // last segment, so the segment ends are the midpoint samples' and the two rules converge alike).
 // Not with ADAPTIVE (refused when the scene is read). With SHADING too, a segment's colour is
-// shaded with the gradient at its middle sample.
+// shaded with the gradient at its middle sample. With adaptive steps, an anchor's segment runs
+// over the steps it stands for, from (k - 1/2) delta to (next - 1/2) delta, its middle value read
+// at the anchor; its ends lie at most m/2 steps, under one voxel, outside the block.
 //
 // Adaptive sampling (the program compiled with ADAPTIVE defined; worker/adaptive_gpu_brick.h):
 // the blocks of the DDA are the adaptive blocks cut by the brick's faces, sampleVolume() reads the
 // current block's samples from the atlas, and a block at level L, whose samples are r = 2^L cells
-// apart, is rendered at its own resolution: of the lattice samples it owns (k0 .. k1, decided as
-// above) it evaluates only those at multiples of r, the "anchors". Anchor a stands for the r
-// lattice steps around it, a - r/2 <= k < a + r/2 (integer r/2: 0 at level 0), as far as the block
-// owns them: n such steps give alpha = 1 - exp(-tau(v(a)) * n * delta). So
+// apart, is rendered at its own resolution: it takes m = r (the loop above). Of that rule:
 //   - every lattice step of the ray is still counted exactly once, in the block that owns it: no
 //     gap and no overlap where the level changes (a rule that starts each block at its first
 //     anchor and gives every anchor r steps leaves both, and cost 8-16 dB in tests/mpi/adaptive.sh
@@ -78,7 +97,7 @@ inline constexpr const char* kRaycastFragment = R"(#version 450 core
 uniform sampler3D u_volume;
 uniform sampler1D u_table;
 uniform sampler2D u_planes;     // texel (i, axis): world coordinate of block plane i on that axis
-uniform usampler3D u_visible;   // per block: 1 if some value in it has non-zero opacity
+uniform usampler3D u_skip;      // per block: r = reach (distance to another class), g = class
 uniform vec3 u_tex_scale;
 uniform vec3 u_tex_offset;
 uniform vec3 u_eye;
@@ -163,15 +182,17 @@ vec4 segment(float vf, float vm, float vb, float len) {
   return segment(clamp(vf + shift, lo, hi), clamp(vb + shift, lo, hi), len);
 }
 #endif
-// (r, g, b, tau) of the sample at world point p, its colour shaded with the field's gradient in the
-// program's shaded variant (SHADING defined; shadeColour: worker/volume_shading.h; light at the
-// eye, so the direction from it to p). A sample of zero tau adds nothing whatever its colour: no gradient is read.
-// Adaptive bricks are never shaded (the scene refuses the combination): their blocks hold only
-// their own samples, not the field one voxel across a block face.
+
+// (r, g, b, tau) at world point p: the one place a sample is evaluated; its colour shaded with the
+// field's gradient in the program's shaded variant (SHADING defined; shadeColour:
+// worker/volume_shading.h; light at the eye, so the direction from it to p). A sample of zero tau
+// adds nothing whatever its colour: no gradient is read. Adaptive bricks are never shaded (the
+// scene refuses the combination): their blocks hold only their own samples, not the field one
+// voxel across a block face.
 #if defined(SHADING) && defined(ADAPTIVE)
 #error gradient shading of adaptive blocks
 #endif
-vec4 shadedSample(vec3 p) {
+vec4 sampleAt(vec3 p) {
   vec4 e = classify(sampleVolume(p));
 #ifdef SHADING
   if (e.a > 0.0)
@@ -179,6 +200,26 @@ vec4 shadedSample(vec3 p) {
 #endif
   return e;
 }
+
+// A sample standing for `len` of the ray, front to back (opacity corrected for len).
+void composite(inout vec4 acc, vec4 e, float len) {
+  float alpha = 1.0 - exp(-e.a * len);
+  acc += (1.0 - acc.a) * vec4(e.rgb * alpha, alpha);
+}
+
+#ifdef PREINTEGRATED
+// The pre-integrated segment `len` long with front value vf and back value vb whose middle value
+// is read at lattice sample `mid`, front to back; with SHADING its colour is shaded with the
+// gradient there (premultiplied: shaded as the colour rgb / alpha, then weighted again).
+void compositeSegment(inout vec4 acc, float vf, float vb, int mid, float len, vec3 dir) {
+  vec3 p = u_eye + float(mid) * u_delta * dir;
+  vec4 e = segment(vf, sampleVolume(p), vb, len);
+#ifdef SHADING
+  if (e.a > 0.0) e.rgb = e.a * shadeColour(e.rgb / e.a, u_volume, p * u_tex_scale + u_tex_offset, dir);
+#endif
+  acc += (1.0 - acc.a) * e;
+}
+#endif
 
 // Ray distance to block plane i of an axis: the one formula every brick uses for a plane.
 float planeT(int axis, int i) {
@@ -199,7 +240,7 @@ int firstSample(float t) {
 void main() {
   vec2 s = vec2(gl_FragCoord.x * u_pixel_scale.x - 1.0, 1.0 - gl_FragCoord.y * u_pixel_scale.y);
   vec3 dir = normalize(u_forward + s.x * u_right + s.y * u_up);
-  ivec3 nb = textureSize(u_visible, 0);
+  ivec3 nb = textureSize(u_skip, 0);
   float t0 = 0.0, t1 = 1e30;
   for (int a = 0; a < 3; ++a) {
     // A zero component gets a tiny one: its slabs then span (almost) the whole line, as they should.
@@ -231,56 +272,73 @@ void main() {
 #endif
   float t = t0;
   while (t < t1 && acc.a < u_ert) {
-    vec3 te = vec3(exitT(0, idx.x), exitT(1, idx.y), exitT(2, idx.z));
+    uvec2 info = texelFetch(u_skip, idx, 0).rg;
+    // Every block within d - 1 of this one has its class: the ray crosses that cube at once (d = 1:
+    // this block alone), jumping it if empty, else sampling it with one m.
+    ivec3 last = clamp(idx + g_step * (int(info.r) - 1), ivec3(0), nb - 1);
+    vec3 te = vec3(exitT(0, last.x), exitT(1, last.y), exitT(2, last.z));
     float tb = min(min(te.x, te.y), min(te.z, t1));
-    if (texelFetch(u_visible, idx, 0).r != 0u) {
+    int k_end = firstSample(tb);  // the first lattice sample this block (or cube) does not own
+    if (info.g != 0u) {
 #ifdef ADAPTIVE
       g_block = texelFetch(u_blocks, idx, 0);
       g_origin = vec3(idx) * u_block_cells;
-      int r = u_own_steps != 0 ? int(1.0 / g_block.w + 0.5) : 1;  // 2^level
-      int k_end = firstSample(tb);         // the first lattice sample this block does not own
-      while (k < k_end) {
-        int anchor = (k + r / 2) / r * r;
-        int next = min(anchor - r / 2 + r, k_end);
-        vec4 e = classify(sampleVolume(u_eye + float(anchor) * u_delta * dir));
-        float alpha = 1.0 - exp(-e.a * float(next - k) * u_delta);
-        acc += (1.0 - acc.a) * vec4(e.rgb * alpha, alpha);
-        k = next;
-        if (acc.a >= u_ert) break;
-      }
-#elif defined(PREINTEGRATED)
-      // The front value of sample k: the back value of sample k - 1 if that was just taken.
-      float vf = k == k_back ? v_back : sampleVolume(u_eye + (float(k) - 0.5) * u_delta * dir);
-      for (float ts = float(k) * u_delta; ts < tb; ts = float(++k) * u_delta) {
-        float vb = sampleVolume(u_eye + (float(k) + 0.5) * u_delta * dir);
-        vec4 e = segment(vf, sampleVolume(u_eye + ts * dir), vb, u_delta);
-#ifdef SHADING
-        // The segment's colour shaded with the gradient at its middle (premultiplied: shaded as
-        // the colour e.rgb / e.a, then weighted again).
-        if (e.a > 0.0)
-          e.rgb = e.a * shadeColour(e.rgb / e.a, u_volume, (u_eye + ts * dir) * u_tex_scale + u_tex_offset, dir);
-#endif
-        acc += (1.0 - acc.a) * e;
-        vf = vb;
-        if (acc.a >= u_ert) { ++k; break; }
-      }
-      k_back = k;
-      v_back = vf;
+      int m = u_own_steps != 0 ? int(1.0 / g_block.w + 0.5) : 1;  // 2^level
 #else
-      for (float ts = float(k) * u_delta; ts < tb; ts = float(++k) * u_delta) {
-        vec4 e = shadedSample(u_eye + ts * dir);
-        float alpha = 1.0 - exp(-e.a * u_delta);
-        acc += (1.0 - acc.a) * vec4(e.rgb * alpha, alpha);
-        if (acc.a >= u_ert) break;
+      int m = 1 << int(info.g - 1u);
+#endif
+#ifdef PREINTEGRATED
+      if (m == 1) {
+        // The front value of sample k: the back value of sample k - 1 if that was just taken.
+        float vf = k == k_back ? v_back : sampleVolume(u_eye + (float(k) - 0.5) * u_delta * dir);
+        for (; k < k_end; ++k) {
+          float vb = sampleVolume(u_eye + (float(k) + 0.5) * u_delta * dir);
+          compositeSegment(acc, vf, vb, k, u_delta, dir);
+          vf = vb;
+          if (acc.a >= u_ert) { ++k; break; }
+        }
+        k_back = k;
+        v_back = vf;
+      } else {
+        // An anchor's segment: its steps k .. next - 1, from (k - 1/2) delta to (next - 1/2) delta.
+        float vf = k == k_back ? v_back : sampleVolume(u_eye + (float(k) - 0.5) * u_delta * dir);
+        while (k < k_end) {
+          int anchor = (k + m / 2) / m * m;
+          int next = min(anchor - m / 2 + m, k_end);
+          float vb = sampleVolume(u_eye + (float(next) - 0.5) * u_delta * dir);
+          compositeSegment(acc, vf, vb, anchor, float(next - k) * u_delta, dir);
+          vf = vb;
+          k = next;
+          if (acc.a >= u_ert) break;
+        }
+        k_back = k;
+        v_back = vf;
+      }
+#else
+      if (m == 1) {  // every sample (the same arithmetic as below with m = 1, without its cost)
+        for (; k < k_end; ++k) {
+          composite(acc, sampleAt(u_eye + float(k) * u_delta * dir), u_delta);
+          if (acc.a >= u_ert) break;
+        }
+      } else {
+        while (k < k_end) {
+          int anchor = (k + m / 2) / m * m;
+          int next = min(anchor - m / 2 + m, k_end);
+          composite(acc, sampleAt(u_eye + float(anchor) * u_delta * dir), float(next - k) * u_delta);
+          k = next;
+          if (acc.a >= u_ert) break;
+        }
       }
 #endif
-    } else {
-      k = firstSample(tb);
     }
-    // Into the next block: every axis whose slab ends here steps on.
-    bvec3 leave = equal(te, vec3(tb));
-    idx += ivec3(leave) * g_step;
-    if (any(lessThan(idx, ivec3(0))) || any(greaterThanEqual(idx, nb))) break;
+    k = k_end;
+    // Into the block holding tb: on each axis, past every slab the ray has left by then.
+    bool inside = true;
+    for (int a = 0; a < 3; ++a) {
+      while (idx[a] >= 0 && idx[a] < nb[a] && exitT(a, idx[a]) <= tb) idx[a] += g_step[a];
+      inside = inside && idx[a] >= 0 && idx[a] < nb[a];
+    }
+    if (!inside) break;
     t = tb;
   }
   frag = acc;

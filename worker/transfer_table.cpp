@@ -16,10 +16,16 @@ TransferTable::~TransferTable() {
 }
 
 void TransferTable::set(const TransferFunction& tf, int table_size, bool preintegrated) {
+  // The same table again (a session sets it every frame): nothing to bake, upload or reclassify.
+  if (version_ > 0 && table_size == size_ && preintegrated == preintegrated_ &&
+      sameTransferFunction(tf, tf_))
+    return;
   tf_ = tf;
   size_ = table_size;
-  preintegrated_ = preintegrated;
-  std::vector<float> table = tf.bakeTable(table_size);
+  preintegrated_ = preintegrated;  // (visible() pads by the 2D table's entries then: a new version)
+  ++version_;
+  table_ = tf.bakeTable(table_size);
+  const std::vector<float>& table = table_;
   gl_.ActiveTexture(GL_TEXTURE1);
   gl_.BindTexture(GL_TEXTURE_1D, texture_);
   gl_.TexImage1D(GL_TEXTURE_1D, 0, GL_RGBA32F, table_size, 0, GL_RGBA, GL_FLOAT, table.data());

@@ -1,12 +1,16 @@
 #pragma once
 // The transfer function as the GL volume renderers use it: a linearly filtered 1D RGBA32F table of
 // (r, g, b, tau), the uniforms that map data values onto it, and the empty-space test of a value
-// range. The test reads the current function, so skipping follows every change of it.
+// range. The test reads the current function, so skipping follows every change of it. Setting the
+// same function again (a session sets it every frame) neither re-bakes nor re-uploads it, and
+// version() tells users of the function (the ray caster's block classification) when it changed.
 //
 // With pre-integration (transfer.preintegrated) it also holds the 2D table of ray segments
 // (common/preintegration.h) as a linearly filtered RGBA32F texture, (C_r, C_g, C_b, optical
 // depth) at texel centres: built on first use for a base length, and again only when the
 // transfer function or that length changes.
+#include <vector>
+
 #include "common/preintegration.h"
 #include "common/transfer_function.h"
 #include "worker/gl_api.h"
@@ -24,6 +28,12 @@ class TransferTable {
   // renderers draw segments from the 2D table (usePreintegrated()).
   void set(const TransferFunction& tf, int table_size, bool preintegrated = false);
   bool preintegrated() const { return preintegrated_; }
+  // Counts the changes: equal versions, the same table.
+  int version() const { return version_; }
+  // The baked table (r, g, b, tau per entry) and the data range it spans.
+  const std::vector<float>& entries() const { return table_; }
+  double rangeLo() const { return tf_.rangeLo(); }
+  double rangeHi() const { return tf_.rangeHi(); }
   // Whether any value in [vmin, vmax] can have non-zero opacity through the filtered table (the
   // 2D one too: a segment between two values in the range).
   bool visible(float vmin, float vmax) const;
@@ -44,6 +54,8 @@ class TransferTable {
   TransferFunction built_tf_;
   double built_length_ = 0.0;
   int built_size_ = 0;
+  int version_ = 0;
+  std::vector<float> table_;
 };
 
 }  // namespace sortlast

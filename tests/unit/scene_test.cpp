@@ -195,6 +195,20 @@ TEST(Scene, VolumeMethod) {
     msg = inputErrorOf([&] { loadScene("", {bad}); });
     EXPECT_NE(msg.find("render.ert_threshold"), std::string::npos) << msg;
   }
+  s = loadScene("", {"render.adaptive_step=true", "render.adaptive_tolerance=0.1", "render.ray_block_cells=16"});
+  EXPECT_TRUE(s.adaptive_step);
+  EXPECT_EQ(s.adaptive_step_tolerance, 0.1);
+  EXPECT_EQ(s.ray_block_cells, 16);
+  EXPECT_TRUE(isFrameKey("render.adaptive_step"));
+  EXPECT_TRUE(isFrameKey("render.adaptive_tolerance"));
+  EXPECT_FALSE(isFrameKey("render.ray_block_cells"));  // the blocks are cut when bricks upload
+  for (const char* bad : {"render.adaptive_tolerance=0", "render.adaptive_tolerance=1.5", "render.adaptive_step=maybe",
+                          "render.ray_block_cells=0"}) {
+    msg = inputErrorOf([&] { loadScene("", {bad}); });
+    std::string key(bad);
+    key = key.substr(0, key.find('='));
+    EXPECT_NE(msg.find(key), std::string::npos) << msg;
+  }
 }
 
 TEST_F(SceneFiles, InvalidValueInFileThrows) {
