@@ -5,9 +5,8 @@
 // cost. Here each brick's particles are binned into cells of edge h/2 (worker/metaball_grid.h) and
 // one fragment pass walks each pixel's ray through the cells: it samples the same global lattice
 // as the billboard method (so bricks and ranks agree), sums the field of the cell's list in
-// global particle order, jumps empty cells, and refines the first sign change of sqrt(F) - T
-// exactly as the billboard passes do; the normal comes from the last refinement pass's walk
-// (worker/metaball_grid_shaders.h says why). Output: the same SurfaceBrick and textures.
+// global particle order, jumps empty cells, and refines and shades the first sign change of
+// sqrt(F) - T exactly as the billboard passes do. Output: the same SurfaceBrick and textures.
 #include <vector>
 
 #include "worker/metaball_grid.h"

@@ -4,19 +4,27 @@
 // the sample lattice and the refinement probes, so both methods sample the same points.
 //
 // Where the time goes on llvmpipe: walking cell lists. A ray walks the list of each cell it
-// crosses (about 84 entries per particle, ~2-3 cells per h), then one list per refinement pass
-// (3) and, before, one more for the gradient; each entry costs a per-lane load and ~20 vector
-// operations (the entry test) whether or not the particle reaches the ray, and that, not the
-// field sums, is the bulk. So the shader keeps the entry test lean (no square root) and takes
-// the gradient in the last refinement pass's walk instead of a walk of its own. Schemes that
-// visit each particle once per ray need a per-ray list of the particles met, and on llvmpipe
-// that costs more than the walks it saves: a local array is indexed through a select over every
-// element (O(capacity) per access), a per-pixel storage buffer through per-lane scatters.
-// Measured (65,536-particle layers and dam break at 512^2, busy machine): a 3 x 3-layer cell
-// walk over cells of h binned by centre, each particle once, with a local list of 128 entries:
-// 1.4x and 2.5x slower than the walks; with a storage-buffer list: 1.7x and 2.5x slower; a
-// storage-buffer list only for refinement and gradient: 1.25x slower; the refinement and
-// gradient walks shared across each 8-pixel group (ARB_shader_ballot): 1.5x slower.
+// crosses (about 84 entries per particle; 2-3 cells per h), then one list per refinement pass
+// and one for the gradient; every entry costs a per-lane load and the entry test (~20 vector
+// operations) whether or not its particle reaches the ray, and that, more than the field sums,
+// is the bulk. Hence the lean entry test below (no square root: about 5% less CPU time per frame
+// on the 65,536-particle layers at 512^2). What was tried and measured slower, on the same scene
+// and the dam break at 512^2 (busy 2-core machine, interleaved runs):
+// - Each particle once per ray, as the CPU reference does: cells of h binned by centre, a DDA
+//   that brings in the 3 x 3 layer of cells beyond each step, the particles met kept in a
+//   per-ray list that the sample chunks, the refinement and the gradient sum over, with interval
+//   skipping (jump to the nearest listed particle's sphere entry). It loads 5x fewer entries
+//   (127 a ray against ~600 on the layers), but the list costs more than the walks it saves:
+//   a local array is indexed through a select over every element (capacity 128: 1.4x and 2.5x
+//   slower than this shader; 256: 7x on the dam break), a per-pixel storage buffer through
+//   per-lane scatters and gathers (capacity 64: 1.7x and 2.5x slower). Its interval skipping
+//   made no difference to the layers (CPU 0.336 against 0.314 s a frame without).
+// - Only the refinement and gradient particles in a per-pixel storage buffer: 1.25x slower.
+// - The refinement and gradient walks shared by the 8 pixels llvmpipe shades together (each lane
+//   loads one entry, readInvocationARB hands it to all): 1.5x slower.
+// - The gradient from the last refinement pass's walk (at its probes, interpolated) instead of a
+//   walk of its own: no faster (its extra sums cost what the walk did), and it changes normals.
+// - Buffer textures instead of storage buffers for the lists: no difference.
 namespace sortlast::shaders {
 
 inline constexpr const char* kGridFragment = R"(
@@ -63,9 +71,9 @@ float field(float s, float tb, float perp2) {
 }
 // F at g_s[0..m-1] (ascending, all in the cell whose list is r), summed in list order, which is
 // global particle order. Particles whose reach along the ray misses [g_s[0], g_s[m-1]] (with a
-// margin) are skipped: they would add zeros. The test is on the squared distance from the
-// particle to that stretch of the ray, with no square root: the entry test runs for every list
-// entry, the cost of this shader on llvmpipe (measured 17% faster than reach = sqrt(h^2 - p^2)).
+// margin) are skipped: they would add zeros. The test compares the squared distance from the
+// particle to that stretch of the ray with h^2: no square root, and the same particles pass
+// but for ones at distance h + O(ulp) beyond the 1e-3 h margin, which add exactly 0 anyway.
 void sumSamples(uvec2 r, vec3 d, int m) {
   for (int k = 0; k < CHUNK; ++k) g_f[k] = 0.0;
   float hh = u_h * u_h, first = g_s[0] - 1e-3 * u_h, last = g_s[m - 1] + 1e-3 * u_h;
@@ -79,67 +87,18 @@ void sumSamples(uvec2 r, vec3 d, int m) {
     for (int k = 0; k < m; ++k) g_f[k] += field(g_s[k], tb, perp2);
   }
 }
-// sumSamples, and also the gradient of F at g_tg (in the cell) into g_grad: for the last
-// refinement pass, which then needs no walk of its own for the normal. (r = x - c;
-// dP/dx = -2 (1 - |r|/h) / h * r / |r|.) Particles that miss the samples' span add exactly 0 to
-// the gradient too: the sum is bit for bit the one over all the particles in the list.
-float g_tg;
-vec3 g_grad;
-const float GRAD_SLACK = 1e-5;  // in h: how far from the final t the gradient may be taken
-void sumSamplesGrad(uvec2 r, vec3 d, int m) {
-  for (int k = 0; k < CHUNK; ++k) g_f[k] = 0.0;
-  g_grad = vec3(0.0);
-  float hh = u_h * u_h, first = g_s[0] - 1e-3 * u_h, last = g_s[m - 1] + 1e-3 * u_h;
-  for (uint j = r.x; j < r.y; ++j) {
-    vec3 oc = items[j].xyz - u_eye;
-    float tb = dot(d, oc);
-    vec3 perp = oc - tb * d;
-    float perp2 = dot(perp, perp);
-    float e = tb - clamp(tb, first, last);
-    if (perp2 + e * e >= hh) continue;
-    for (int k = 0; k < m; ++k) g_f[k] += field(g_s[k], tb, perp2);
-    vec3 rr = (g_tg - tb) * d - perp;
-    float len = length(rr);
-    float q = max(1.0 - len / u_h, 0.0);
-    g_grad += len > 0.0 ? (-2.0 * q / (u_h * len)) * rr : vec3(0.0);
-  }
-}
-// The gradient of F at t alone, summed over t's cell in list order.
-vec3 gradientAt(float t, vec3 d) {
-  uvec2 r = cellRange(cellOf(u_eye + t * d));
-  vec3 grad = vec3(0.0);
-  for (uint j = r.x; j < r.y; ++j) {
-    vec3 oc = items[j].xyz - u_eye;
-    float tb = dot(d, oc);
-    vec3 perp = oc - tb * d;
-    if (dot(perp, perp) >= u_h * u_h) continue;
-    vec3 rr = (t - tb) * d - perp;
-    float len = length(rr);
-    float q = max(1.0 - len / u_h, 0.0);
-    grad += len > 0.0 ? (-2.0 * q / (u_h * len)) * rr : vec3(0.0);
-  }
-  return grad;
-}
-// F at the 4 refinement probes q (ascending) into g_f[0..3]; with `grad`, also the gradient at
-// g_tg (one of the probes) into g_grad.
-void sumProbes(float q[4], vec3 d, bool grad) {
+// F at the 4 refinement probes q (ascending) into g_f[0..3].
+void sumProbes(float q[4], vec3 d) {
   ivec3 c0 = cellOf(u_eye + q[0] * d), c3 = cellOf(u_eye + q[3] * d);
-  for (int k = 0; k < 4; ++k) g_s[k] = q[k];
   if (c0 == c3) {
-    if (grad) sumSamplesGrad(cellRange(c0), d, 4);
-    else sumSamples(cellRange(c0), d, 4);
+    for (int k = 0; k < 4; ++k) g_s[k] = q[k];
+    sumSamples(cellRange(c0), d, 4);
     return;
   }
   float f[4];
-  bool need = grad;
   for (int k = 0; k < 4; ++k) {
     g_s[0] = q[k];
-    if (need && q[k] == g_tg) {
-      sumSamplesGrad(cellRange(cellOf(u_eye + q[k] * d)), d, 1);
-      need = false;
-    } else {
-      sumSamples(cellRange(cellOf(u_eye + q[k] * d)), d, 1);
-    }
+    sumSamples(cellRange(cellOf(u_eye + q[k] * d)), d, 1);
     f[k] = g_f[0];
   }
   for (int k = 0; k < 4; ++k) g_f[k] = f[k];
@@ -214,21 +173,13 @@ void main() {
   }
   if (!hit) return;
 
-  // Refinement (eqs. 5-6): the first sign change among t_neg, the 4 probes and t_pos. The last
-  // pass also sums the gradient at its secant probe t_s: after two passes the bracket is about
-  // 2e-4 h wide (h/8 shrunk 25-fold twice), so where I is smooth t_s lies within about 1e-7 h of
-  // the final t, and the normal there serves (a normal turns by |t - t_s| / R radians on a
-  // surface of radius R: 1e-5 h on the smallest sphere, R = (1 - T) h, is 0.003 degrees). Where it
-  // lies farther (grazing rays, where I is flat, or fewer than 2 passes) the gradient gets a walk
-  // of its own at t. (Gathering the particles that reach the bracket once instead of walking the
-  // cell's list per pass: measured slower on llvmpipe, in a local array or a storage buffer.)
-  float t_s = -INF;
+  // Refinement (eqs. 5-6): the first sign change among t_neg, the 4 probes and t_pos. (Gathering
+  // the particles that reach the bracket once, instead of walking the cell's list per pass, was
+  // measured no faster on llvmpipe: 0.131 against 0.128 s on the 65,536-particle layers.)
   for (int i = 0; i < u_refine; ++i) {
     float q[4];
     refineProbes(b, q);
-    bool last_pass = i == u_refine - 1;
-    if (last_pass) t_s = g_tg = q[1] == secantEstimate(b) ? q[1] : q[2];
-    sumProbes(q, d, last_pass);
+    sumProbes(q, d);
     vec2 neg = b.xy;
     bool stored = false;
     for (int k = 0; k < 4; ++k) {
@@ -243,7 +194,20 @@ void main() {
     if (!stored && b.z > neg.x) b = vec4(neg, b.zw);
   }
   float t = secantEstimate(b);
-  vec3 grad = abs(t - t_s) <= GRAD_SLACK * u_h ? g_grad : gradientAt(t, d);
+
+  // Gradient of F at t (r = x - c; dP/dx = -2 (1 - |r|/h) / h * r / |r|), in list order.
+  uvec2 r = cellRange(cellOf(u_eye + t * d));
+  vec3 grad = vec3(0.0);
+  for (uint j = r.x; j < r.y; ++j) {
+    vec3 oc = items[j].xyz - u_eye;
+    float tb = dot(d, oc);
+    vec3 perp = oc - tb * d;
+    if (dot(perp, perp) >= u_h * u_h) continue;
+    vec3 rr = (t - tb) * d - perp;
+    float len = length(rr);
+    float q = max(1.0 - len / u_h, 0.0);
+    grad += len > 0.0 ? (-2.0 * q / (u_h * len)) * rr : vec3(0.0);
+  }
   // Shading: common/metaball_shading.h, as the billboard method's shade pass.
   float len = length(grad);
   vec3 nrm = len > 0.0 ? -grad / len : -d;
