@@ -6,24 +6,27 @@
 // Where the time goes on llvmpipe: walking cell lists. A ray walks the list of each cell it
 // crosses (about 84 entries per particle; 2-3 cells per h), then one list per refinement pass
 // and one for the gradient; every entry costs a per-lane load and the entry test (~20 vector
-// operations) whether or not its particle reaches the ray, and that, more than the field sums,
-// is the bulk. Hence the lean entry test below (no square root: about 5% less CPU time per frame
+// operations) whether or not its particle reaches the ray. The march's walks are the bulk (one
+// refinement pass is about 5% of a frame on the layers). Hence the lean entry test below (no square root: about 5% less CPU time per frame
 // on the 65,536-particle layers at 512^2). What was tried and measured slower, on the same scene
 // and the dam break at 512^2 (busy 2-core machine, interleaved runs):
 // - Each particle once per ray, as the CPU reference does: cells of h binned by centre, a DDA
 //   that brings in the 3 x 3 layer of cells beyond each step, the particles met kept in a
 //   per-ray list that the sample chunks, the refinement and the gradient sum over, with interval
-//   skipping (jump to the nearest listed particle's sphere entry). It loads 5x fewer entries
-//   (127 a ray against ~600 on the layers), but the list costs more than the walks it saves:
+//   skipping (jump to the nearest listed particle's sphere entry). It loads fewer entries (127
+//   a ray on the layers, against an estimated 500-700), but the list costs more than the walks:
 //   a local array is indexed through a select over every element (capacity 128: 1.4x and 2.5x
-//   slower than this shader; 256: 7x on the dam break), a per-pixel storage buffer through
+//   slower than this shader; 256: about 8x on the dam break), a per-pixel storage buffer through
 //   per-lane scatters and gathers (capacity 64: 1.7x and 2.5x slower). Its interval skipping
-//   made no difference to the layers (CPU 0.336 against 0.314 s a frame without).
+//   did not measurably pay: CPU s a frame with / without, layers 0.336 / 0.314, dam break
+//   1.21 / 1.25 (the samples it skips are cheap; the list walks are not).
 // - Only the refinement and gradient particles in a per-pixel storage buffer: 1.25x slower.
 // - The refinement and gradient walks shared by the 8 pixels llvmpipe shades together (each lane
 //   loads one entry, readInvocationARB hands it to all): 1.5x slower.
 // - The gradient from the last refinement pass's walk (at its probes, interpolated) instead of a
 //   walk of its own: no faster (its extra sums cost what the walk did), and it changes normals.
+// - 2 refinement passes of 8 probes (secant, +-2%, +-0.08%, quartiles) instead of 3 of 4:
+//   1.2x slower (each pass walks one list; 3 passes of 4 against 2 of 4 is only 5%).
 // - Buffer textures instead of storage buffers for the lists: no difference.
 namespace sortlast::shaders {
 
