@@ -18,6 +18,7 @@
 #include "master/brick_renderer.h"
 #include "master/collective.h"
 #include "master/frame_stats.h"
+#include "master/memory_budget.h"
 #include "master/particle_loading.h"
 #include "master/session_layout.h"
 #include "master/step_data.h"
@@ -112,6 +113,8 @@ struct RenderSession::State {
   std::unique_ptr<Compositor> compositor;
   CompositorKey compositor_key;
   int frames_rendered = 0;
+  MemoryBudget budget;           // what this rank may use (memory_budget.h)
+  long long particles_total = 0; // of the first step, for the memory estimates of requests
   // In situ: the step's bricks come from the caller.
   bool external = false;
   std::optional<ExternalStep> ext;
@@ -142,6 +145,11 @@ RenderSession::RenderSession(SessionOptions options, MPI_Comm comm) : s_(std::ma
     if (S.base.hasVolume()) validateVolume(S.base.volume);
   });
   const Scene& scene = S.base;
+  S.budget = memoryBudget(scene, comm);
+  // Rank 0 reads the whole particle set first: bounded before it is read.
+  collectively(comm, [&] {
+    if (S.rank == 0) checkMemory(particleSetNeed(scene), S.budget, 0, "the scene's particle set");
+  });
   // Particles: rank 0 loads the current step; the brick grid and the camera frame the centres of
   // every step of a series (read once here, then dropped).
   RootParticles first;
@@ -157,8 +165,13 @@ RenderSession::RenderSession(SessionOptions options, MPI_Comm comm) : s_(std::ma
       if (r.total > 0) centres = isEmpty(centres) ? r.bounds : unite(centres, r.bounds);
     }
   }
+  S.particles_total = first.total;
   collectively(comm, [&] {
+    PhaseScope phase("laying out the bricks");
     S.layout = makeLayout(scene, centres, S.rank, S.size);
+    // Before the first large allocation (image targets, samples, particles): on every rank.
+    checkMemory(sessionNeed(scene, S.layout, S.particles_total, S.rank, S.opts.resident), S.budget, S.rank,
+                "the scene");
     std::vector<Camera> cams = scene.frameCameras(S.layout.bounds);
     for (size_t i = 0; i < cams.size(); ++i)
       checkCameraOutside(cams[i], S.layout.bounds,
@@ -259,6 +272,11 @@ Scene RenderSession::State::resolve(const FrameRequest& request) const {
   if (request.orbit_frame >= int(cams.size()))
     throw InputError("orbit frame " + std::to_string(request.orbit_frame) + " of " + std::to_string(cams.size()));
   checkCameraOutside(cams[size_t(std::max(0, request.orbit_frame))], layout.bounds);
+  // A request's image size must fit beside the data the session holds.
+  const int d = sc.bricks_per_axis;
+  checkMemory(external ? imageNeed(sc, sc.camera.width, sc.camera.height, rank, int(layout.mine.size()), d * d * d)
+                       : sessionNeed(sc, layout, particles_total, rank, opts.resident),
+              budget, rank, "the request");
   return sc;
 }
 
@@ -312,6 +330,7 @@ void RenderSession::State::bringGpuTo(const Scene& scene) {
     gpu = want;
     return;
   }
+  PhaseScope phase("loading time step " + std::to_string(scene.time_step));
   StepData& d = cache->get(scene, layout, adaptive, comm);
   current = &d;
   collectively(comm, [&] {
@@ -319,7 +338,10 @@ void RenderSession::State::bringGpuTo(const Scene& scene) {
       throw std::logic_error("a batch session cannot change its volume renderer or h");
   });
   if (has_particles && d.scattered_h != want.h) scatterStepParticles(d, layout, want.h, comm);
-  collectively(comm, [&] { uploadBricks(scene, d); });
+  collectively(comm, [&] {
+    PhaseScope upload("uploading the bricks to the GPU");
+    uploadBricks(scene, d);
+  });
   gpu = want;
   // The textures hold the data now; a batch session keeps no second copy.
   if (!opts.resident) d.dropHostCopies();
@@ -329,6 +351,7 @@ FrameResult RenderSession::render(const FrameRequest& request) {
   State& S = *s_;
   const int rank = S.rank;
   Scene sc;
+  PhaseScope phase("rendering a frame");
   collectively(S.comm, [&] { sc = S.resolve(request); });
   S.bringGpuTo(sc);
   const auto [data_min, data_max] = S.dataRange();
