@@ -8,6 +8,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -135,10 +136,12 @@ void checkFinite(const std::vector<glm::vec3>& ps, const std::string& file) {
 void checkMagnitude(const std::vector<glm::vec3>& ps, const std::string& what) {
   for (size_t i = 0; i < ps.size(); ++i)
     for (int a = 0; a < 3; ++a)
-      if (std::abs(double(ps[i][a])) > kMaxCoordinate)
-        throw InputError(what + ": particle " + std::to_string(i) + " has coordinate " +
-                         std::to_string(double(ps[i][a])) + ", beyond +-1e18 (float math on the GPU "
-                         "squares distances and would overflow)");
+      if (std::abs(double(ps[i][a])) > kMaxCoordinate) {
+        char value[32];
+        std::snprintf(value, sizeof value, "%g", double(ps[i][a]));
+        throw InputError(what + ": particle " + std::to_string(i) + " has coordinate " + value +
+                         ", beyond +-1e18 (float math on the GPU squares distances and would overflow)");
+      }
 }
 
 }  // namespace

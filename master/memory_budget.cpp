@@ -109,10 +109,13 @@ MemoryNeed imageNeed(const Scene& scene, int width, int height, int rank, int br
         px * (16 + 16 + 4 + 4));
   if (scene.particles.enabled())  // metaball state, hit, potential, colour and surface images
     n.add("metaball image targets", px * (scene.particles.method == "grid" ? 16 : 6 * 16 + 4));
-  // Compositing: every brick image this rank holds (at most the frame each), a float frame, and
-  // on rank 0 the final frame in RGBA8 and float.
-  double comp = px * (4.0 * bricks_here + 16.0);
-  if (rank == 0) comp += px * (4.0 * bricks_all + 16 + 16 + 4);
+  // Compositing: the brick images this rank holds, a float frame, and on rank 0 the brick images
+  // received and the final frame in RGBA8 and float. A brick image covers only its brick's screen
+  // rectangle, and a ray crosses at most about 2 d of the d^3 bricks, so the images held sum to
+  // at most about 2 d frames (RGBA8, RLE no larger).
+  const int d = scene.bricks_per_axis;
+  double comp = px * (4.0 * std::min(bricks_here, 2 * d) + 16.0);
+  if (rank == 0) comp += px * (4.0 * std::min(bricks_all, 2 * d) + 16 + 16 + 4);
   n.add("compositing buffers", comp);
   return n;
 }

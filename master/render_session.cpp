@@ -28,9 +28,10 @@ namespace sortlast {
 
 namespace {
 
-// Fault injection for the tests: a rank that throws (the others must stop cleanly) or dies (mpirun
-// must end the job), before its first brick, or after its first brick's image has gone to the
-// compositor (direct send has then started sending it). Inert unless the variables are set.
+// Fault injection for the tests: a rank that throws (the others must stop cleanly), dies (mpirun
+// must end the job) or meets an MPI error (master/mpi_errors.h must name it), before its first
+// brick, or after its first brick's image has gone to the compositor (direct send has then
+// started sending it). Inert unless the variables are set.
 bool isTestFaultRank(const char* var, int rank) {
   const char* v = std::getenv(var);
   return v && std::atoi(v) == rank;
@@ -40,6 +41,11 @@ void injectTestFault(int rank) {
   if (isTestFaultRank("SORTLAST_TEST_FAIL_RANK", rank))
     throw std::runtime_error("injected failure (SORTLAST_TEST_FAIL_RANK)");
   if (isTestFaultRank("SORTLAST_TEST_CRASH_RANK", rank)) std::abort();
+  if (isTestFaultRank("SORTLAST_TEST_MPI_ERROR_RANK", rank)) {  // a send to a rank that does not exist
+    int size = 1, unused = 0;
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    MPI_Send(&unused, 1, MPI_INT, size + 7, 0, MPI_COMM_WORLD);
+  }
 }
 
 void injectLateTestFault(int rank) {
