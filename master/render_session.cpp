@@ -212,6 +212,7 @@ std::unique_ptr<RenderSession> RenderSession::external(SessionOptions options, M
     S->base = parseScene(S->opts.scene, S->opts.overrides);
     S->renderer = std::make_unique<BrickRenderer>(S->base.backend, S->base.camera.width, S->base.camera.height);
   });
+  S->budget = memoryBudget(S->base, comm);  // requests' image sizes are checked against it
   S->cache = std::make_unique<StepCache>(0.0);
   return std::unique_ptr<RenderSession>(new RenderSession(std::move(S)));
 }
