@@ -139,8 +139,9 @@ void checkMagnitude(const std::vector<glm::vec3>& ps, const std::string& what) {
       if (std::abs(double(ps[i][a])) > kMaxCoordinate) {
         char value[32];
         std::snprintf(value, sizeof value, "%g", double(ps[i][a]));
-        throw InputError(what + ": particle " + std::to_string(i) + " has coordinate " + value +
-                         ", beyond +-1e18 (float math on the GPU squares distances and would overflow)");
+        throw InputError(
+            what + ": particle " + std::to_string(i) + " has coordinate " + value +
+            ", beyond +-1e18 (float math on the GPU squares distances and would overflow)");
       }
 }
 
@@ -159,10 +160,10 @@ Box3 ParticleSet::bounds() const {
 ParticleSet loadParticles(const ParticleDesc& d) {
   if (d.file.empty()) {
     if (d.procedural == "none") return {};
-    ParticleSet s = proceduralParticles(d.procedural, d.count < 0 ? kDefaultProceduralCount : d.count,
-                                        d.spacing);
-    checkMagnitude(s.positions, "particles.procedural " + d.procedural + " with particles.spacing " +
-                                    std::to_string(d.spacing));
+    ParticleSet s = proceduralParticles(d.procedural,
+                                        d.count < 0 ? kDefaultProceduralCount : d.count, d.spacing);
+    checkMagnitude(s.positions, "particles.procedural " + d.procedural +
+                                    " with particles.spacing " + std::to_string(d.spacing));
     return s;
   }
   std::string format = formatOf(d);

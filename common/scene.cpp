@@ -143,8 +143,9 @@ std::string numText(double v) {
 void checkCoordinates(const std::string& key, const glm::dvec3& v) {
   for (int a = 0; a < 3; ++a)
     if (std::abs(v[a]) > kMaxCoordinate)
-      throw InputError("scene key '" + key + "': " + numText(v[a]) +
-                       " is beyond +-1e18, which float math on the GPU cannot hold (it squares distances)");
+      throw InputError(
+          "scene key '" + key + "': " + numText(v[a]) +
+          " is beyond +-1e18, which float math on the GPU cannot hold (it squares distances)");
 }
 
 void checkLength(const std::string& key, double v) {
@@ -431,7 +432,8 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
     // Samples are floats on the GPU: the range must be one, and wide enough not to collapse there.
     for (double x : v)
       if (std::abs(x) > 1e38)
-        throw InputError("scene key 'transfer.range': " + numText(x) + " is beyond float's range (+-3.4e38)");
+        throw InputError("scene key 'transfer.range': " + numText(x) +
+                         " is beyond float's range (+-3.4e38)");
     if (v[1] - v[0] < 1e-6 * std::max(std::abs(v[0]), std::abs(v[1])))
       throw InputError("scene key 'transfer.range': [" + numText(v[0]) + ", " + numText(v[1]) +
                        "] is narrower than float precision at that magnitude (hi - lo must be at "

@@ -28,7 +28,9 @@ struct JobFailed {
 inline thread_local std::string g_phase = "starting";
 
 struct PhaseScope {
-  explicit PhaseScope(std::string phase) : saved_(std::move(g_phase)) { g_phase = std::move(phase); }
+  explicit PhaseScope(std::string phase) : saved_(std::move(g_phase)) {
+    g_phase = std::move(phase);
+  }
   ~PhaseScope() { g_phase = std::move(saved_); }
   PhaseScope(const PhaseScope&) = delete;
   PhaseScope& operator=(const PhaseScope&) = delete;
@@ -58,7 +60,8 @@ void collectively(MPI_Comm comm, Step&& step, Idle&& while_waiting) {
   } catch (const InputError& e) {
     message = e.what();
   } catch (const std::bad_alloc&) {
-    message = (size > 1 ? "rank " + std::to_string(rank) + ": " : std::string()) + outOfMemoryMessage();
+    message =
+        (size > 1 ? "rank " + std::to_string(rank) + ": " : std::string()) + outOfMemoryMessage();
   } catch (const std::exception& e) {
     message = (size > 1 ? "rank " + std::to_string(rank) + ": " : std::string()) + e.what();
   }

@@ -9,8 +9,8 @@
 #include "common/error.h"
 #include "common/scene.h"
 #include "master/adaptive_stats_job.h"
-#include "master/compare.h"
 #include "master/collective.h"
+#include "master/compare.h"
 #include "master/compare_surface.h"
 #include "master/mpi_errors.h"
 #include "master/reference_job.h"
@@ -229,7 +229,8 @@ int main(int argc, char** argv) {
   installMpiErrorHandler(MPI_COMM_WORLD);
   int code = 1;
   try {
-    code = *serve ? runServeJob(serve_opts, MPI_COMM_WORLD) : runRenderJob(render_opts, MPI_COMM_WORLD);
+    code = *serve ? runServeJob(serve_opts, MPI_COMM_WORLD)
+                  : runRenderJob(render_opts, MPI_COMM_WORLD);
   } catch (const std::bad_alloc&) {
     // Outside any collective step: the other ranks cannot learn of it, so the job ends here.
     int rank = 0;

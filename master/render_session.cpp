@@ -6,9 +6,9 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <optional>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include "common/error.h"
 #include "compositing/compositor.h"
@@ -41,7 +41,8 @@ void injectTestFault(int rank) {
   if (isTestFaultRank("SORTLAST_TEST_FAIL_RANK", rank))
     throw std::runtime_error("injected failure (SORTLAST_TEST_FAIL_RANK)");
   if (isTestFaultRank("SORTLAST_TEST_CRASH_RANK", rank)) std::abort();
-  if (isTestFaultRank("SORTLAST_TEST_MPI_ERROR_RANK", rank)) {  // a send to a rank that does not exist
+  // A send to a rank that does not exist: an MPI error.
+  if (isTestFaultRank("SORTLAST_TEST_MPI_ERROR_RANK", rank)) {
     int size = 1, unused = 0;
     MPI_Comm_size(MPI_COMM_WORLD, &size);
     MPI_Send(&unused, 1, MPI_INT, size + 7, 0, MPI_COMM_WORLD);
@@ -119,8 +120,8 @@ struct RenderSession::State {
   std::unique_ptr<Compositor> compositor;
   CompositorKey compositor_key;
   int frames_rendered = 0;
-  MemoryBudget budget;           // what this rank may use (memory_budget.h)
-  long long particles_total = 0; // of the first step, for the memory estimates of requests
+  MemoryBudget budget;            // what this rank may use (memory_budget.h)
+  long long particles_total = 0;  // of the first step, for the memory estimates of requests
   // In situ: the step's bricks come from the caller.
   bool external = false;
   std::optional<ExternalStep> ext;
@@ -176,8 +177,8 @@ RenderSession::RenderSession(SessionOptions options, MPI_Comm comm) : s_(std::ma
     PhaseScope phase("laying out the bricks");
     S.layout = makeLayout(scene, centres, S.rank, S.size);
     // Before the first large allocation (image targets, samples, particles): on every rank.
-    checkMemory(sessionNeed(scene, S.layout, S.particles_total, S.rank, S.opts.resident), S.budget, S.rank,
-                "the scene");
+    checkMemory(sessionNeed(scene, S.layout, S.particles_total, S.rank, S.opts.resident), S.budget,
+                S.rank, "the scene");
     std::vector<Camera> cams = scene.frameCameras(S.layout.bounds);
     for (size_t i = 0; i < cams.size(); ++i)
       checkCameraOutside(cams[i], S.layout.bounds,
@@ -281,7 +282,8 @@ Scene RenderSession::State::resolve(const FrameRequest& request) const {
   checkCameraOutside(cams[size_t(std::max(0, request.orbit_frame))], layout.bounds);
   // A request's image size must fit beside the data the session holds.
   const int d = sc.bricks_per_axis;
-  checkMemory(external ? imageNeed(sc, sc.camera.width, sc.camera.height, rank, int(layout.mine.size()), d * d * d)
+  checkMemory(external ? imageNeed(sc, sc.camera.width, sc.camera.height, rank,
+                                   int(layout.mine.size()), d * d * d)
                        : sessionNeed(sc, layout, particles_total, rank, opts.resident),
               budget, rank, "the request");
   return sc;

@@ -480,7 +480,9 @@ TEST(ParticleScene, FrameCamerasFollowTheBounds) {
   Camera c = s.frameCameras(vol)[0];
   EXPECT_EQ(c.look_at, glm::dvec3(0.0));
   EXPECT_NEAR(glm::length(c.position), k * 0.5 * 127.0 * std::sqrt(3.0), 1e-9);
-  EXPECT_NEAR(glm::distance(glm::normalize(c.position), glm::normalize(glm::dvec3(0.55, 0.35, 1.0))), 0.0, 1e-12);
+  EXPECT_NEAR(
+      glm::distance(glm::normalize(c.position), glm::normalize(glm::dvec3(0.55, 0.35, 1.0))), 0.0,
+      1e-12);
   // A box off the origin: looked at from its centre.
   Box3 b{{10, 0, 0}, {14, 2, 1}};
   c = s.frameCameras(b)[0];
