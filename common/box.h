@@ -5,6 +5,16 @@
 
 namespace sortlast {
 
+// The scale sortlast accepts for world lengths and coordinates (cameras, the volume's extent and
+// spacing, particles, radii): the GPU computes in float and squares distances, and 1e18 squared
+// is 1e36, under float's largest 3.4e38; 1e-12 squared (1e-24) is far above its smallest normal.
+constexpr double kMaxCoordinate = 1e18;
+constexpr double kMinLength = 1e-12;
+// A camera this many times further from the scene's centre than the scene is large sees it below
+// float precision: positions relative to the eye keep ~7 digits, so the scene's own detail would
+// be rounding noise (and it covers well under a pixel at any sane field of view).
+constexpr double kMaxDistanceToExtent = 1e6;
+
 struct Box3 {
   glm::dvec3 lo{0.0}, hi{0.0};
 

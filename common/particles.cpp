@@ -8,6 +8,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -130,6 +131,20 @@ void checkFinite(const std::vector<glm::vec3>& ps, const std::string& file) {
   }
 }
 
+// The GPU computes in float, squaring distances: a coordinate beyond kMaxCoordinate would
+// overflow float (3.4e38) there. Procedural sets too (particles.spacing scales them).
+void checkMagnitude(const std::vector<glm::vec3>& ps, const std::string& what) {
+  for (size_t i = 0; i < ps.size(); ++i)
+    for (int a = 0; a < 3; ++a)
+      if (std::abs(double(ps[i][a])) > kMaxCoordinate) {
+        char value[32];
+        std::snprintf(value, sizeof value, "%g", double(ps[i][a]));
+        throw InputError(
+            what + ": particle " + std::to_string(i) + " has coordinate " + value +
+            ", beyond +-1e18 (float math on the GPU squares distances and would overflow)");
+      }
+}
+
 }  // namespace
 
 Box3 ParticleSet::bounds() const {
@@ -145,8 +160,11 @@ Box3 ParticleSet::bounds() const {
 ParticleSet loadParticles(const ParticleDesc& d) {
   if (d.file.empty()) {
     if (d.procedural == "none") return {};
-    return proceduralParticles(d.procedural, d.count < 0 ? kDefaultProceduralCount : d.count,
-                               d.spacing);
+    ParticleSet s = proceduralParticles(d.procedural,
+                                        d.count < 0 ? kDefaultProceduralCount : d.count, d.spacing);
+    checkMagnitude(s.positions, "particles.procedural " + d.procedural +
+                                    " with particles.spacing " + std::to_string(d.spacing));
+    return s;
   }
   std::string format = formatOf(d);
   std::error_code ec;
@@ -165,6 +183,7 @@ ParticleSet loadParticles(const ParticleDesc& d) {
                      (s.positions.size() == 1 ? " particle" : " particles") +
                      ", but particles.count is " + std::to_string(d.count));
   checkFinite(s.positions, d.file);
+  checkMagnitude(s.positions, "particles.file " + d.file);
   return s;
 }
 

@@ -132,6 +132,28 @@ class Reader {
   YAML::Node root_;
 };
 
+std::string numText(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", v);
+  return b;
+}
+
+// Range checks against what float math on the GPU can hold (common/box.h): each names the key
+// and the value, before the value can turn into an overflow or a misleading later error.
+void checkCoordinates(const std::string& key, const glm::dvec3& v) {
+  for (int a = 0; a < 3; ++a)
+    if (std::abs(v[a]) > kMaxCoordinate)
+      throw InputError(
+          "scene key '" + key + "': " + numText(v[a]) +
+          " is beyond +-1e18, which float math on the GPU cannot hold (it squares distances)");
+}
+
+void checkLength(const std::string& key, double v) {
+  if (!(v >= kMinLength && v <= kMaxCoordinate))
+    throw InputError("scene key '" + key + "': " + numText(v) +
+                     " is outside [1e-12, 1e18], the lengths float math on the GPU can hold");
+}
+
 // The particles.* keys. Relative file paths are relative to the scene file (not for --set, whose
 // paths are the user's, relative to where they run).
 ParticleDesc readParticles(const Reader& r, const std::filesystem::path& base_dir,
@@ -169,6 +191,9 @@ ParticleDesc readParticles(const Reader& r, const std::filesystem::path& base_di
   p.spacing = positive("particles.spacing");
   p.radius = positive("particles.radius");
   if (!r.isAuto("particles.influence")) p.influence = positive("particles.influence");
+  checkLength("particles.spacing", p.spacing);
+  checkLength("particles.radius", p.radius);
+  if (p.influence) checkLength("particles.influence", *p.influence);
   p.threshold = r.as<double>("particles.threshold");
   if (!(p.threshold > 0.0 && p.threshold < 1.0))
     throw InputError("scene key 'particles.threshold': must be in (0, 1)");
@@ -239,8 +264,19 @@ std::vector<Camera> Scene::frameCameras(const Box3& bounds) const {
   double largest = glm::max(e.x, glm::max(e.y, e.z));
   double extent = empty || !(largest > 0.0) ? 1.0 : largest;
   if (look_at_auto) base.look_at = empty ? glm::dvec3(0.0) : bounds.centre();
-  if (camera_auto)
-    base.position = base.look_at + 2.0 * extent * glm::normalize(glm::dvec3(0.55, 0.35, 1.0));
+  if (camera_auto) {
+    // Far enough that the box's bounding sphere (about the look-at point) fits in the vertical
+    // and the horizontal field of view, with 2% to spare: the whole scene is in the frame
+    // whatever its shape and the image's aspect. (The viewer's reset, viewer/orbit.js
+    // frameBounds, frames the same way.)
+    glm::dvec3 centre = empty ? glm::dvec3(0.0) : bounds.centre();
+    double radius = empty || !(largest > 0.0) ? 0.5 * std::sqrt(3.0) : 0.5 * glm::length(e);
+    radius += glm::length(centre - base.look_at);
+    double vhalf = 0.5 * base.fov_deg * 3.14159265358979323846 / 180.0;
+    double hhalf = std::atan(std::tan(vhalf) * double(base.width) / base.height);
+    double dist = 1.02 * radius / std::sin(std::min(vhalf, hhalf));
+    base.position = base.look_at + dist * glm::normalize(glm::dvec3(0.55, 0.35, 1.0));
+  }
   if (orbit_frames == 0) return {base};
   std::vector<Camera> cams;
   double radius = orbit_radius.value_or(2.0 * extent);
@@ -329,6 +365,11 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
     vol.grid.dims[a] = int(dims[a]);
   }
   vol.grid.spacing = r.vec3("volume.spacing");
+  for (int a = 0; a < 3; ++a) {
+    checkLength("volume.spacing", vol.grid.spacing[a]);
+    checkLength("volume.spacing (times volume.dims - 1: the volume's extent)",
+                vol.grid.spacing[a] * (vol.grid.dims[a] - 1));
+  }
   vol.type = parseSampleType(r.as<std::string>("volume.type"));
   std::string order = r.as<std::string>("volume.byte_order");
   if (order != "little" && order != "big")
@@ -341,6 +382,11 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
   s.time_cache_mib = r.as<double>("time.cache_mib");
   if (!(s.time_cache_mib >= 0.0 && s.time_cache_mib <= 1e9))
     throw InputError("scene key 'time.cache_mib': must be in [0, 1e9] MiB");
+  if (!r.isAuto("limits.memory_mib")) {
+    s.memory_limit_mib = r.as<double>("limits.memory_mib");
+    if (!(*s.memory_limit_mib > 0.0 && *s.memory_limit_mib <= 1e12))
+      throw InputError("scene key 'limits.memory_mib': must be auto or in (0, 1e12] MiB");
+  }
   s.volume_files = readSeries(r, "volume.files", base_dir, files_from_override);
   if (!s.volume_files.empty() && !vol.file.empty())
     throw InputError("scene keys 'volume.file' and 'volume.files' are both set: use one");
@@ -386,9 +432,21 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
   if (!r.isAuto("transfer.range")) {
     auto v = r.numbers("transfer.range", 2);
     if (!(v[1] > v[0])) throw InputError("scene key 'transfer.range': needs lo < hi");
+    // Samples are floats on the GPU: the range must be one, and wide enough not to collapse there.
+    for (double x : v)
+      if (std::abs(x) > 1e38)
+        throw InputError("scene key 'transfer.range': " + numText(x) +
+                         " is beyond float's range (+-3.4e38)");
+    if (v[1] - v[0] < 1e-6 * std::max(std::abs(v[0]), std::abs(v[1])))
+      throw InputError("scene key 'transfer.range': [" + numText(v[0]) + ", " + numText(v[1]) +
+                       "] is narrower than float precision at that magnitude (hi - lo must be at "
+                       "least 1e-6 of |hi|)");
     tf.range = std::make_pair(v[0], v[1]);
   }
-  if (!r.isAuto("transfer.unit_length")) tf.unit_length = r.as<double>("transfer.unit_length");
+  if (!r.isAuto("transfer.unit_length")) {
+    tf.unit_length = r.as<double>("transfer.unit_length");
+    checkLength("transfer.unit_length", *tf.unit_length);
+  }
   tf.table_size = r.as<int>("transfer.table_size");
   if (tf.table_size < 2 || tf.table_size > 65536)
     throw InputError("scene key 'transfer.table_size': must be in [2, 65536]");
@@ -416,13 +474,17 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
   s.background = r.vec3("image.background");
   s.look_at_auto = r.isAuto("camera.look_at");
   cam.look_at = s.look_at_auto ? glm::dvec3(0.0) : r.vec3("camera.look_at");
+  checkCoordinates("camera.look_at", cam.look_at);
   s.camera_auto = r.isAuto("camera.position");
   if (!s.camera_auto) cam.position = r.vec3("camera.position");
+  checkCoordinates("camera.position", cam.position);
   cam.up = r.vec3("camera.up");
+  checkCoordinates("camera.up", cam.up);
   cam.fov_deg = r.as<double>("camera.fov");
   if (!(cam.fov_deg > 0.0 && cam.fov_deg < 180.0))
     throw InputError("scene key 'camera.fov': must be in (0, 180) degrees");
-  if (glm::length(cam.up) == 0.0) throw InputError("scene key 'camera.up': must not be zero");
+  if (!(glm::length(cam.up) >= kMinLength))
+    throw InputError("scene key 'camera.up': must not be zero (its length must be at least 1e-12)");
   s.orbit_frames = r.as<int>("camera.orbit.frames");
   if (s.orbit_frames < 0) throw InputError("scene key 'camera.orbit.frames': must be >= 0");
   s.orbit_elevation = r.as<double>("camera.orbit.elevation");
@@ -431,6 +493,7 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
   if (!r.isAuto("camera.orbit.radius")) {
     s.orbit_radius = r.as<double>("camera.orbit.radius");
     if (!(*s.orbit_radius > 0.0)) throw InputError("scene key 'camera.orbit.radius': must be > 0");
+    checkLength("camera.orbit.radius", *s.orbit_radius);
   }
   if (!s.camera_auto && s.orbit_frames == 0) {
     if (glm::length(cam.look_at - cam.position) == 0.0)

@@ -71,6 +71,7 @@ struct Scene {
   int time_step = 0;
   int time_steps = 1;          // steps of the series (1 without one)
   double time_cache_mib = 1024;  // host memory per rank for cached steps (resident sessions)
+  std::optional<double> memory_limit_mib;  // limits.memory_mib; unset: from MemAvailable
 
   bool hasVolume() const { return !volume.file.empty() || volume.procedural != "none"; }
 

@@ -124,9 +124,9 @@ const std::vector<SceneKey>& sceneKeys() {
       {"image.background", "[0, 0, 0]",
        "Colour the frame is composited over when written (premultiplied images stay exact)."},
       {"camera.position", "auto",
-       "Eye position. `auto`: 2 x the largest extent of the scene's bounds (the volume box, "
-       "grown to hold the particles' domain) from `camera.look_at`, along (0.55, 0.35, 1). Must "
-       "lie outside the volume."},
+       "Eye position. `auto`: along (0.55, 0.35, 1) from `camera.look_at`, just far enough that "
+       "the bounding sphere of the scene's bounds (the volume box, grown to hold the particles' "
+       "domain) fits the vertical and the horizontal field of view. Must lie outside the volume."},
       {"camera.look_at", "auto",
        "Point the camera looks at. `auto`: the centre of the scene's bounds (the volume box, "
        "grown to hold the particles' domain; for a volume alone, the origin)."},
@@ -138,7 +138,8 @@ const std::vector<SceneKey>& sceneKeys() {
       {"camera.orbit.elevation", "0", "Tilt of the orbit circle in degrees (-90 ... 90)."},
       {"camera.orbit.radius", "auto",
        "Orbit radius. `auto`: 2 x the largest extent of the scene's bounds (the volume box, "
-       "grown to hold the particles' domain; the paper's R)."},
+       "grown to hold the particles' domain; the paper's R, kept for the benchmark protocol: it "
+       "may crop a wide scene, which `camera.position: auto` does not)."},
       {"bricks.per_axis", "2", "d: the volume is cut into d x d x d bricks."},
       {"render.backend", "osmesa",
        "OpenGL backend: `osmesa` (software) or `egl` (surfaceless platform, or the device "
@@ -241,6 +242,9 @@ const std::vector<SceneKey>& sceneKeys() {
       {"time.cache_mib", "1024",
        "A resident session (`sortlast serve`) keeps the samples and particles of recent time steps "
        "in memory, up to this many MiB per rank, so going back to a step needs no reading."},
+      {"limits.memory_mib", "auto",
+       "Memory a rank may use, MiB; scenes estimated to need more are refused before loading. "
+       "`auto`: 90% of MemAvailable (/proc/meminfo), shared by the ranks on the node."},
       {"reference.step", "0.0625",
        "Step of the CPU reference integrator, in units of the smallest voxel spacing."},
       {"reference.field", "original",

@@ -9,6 +9,7 @@
 #include <climits>
 #include <cstdio>
 #include <exception>
+#include <new>
 #include <string>
 #include <utility>
 
@@ -21,6 +22,29 @@ namespace sortlast {
 struct JobFailed {
   std::string message;
 };
+
+// What the job is doing (set by PhaseScope), so an allocation that fails despite the memory
+// estimate (master/memory_budget.h) still says where: the last resort before std::bad_alloc.
+inline thread_local std::string g_phase = "starting";
+
+struct PhaseScope {
+  explicit PhaseScope(std::string phase) : saved_(std::move(g_phase)) {
+    g_phase = std::move(phase);
+  }
+  ~PhaseScope() { g_phase = std::move(saved_); }
+  PhaseScope(const PhaseScope&) = delete;
+  PhaseScope& operator=(const PhaseScope&) = delete;
+
+ private:
+  std::string saved_;
+};
+
+inline std::string outOfMemoryMessage() {
+  return "out of memory while " + g_phase +
+         " (std::bad_alloc): the scene needs more memory than this rank could allocate; "
+         "lower limits.memory_mib to have such scenes refused up front, or use fewer samples, "
+         "particles or pixels per rank";
+}
 
 // `while_waiting` runs over and over while this rank waits for the others to finish the step
 // (the failure flag is reduced without blocking), so a rank that is done early can do useful
@@ -35,6 +59,9 @@ void collectively(MPI_Comm comm, Step&& step, Idle&& while_waiting) {
     step();
   } catch (const InputError& e) {
     message = e.what();
+  } catch (const std::bad_alloc&) {
+    message =
+        (size > 1 ? "rank " + std::to_string(rank) + ": " : std::string()) + outOfMemoryMessage();
   } catch (const std::exception& e) {
     message = (size > 1 ? "rank " + std::to_string(rank) + ": " : std::string()) + e.what();
   }

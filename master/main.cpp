@@ -9,8 +9,10 @@
 #include "common/error.h"
 #include "common/scene.h"
 #include "master/adaptive_stats_job.h"
+#include "master/collective.h"
 #include "master/compare.h"
 #include "master/compare_surface.h"
+#include "master/mpi_errors.h"
 #include "master/reference_job.h"
 #include "master/render_job.h"
 #include "master/serve_job.h"
@@ -224,7 +226,18 @@ int main(int argc, char** argv) {
   // The service's front end runs threads on rank 0, but only the main thread calls MPI.
   int provided = 0;
   MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
-  int code = *serve ? runServeJob(serve_opts, MPI_COMM_WORLD) : runRenderJob(render_opts, MPI_COMM_WORLD);
+  installMpiErrorHandler(MPI_COMM_WORLD);
+  int code = 1;
+  try {
+    code = *serve ? runServeJob(serve_opts, MPI_COMM_WORLD)
+                  : runRenderJob(render_opts, MPI_COMM_WORLD);
+  } catch (const std::bad_alloc&) {
+    // Outside any collective step: the other ranks cannot learn of it, so the job ends here.
+    int rank = 0;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    std::fprintf(stderr, "sortlast: error: rank %d: %s\n", rank, outOfMemoryMessage().c_str());
+    MPI_Abort(MPI_COMM_WORLD, 1);
+  }
   MPI_Finalize();
   return code;
 }

@@ -6,9 +6,9 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <optional>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include "common/error.h"
 #include "compositing/compositor.h"
@@ -18,6 +18,7 @@
 #include "master/brick_renderer.h"
 #include "master/collective.h"
 #include "master/frame_stats.h"
+#include "master/memory_budget.h"
 #include "master/particle_loading.h"
 #include "master/session_layout.h"
 #include "master/step_data.h"
@@ -27,9 +28,10 @@ namespace sortlast {
 
 namespace {
 
-// Fault injection for the tests: a rank that throws (the others must stop cleanly) or dies (mpirun
-// must end the job), before its first brick, or after its first brick's image has gone to the
-// compositor (direct send has then started sending it). Inert unless the variables are set.
+// Fault injection for the tests: a rank that throws (the others must stop cleanly), dies (mpirun
+// must end the job) or meets an MPI error (master/mpi_errors.h must name it), before its first
+// brick, or after its first brick's image has gone to the compositor (direct send has then
+// started sending it). Inert unless the variables are set.
 bool isTestFaultRank(const char* var, int rank) {
   const char* v = std::getenv(var);
   return v && std::atoi(v) == rank;
@@ -39,6 +41,12 @@ void injectTestFault(int rank) {
   if (isTestFaultRank("SORTLAST_TEST_FAIL_RANK", rank))
     throw std::runtime_error("injected failure (SORTLAST_TEST_FAIL_RANK)");
   if (isTestFaultRank("SORTLAST_TEST_CRASH_RANK", rank)) std::abort();
+  // A send to a rank that does not exist: an MPI error.
+  if (isTestFaultRank("SORTLAST_TEST_MPI_ERROR_RANK", rank)) {
+    int size = 1, unused = 0;
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    MPI_Send(&unused, 1, MPI_INT, size + 7, 0, MPI_COMM_WORLD);
+  }
 }
 
 void injectLateTestFault(int rank) {
@@ -112,6 +120,8 @@ struct RenderSession::State {
   std::unique_ptr<Compositor> compositor;
   CompositorKey compositor_key;
   int frames_rendered = 0;
+  MemoryBudget budget;            // what this rank may use (memory_budget.h)
+  long long particles_total = 0;  // of the first step, for the memory estimates of requests
   // In situ: the step's bricks come from the caller.
   bool external = false;
   std::optional<ExternalStep> ext;
@@ -142,6 +152,11 @@ RenderSession::RenderSession(SessionOptions options, MPI_Comm comm) : s_(std::ma
     if (S.base.hasVolume()) validateVolume(S.base.volume);
   });
   const Scene& scene = S.base;
+  S.budget = memoryBudget(scene, comm);
+  // Rank 0 reads the whole particle set first: bounded before it is read.
+  collectively(comm, [&] {
+    if (S.rank == 0) checkMemory(particleSetNeed(scene), S.budget, 0, "the scene's particle set");
+  });
   // Particles: rank 0 loads the current step; the brick grid and the camera frame the centres of
   // every step of a series (read once here, then dropped).
   RootParticles first;
@@ -157,8 +172,13 @@ RenderSession::RenderSession(SessionOptions options, MPI_Comm comm) : s_(std::ma
       if (r.total > 0) centres = isEmpty(centres) ? r.bounds : unite(centres, r.bounds);
     }
   }
+  S.particles_total = first.total;
   collectively(comm, [&] {
+    PhaseScope phase("laying out the bricks");
     S.layout = makeLayout(scene, centres, S.rank, S.size);
+    // Before the first large allocation (image targets, samples, particles): on every rank.
+    checkMemory(sessionNeed(scene, S.layout, S.particles_total, S.rank, S.opts.resident), S.budget,
+                S.rank, "the scene");
     std::vector<Camera> cams = scene.frameCameras(S.layout.bounds);
     for (size_t i = 0; i < cams.size(); ++i)
       checkCameraOutside(cams[i], S.layout.bounds,
@@ -193,6 +213,7 @@ std::unique_ptr<RenderSession> RenderSession::external(SessionOptions options, M
     S->base = parseScene(S->opts.scene, S->opts.overrides);
     S->renderer = std::make_unique<BrickRenderer>(S->base.backend, S->base.camera.width, S->base.camera.height);
   });
+  S->budget = memoryBudget(S->base, comm);  // requests' image sizes are checked against it
   S->cache = std::make_unique<StepCache>(0.0);
   return std::unique_ptr<RenderSession>(new RenderSession(std::move(S)));
 }
@@ -259,6 +280,12 @@ Scene RenderSession::State::resolve(const FrameRequest& request) const {
   if (request.orbit_frame >= int(cams.size()))
     throw InputError("orbit frame " + std::to_string(request.orbit_frame) + " of " + std::to_string(cams.size()));
   checkCameraOutside(cams[size_t(std::max(0, request.orbit_frame))], layout.bounds);
+  // A request's image size must fit beside the data the session holds.
+  const int d = sc.bricks_per_axis;
+  checkMemory(external ? imageNeed(sc, sc.camera.width, sc.camera.height, rank,
+                                   int(layout.mine.size()), d * d * d)
+                       : sessionNeed(sc, layout, particles_total, rank, opts.resident),
+              budget, rank, "the request");
   return sc;
 }
 
@@ -313,6 +340,7 @@ void RenderSession::State::bringGpuTo(const Scene& scene) {
     gpu = want;
     return;
   }
+  PhaseScope phase("loading time step " + std::to_string(scene.time_step));
   StepData& d = cache->get(scene, layout, adaptive, comm);
   current = &d;
   collectively(comm, [&] {
@@ -320,7 +348,10 @@ void RenderSession::State::bringGpuTo(const Scene& scene) {
       throw std::logic_error("a batch session cannot change its volume renderer or h");
   });
   if (has_particles && d.scattered_h != want.h) scatterStepParticles(d, layout, want.h, comm);
-  collectively(comm, [&] { uploadBricks(scene, d); });
+  collectively(comm, [&] {
+    PhaseScope upload("uploading the bricks to the GPU");
+    uploadBricks(scene, d);
+  });
   // Adaptive steps choose per block from the whole block's range, which no rank holds alone.
   if (scene.hasVolume()) renderer->shareBlockRanges(layout.grid, comm);
   gpu = want;
@@ -332,6 +363,7 @@ FrameResult RenderSession::render(const FrameRequest& request) {
   State& S = *s_;
   const int rank = S.rank;
   Scene sc;
+  PhaseScope phase("rendering a frame");
   collectively(S.comm, [&] { sc = S.resolve(request); });
   S.bringGpuTo(sc);
   const auto [data_min, data_max] = S.dataRange();

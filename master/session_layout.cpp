@@ -37,8 +37,17 @@ SessionLayout makeLayout(const Scene& scene, const Box3& particle_centres, int r
 
 void checkCameraOutside(const Camera& cam, const Box3& box, const std::string& which) {
   const glm::dvec3& p = cam.position;
-  if (!box.contains(p)) return;
   char msg[512];
+  const double size = glm::length(box.extent()), distance = glm::length(p - box.centre());
+  if (!isEmpty(box) && size > 0.0 && distance > kMaxDistanceToExtent * size) {
+    std::snprintf(msg, sizeof msg,
+                  "camera.position (%g, %g, %g)%s is %g away from the scene's centre, %g times the "
+                  "scene's size (%g): beyond 1e6, float math on the GPU cannot resolve the scene "
+                  "from there; move the camera closer",
+                  p.x, p.y, p.z, which.c_str(), distance, distance / size, size);
+    throw InputError(msg);
+  }
+  if (!box.contains(p)) return;
   std::snprintf(msg, sizeof msg,
                 "camera.position (%g, %g, %g)%s is inside the scene, whose box (the volume, "
                 "and the particles grown by their influence radius) is "

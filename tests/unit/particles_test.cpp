@@ -474,27 +474,62 @@ TEST(ParticleScene, NeitherVolumeNorParticlesIsAnError) {
 TEST(ParticleScene, FrameCamerasFollowTheBounds) {
   Scene s = loadScene("", {});
   Box3 vol = s.volume.grid.worldBox();
-  // Today's camera for the volume: 2 x the largest extent from the origin.
+  // The automatic camera: the bounds' bounding sphere (radius r) fits the field of view with 2%
+  // to spare, at distance 1.02 r / sin(fov / 2) for a square image (fov 35 degrees).
+  const double k = 1.02 / std::sin(17.5 * M_PI / 180.0);
   Camera c = s.frameCameras(vol)[0];
   EXPECT_EQ(c.look_at, glm::dvec3(0.0));
-  EXPECT_EQ(c.position, 2.0 * 127.0 * glm::normalize(glm::dvec3(0.55, 0.35, 1.0)));
-  // A box off the origin: looked at from its centre, distance from its largest extent.
+  EXPECT_NEAR(glm::length(c.position), k * 0.5 * 127.0 * std::sqrt(3.0), 1e-9);
+  EXPECT_NEAR(
+      glm::distance(glm::normalize(c.position), glm::normalize(glm::dvec3(0.55, 0.35, 1.0))), 0.0,
+      1e-12);
+  // A box off the origin: looked at from its centre.
   Box3 b{{10, 0, 0}, {14, 2, 1}};
   c = s.frameCameras(b)[0];
   EXPECT_EQ(c.look_at, glm::dvec3(12, 1, 0.5));
-  EXPECT_NEAR(glm::length(c.position - c.look_at), 8.0, 1e-12);
-  // A fixed look_at stays.
+  EXPECT_NEAR(glm::length(c.position - c.look_at), k * 0.5 * std::sqrt(21.0), 1e-12);
+  // A fixed look_at stays; the sphere about it then holds the box's sphere.
   c = loadScene("", {"camera.look_at=[1,2,3]"}).frameCameras(b)[0];
   EXPECT_EQ(c.look_at, glm::dvec3(1, 2, 3));
-  // Orbit radius: 2 x the largest extent.
+  EXPECT_NEAR(glm::length(c.position - c.look_at),
+              k * (0.5 * std::sqrt(21.0) + glm::length(glm::dvec3(11, -1, -2.5))), 1e-9);
+  // Orbit radius: the paper's R, 2 x the largest extent (kept for the benchmark protocol).
   auto orbit = loadScene("", {"camera.orbit.frames=4"}).frameCameras(b);
   ASSERT_EQ(orbit.size(), 4u);
   for (const Camera& o : orbit) EXPECT_NEAR(glm::length(o.position - o.look_at), 8.0, 1e-9);
-  // An empty box (no particles, no volume): the origin, extent 1.
+  // An empty box (no particles, no volume): the unit box about the origin.
   constexpr double inf = std::numeric_limits<double>::infinity();
   c = s.frameCameras(Box3{glm::dvec3(inf), glm::dvec3(-inf)})[0];
   EXPECT_EQ(c.look_at, glm::dvec3(0.0));
-  EXPECT_NEAR(glm::length(c.position), 2.0, 1e-12);
+  EXPECT_NEAR(glm::length(c.position), k * 0.5 * std::sqrt(3.0), 1e-12);
+}
+
+// Issue 15: twice the largest extent cropped a flat 3 x 1 x 3 pool. Every corner of wide, flat,
+// long and thin boxes now projects inside the image, for square, wide and tall images, with at
+// least one pixel to spare.
+TEST(ParticleScene, AutomaticCameraFramesEveryShape) {
+  const Box3 boxes[] = {{{-1.5, -0.5, -1.5}, {1.5, 0.5, 1.5}},
+                        {{-0.5, -0.5, -10}, {0.5, 0.5, 10}},
+                        {{-20, -0.1, -0.1}, {20, 0.1, 0.1}},
+                        {{0, 0, 0}, {1, 30, 1}}};
+  const char* sizes[][2] = {{"image.width=256", "image.height=256"},
+                            {"image.width=400", "image.height=100"},
+                            {"image.width=100", "image.height=400"}};
+  for (const char* fov : {"camera.fov=35", "camera.fov=10", "camera.fov=120"})
+    for (const auto& size : sizes) {
+      Scene s = loadScene("", {size[0], size[1], fov});
+      for (const Box3& b : boxes) {
+        Camera c = s.frameCameras(b)[0];
+        for (int i = 0; i < 8; ++i) {
+          auto p = c.project(b.corner(i));
+          ASSERT_TRUE(p.has_value());
+          EXPECT_GT(p->x, 1.0) << size[0] << " " << fov;
+          EXPECT_LT(p->x, c.width - 1.0) << size[0] << " " << fov;
+          EXPECT_GT(p->y, 1.0) << size[1] << " " << fov;
+          EXPECT_LT(p->y, c.height - 1.0) << size[1] << " " << fov;
+        }
+      }
+    }
 }
 
 }  // namespace

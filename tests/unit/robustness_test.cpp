@@ -1,0 +1,98 @@
+// Issue 15: numbers that would overflow float math on the GPU are refused naming the key and the
+// value, and the memory estimate refuses scenes that cannot fit, naming the need, its largest
+// parts and the budget.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "common/scene.h"
+#include "master/memory_budget.h"
+#include "master/session_layout.h"
+#include "tests/unit/input_error_of.h"
+
+namespace sortlast {
+namespace {
+
+bool has(const std::string& s, const std::string& part) {
+  return s.find(part) != std::string::npos;
+}
+
+TEST(RangeChecks, NameTheKeyAndTheValue) {
+  struct Case {
+    std::vector<std::string> set;
+    std::string key, value;
+  };
+  const Case cases[] = {
+      {{"camera.position=[1e300,0,0]"}, "camera.position", "1e+300"},
+      {{"camera.position=[0,-2e18,5]"}, "camera.position", "-2e+18"},
+      {{"camera.look_at=[0,0,1e19]"}, "camera.look_at", "1e+19"},
+      {{"camera.up=[0,1e30,0]"}, "camera.up", "1e+30"},
+      {{"volume.spacing=[1e-20,1,1]"}, "volume.spacing", "1e-20"},
+      {{"volume.spacing=[1,1e17,1]"}, "volume.spacing", "1.27e+19"},  // extent: 127 x 1e17
+      {{"transfer.range=[0,1e39]"}, "transfer.range", "1e+39"},
+      {{"transfer.range=[1e10,1.000001e10]"}, "transfer.range", "1e+10"},
+      {{"transfer.unit_length=1e-30"}, "transfer.unit_length", "1e-30"},
+      {{"particles.procedural=layers", "particles.radius=1e19"}, "particles.radius", "1e+19"},
+      {{"particles.procedural=layers", "particles.spacing=1e-13"}, "particles.spacing", "1e-13"},
+      {{"camera.orbit.radius=1e20"}, "camera.orbit.radius", "1e+20"},
+  };
+  for (const Case& c : cases) {
+    std::string msg = inputErrorOf([&] { loadScene("", c.set); });
+    EXPECT_TRUE(has(msg, c.key) && has(msg, c.value)) << c.set[0] << ": " << msg;
+  }
+  // NaN and infinities are named too (YAML .nan / .inf).
+  for (const char* s : {"camera.position=[.nan,0,0]", "camera.up=[0,.inf,0]",
+                        "volume.spacing=[1,-.inf,1]", "transfer.range=[0,.nan]"}) {
+    std::string msg = inputErrorOf([&] { loadScene("", {s}); });
+    std::string key = std::string(s).substr(0, std::string(s).find('='));
+    EXPECT_TRUE(has(msg, key) && has(msg, "finite")) << s << ": " << msg;
+  }
+  std::string msg = inputErrorOf([] {
+    loadScene("", {"particles.procedural=layers", "particles.radius=.nan"});
+  });
+  EXPECT_TRUE(has(msg, "particles.radius")) << msg;
+  // Just inside the limits is fine.
+  EXPECT_NO_THROW(loadScene("", {"camera.position=[1e17,0,0]", "transfer.range=[-1e30,1e30]"}));
+}
+
+TEST(RangeChecks, CameraTooFarFromTheSceneIsNamed) {
+  Box3 box{glm::dvec3(-1), glm::dvec3(1)};  // size 2 sqrt(3)
+  Camera c;
+  c.position = {4e6, 0, 0};  // 1.15e6 sizes away
+  std::string msg = inputErrorOf([&] { checkCameraOutside(c, box); });
+  EXPECT_TRUE(has(msg, "camera.position") && has(msg, "4e+06") && has(msg, "1e6")) << msg;
+  c.position = {3e6, 0, 0};  // 0.87e6 sizes: allowed
+  EXPECT_NO_THROW(checkCameraOutside(c, box));
+}
+
+TEST(MemoryBudget, RefusesWhatCannotFitNamingTheParts) {
+  // issue 15's case: a 2000^3 procedural volume on 2 ranks: 4e9 samples with ghosts per rank,
+  // 4 bytes on the host and 4 in the texture: > 30 GiB.
+  Scene s = loadScene("", {"volume.procedural=sphere", "volume.dims=[2000,2000,2000]"});
+  SessionLayout layout = makeLayout(s, Box3{glm::dvec3(1), glm::dvec3(-1)}, 0, 2);
+  MemoryNeed need = sessionNeed(s, layout, 0, 0, false);
+  const double samples = 0.5 * 2001.0 * 2001.0 * 2001.0;  // half the bricks, ghosts included
+  EXPECT_GT(need.total(), 8.0 * samples * 0.99);
+  EXPECT_LT(need.total(), 8.0 * samples * 1.05);  // the image's share is small
+  MemoryBudget budget{16.0 * 1024 * 1024 * 1024, "16384 MiB (test)"};
+  std::string msg = inputErrorOf([&] { checkMemory(need, budget, 0, "the scene"); });
+  EXPECT_TRUE(has(msg, "needs about 306") && has(msg, "rank 0") && has(msg, "bricks' samples") &&
+              has(msg, "16384 MiB (test)"))
+      << msg;
+  // Sizes beyond 2^32 samples per brick do not wrap around (size_t and double arithmetic).
+  Scene huge = loadScene("", {"volume.dims=[1048576,1048576,1048576]"});
+  SessionLayout hl = makeLayout(huge, Box3{glm::dvec3(1), glm::dvec3(-1)}, 0, 1);
+  EXPECT_GT(sessionNeed(huge, hl, 0, 0, false).total(), 8.0 * 1.1e18);
+  // Images: a 32768^2 frame alone needs > 40 GiB on rank 0.
+  Scene big = loadScene("", {"image.width=32768", "image.height=32768"});
+  EXPECT_GT(imageNeed(big, 32768, 32768, 0, 4, 8).total(), 40.0 * 1024 * 1024 * 1024);
+  // The default scene fits in 1 GiB.
+  Scene small = loadScene("", {});
+  SessionLayout sl = makeLayout(small, Box3{glm::dvec3(1), glm::dvec3(-1)}, 0, 1);
+  EXPECT_NO_THROW(checkMemory(sessionNeed(small, sl, 0, 0, false),
+                              MemoryBudget{1024.0 * 1024 * 1024, "1 GiB"}, 0, "x"));
+}
+
+}  // namespace
+}  // namespace sortlast
