@@ -1,6 +1,7 @@
-"""Summarises scripts/bench-accuracy: OUT/accuracy.md (per data set every setting, its Pareto front
-and the fastest setting at >= 45 dB; the adaptive-sampling table like the paper's Tables 5-6) and
-OUT/accuracy.png (seconds per frame against PSNR, one panel per data set).
+"""Summarises scripts/bench-accuracy: OUT/accuracy.md (per data set every setting, the Pareto front of
+the settings without issue 13's features ("old") and of all settings ("new"), the fastest setting at
+>= 45 and >= 50 dB of each; the adaptive-sampling table like the paper's Tables 5-6) and
+OUT/accuracy.png (seconds per frame against PSNR, one panel per data set, both fronts drawn).
 
 Usage: python3 scripts/bench_accuracy_summary.py OUT_DIR
 """
@@ -11,40 +12,64 @@ import os
 import subprocess
 import sys
 
+NEW_TAGS = ("pre", "astep", "shade")  # issue 13's features, as tags in the setting names
 out = sys.argv[1]
 rows = list(csv.DictReader(open(os.path.join(out, "accuracy.csv"))))
 for r in rows:
     r["s_per_frame"] = float(r["s_per_frame"])
     r["psnr_db"] = float(r["psnr_db"])
-    r["family"] = r["setting"].split("_")[0]
-datasets = sorted({r["dataset"] for r in rows}, key=lambda d: ["engine", "neghip", "procedural"].index(d)
-                  if d in ("engine", "neghip", "procedural") else 9)
+    tags = [t for t in r["setting"].split("_")[1:] if t in NEW_TAGS]
+    r["family"] = "+".join([r["setting"].split("_")[0]] + tags)
+    r["new"] = bool(tags)
+order = ["engine", "neghip", "procedural", "headsq"]
+datasets = sorted({r["dataset"] for r in rows}, key=lambda d: order.index(d) if d in order else 9)
+
+
+def pareto(sel):
+    """Fastest first: a setting is on the front if nothing faster is as accurate."""
+    front, best = [], -1.0
+    for r in sorted(sel, key=lambda r: r["s_per_frame"]):
+        if r["psnr_db"] > best:
+            front.append(r)
+            best = r["psnr_db"]
+    return front
+
+
+def fastest(sel, db):
+    ok = sorted([r for r in sel if r["psnr_db"] >= db], key=lambda r: r["s_per_frame"])
+    return (f"**{ok[0]['setting']}** ({ok[0]['s_per_frame']:.3f} s, {ok[0]['psnr_db']:.1f} dB)"
+            if ok else f"none reaches {db} dB")
+
 
 md = ["# Accuracy against speed\n",
       "Frame time (1 rank, 512², d = 2, llvmpipe; mean over frames after the first) against PSNR "
       "versus the CPU reference (mean over the frames). `slicing_sX`: 3D-texture slicing at X "
       "voxels between slices; `raycast_sX_ertE`: GL ray casting at X voxels, early termination at "
       "opacity E (1: off); `adaptive_bB_tT`: ray casting the adaptive blocks (B per axis, "
-      "tolerance T %).\n"]
+      "tolerance T %); `default`: the scene's own settings. Issue 13's tags: `_pre` "
+      "pre-integrated transfer function, `_astep` adaptive step length, `_shade` gradient shading "
+      "(compared with a shaded reference). Old front: the settings without those tags.\n",
+      "\n| data set | default | fastest >= 45 dB, old | fastest >= 45 dB, new | fastest >= 50 dB, old | "
+      "fastest >= 50 dB, new |", "|---|---|---|---|---|---|"]
+for ds in datasets:
+    sel = [r for r in rows if r["dataset"] == ds]
+    old = [r for r in sel if not r["new"]]
+    d = [r for r in sel if r["setting"] == "default"]
+    dflt = f"{d[0]['s_per_frame']:.3f} s, {d[0]['psnr_db']:.1f} dB" if d else "–"
+    md.append(f"| {ds} | {dflt} | {fastest(old, 45)} | {fastest(sel, 45)} | {fastest(old, 50)} | "
+              f"{fastest(sel, 50)} |")
 for ds in datasets:
     sel = sorted([r for r in rows if r["dataset"] == ds], key=lambda r: r["s_per_frame"])
-    front, best = [], -1.0
-    for r in sel:  # fastest first: a setting is on the front if nothing faster is as accurate
-        if r["psnr_db"] > best:
-            front.append(r)
-            best = r["psnr_db"]
-    ok = [r for r in sel if r["psnr_db"] >= 45.0]
-    md += [f"\n## {ds}\n", "| setting | s/frame | PSNR dB (mean) | PSNR dB (worst frame) | max diff | Pareto |",
+    front, old_front = pareto(sel), pareto([r for r in sel if not r["new"]])
+    md += [f"\n## {ds}\n", "| setting | s/frame | PSNR dB (mean) | PSNR dB (worst frame) | max diff | front |",
            "|---|---|---|---|---|---|"]
     for r in sorted(sel, key=lambda r: (r["family"], r["setting"])):
+        on = ["old"] * (r in old_front) + ["new"] * (r in front)
         md.append(f"| {r['setting']} | {r['s_per_frame']:.3f} | {r['psnr_db']:.1f} | "
-                  f"{float(r['psnr_min_db']):.1f} | {r['max_diff']} | {'yes' if r in front else ''} |")
-    md.append("")
-    md.append("Pareto front (fastest first): " +
-              ", ".join(f"{r['setting']} ({r['s_per_frame']:.3f} s, {r['psnr_db']:.1f} dB)" for r in front))
-    md.append("")
-    md.append("Fastest at >= 45 dB: " + (f"**{ok[0]['setting']}** ({ok[0]['s_per_frame']:.3f} s, "
-                                          f"{ok[0]['psnr_db']:.1f} dB)" if ok else "none reaches 45 dB"))
+                  f"{float(r['psnr_min_db']):.1f} | {r['max_diff']} | {', '.join(on)} |")
+    for name, f in (("old", old_front), ("new", front)):
+        md += ["", f"Pareto front, {name} (fastest first): " +
+               ", ".join(f"{r['setting']} ({r['s_per_frame']:.3f} s, {r['psnr_db']:.1f} dB)" for r in f)]
 
 # The paper's Tables 5-6: data left and preprocessing time per tolerance and block count.
 stats = sorted(glob.glob(os.path.join(out, "stats", "*__adaptive-stats_*.json")))
@@ -79,16 +104,28 @@ for ds in datasets:
         with open(dat, "w") as f:
             for r in sorted(pts, key=lambda r: r["s_per_frame"]):
                 f.write(f"{r['s_per_frame']} {r['psnr_db']} \"{r['setting'].split('_', 1)[1]}\"\n")
-        series.append(f'"{dat}" using 1:2 with points pt 7 ps 1.3 title "{fam}", '
-                      f'"{dat}" using 1:2:3 with labels offset 0,0.8 font ",7" notitle')
+        series.append(f'"{dat}" using 1:2 with points pt 7 ps 1.1 title "{fam}", '
+                      f'"{dat}" using 1:2:3 with labels offset 0,0.8 font ",6" notitle')
+    sel = [r for r in rows if r["dataset"] == ds]
+    for name, colour, f in (("old front", "gray40", pareto([r for r in sel if not r["new"]])),
+                            ("new front", "black", pareto(sel))):
+        dat = os.path.join(out, f"acc_{ds}_front_{name[:3]}.dat")
+        with open(dat, "w") as fh:
+            for r in f:
+                fh.write(f"{r['s_per_frame']} {r['psnr_db']}\n")
+        series.append(f'"{dat}" using 1:2 with steps lw 2 lc rgb "{colour}" '
+                      f'dashtype {2 if name.startswith("old") else 1} title "{name}"')
     panels.append((ds, series))
 png = os.path.join(out, "accuracy.png")
-script = [f'set terminal pngcairo size {420 * max(1, len(panels))},460 font ",10"', f'set output "{png}"',
-          f'set multiplot layout 1,{max(1, len(panels))} title "Frame time vs PSNR against the CPU reference (512^2, 1 rank, llvmpipe)"',
+cols = min(2, max(1, len(panels)))
+rows_n = (len(panels) + cols - 1) // cols
+script = [f'set terminal pngcairo size {640 * cols},{520 * rows_n} font ",10"', f'set output "{png}"',
+          f'set multiplot layout {rows_n},{cols} title "Frame time vs PSNR against the CPU reference (512^2, 1 rank, llvmpipe)"',
           'set termoption noenhanced', 'set xlabel "seconds per frame"', 'set ylabel "PSNR (dB)"', "set grid", "set key bottom right",
           "set logscale x"]
 for ds, series in panels:
-    script += [f'set title "{ds}"', "plot 45 with lines dashtype 2 lc rgb 'gray' title '45 dB', " + ", ".join(series)]
+    script += [f'set title "{ds}"', "plot 45 with lines dashtype 2 lc rgb 'gray' title '45 dB', "
+               "50 with lines dashtype 3 lc rgb 'gray' title '50 dB', " + ", ".join(series)]
 script.append("unset multiplot")
 subprocess.run(["gnuplot"], input="\n".join(script), text=True, check=True)
 for f in glob.glob(os.path.join(out, "acc_*.dat")):
