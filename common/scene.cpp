@@ -450,7 +450,10 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
   tf.table_size = r.as<int>("transfer.table_size");
   if (tf.table_size < 2 || tf.table_size > 65536)
     throw InputError("scene key 'transfer.table_size': must be in [2, 65536]");
-  tf.preintegrated = r.as<bool>("transfer.preintegrated");
+  // `auto` (the default): on wherever it is supported, decided below once the spacing and adaptive
+  // sampling are known.
+  const bool preintegrated_auto = r.isAuto("transfer.preintegrated");
+  tf.preintegrated = preintegrated_auto ? false : r.as<bool>("transfer.preintegrated");
   // Validate the points now (range and unit length are placeholders until the data is known).
   TransferFunction(tf.points, 0.0, 1.0, tf.unit_length.value_or(1.0));
   // A colour map replaces the points' colours (their opacity stays): resolved here, once per
@@ -552,6 +555,7 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
   if (!(s.adaptive_tolerance >= 0.0 && s.adaptive_tolerance <= 100.0))
     throw InputError("scene key 'adaptive.tolerance': must be in [0, 100] percent");
   s.adaptive_tolerance /= 100.0;
+  if (preintegrated_auto) s.transfer.preintegrated = s.adaptive_tolerance == 0.0 && s.sample_spacing <= 2.0;
   if (s.transfer.preintegrated && s.adaptive_tolerance > 0.0)
     throw InputError("scene keys 'transfer.preintegrated' and 'adaptive.tolerance': pre-integration "
                      "is not supported with adaptive sampling; set transfer.preintegrated: false or "

@@ -47,10 +47,10 @@ struct Scene {
   glm::dvec3 background{0.0};
   int bricks_per_axis = 2;
   std::string backend = "osmesa";
-  double sample_spacing = 1.0;  // in units of the smallest voxel spacing
+  double sample_spacing = 0.5;  // in units of the smallest voxel spacing
   int block_cells = 64;         // empty-space skipping granularity (slicing)
   int ray_block_cells = 8;      // the ray caster's skipping and step blocks
-  std::string volume_method = "slicing";  // slicing | raycast
+  std::string volume_method = "raycast";  // slicing | raycast
   double ert_threshold = 0.99;            // ray casting: early ray termination opacity
   Shading shading;                        // gradient shading of the volume (render.shading*)
   bool adaptive_step = false;             // ray casting: a block takes every m-th lattice sample

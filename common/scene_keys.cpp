@@ -112,8 +112,9 @@ const std::vector<SceneKey>& sceneKeys() {
        "sample spacings are corrected with 1 - (1 - a)^(ds / unit_length). `auto`: the "
        "smallest voxel spacing."},
       {"transfer.table_size", "4096", "Entries in the transfer-function lookup table used by GL."},
-      {"transfer.preintegrated", "false",
-       "Pre-integrated transfer function (Engel, Kraus and Ertl 2001) in both GL volume renderers: "
+      {"transfer.preintegrated", "auto",
+       "`auto`: true unless `adaptive.tolerance` is above 0 or `render.sample_spacing` above 2 "
+       "(where it is not supported). Pre-integrated transfer function (Engel, Kraus and Ertl 2001) in both GL volume renderers: "
        "each ray segment between two samples takes the exact emission-absorption integral of a "
        "value going linearly from its front to its back value, from a 256 x 256 table rebuilt when "
        "the transfer function or the sample spacing changes (about 30 ms). Coarse steps stay "
@@ -144,9 +145,11 @@ const std::vector<SceneKey>& sceneKeys() {
       {"render.backend", "osmesa",
        "OpenGL backend: `osmesa` (software) or `egl` (surfaceless platform, or the device "
        "platform on an NVIDIA GPU)."},
-      {"render.sample_spacing", "1.0",
+      {"render.sample_spacing", "0.5",
        "Distance between slices (ray casting: between samples along each ray), in units of "
-       "the smallest voxel spacing (the paper: 1)."},
+       "the smallest voxel spacing (the paper: 1). The default 0.5, with ray casting and "
+       "pre-integration, reaches 45 dB against the reference on the benchmark's four data sets "
+       "(results/accuracy)."},
       {"render.block_cells", "64",
        "Slicing: empty-space skipping; bricks are cut into blocks of this many cells per axis, and "
        "blocks whose values all map to zero opacity are not drawn (ray casting: "
@@ -157,7 +160,7 @@ const std::vector<SceneKey>& sceneKeys() {
        "values all map to zero opacity is jumped, and with its neighbours at once: each block knows "
        "its distance to the nearest block that is not empty. Also the blocks whose range picks the "
        "step of `render.adaptive_step`. (`render.block_cells` is the slicing renderer's.)"},
-      {"render.method", "slicing",
+      {"render.method", "raycast",
        "Volume renderer: `slicing` (3D-texture slicing, the paper's) or `raycast` (a GL ray caster "
        "per brick, front to back on samples `render.sample_spacing` apart along each ray, with "
        "early ray termination and empty blocks jumped along the ray)."},

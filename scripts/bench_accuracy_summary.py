@@ -13,8 +13,11 @@ import subprocess
 import sys
 
 NEW_TAGS = ("pre", "astep", "shade")  # issue 13's features, as tags in the setting names
+# The setting that is sortlast's defaults (common/scene_keys.cpp: ray casting, 0.5 voxel, ERT 0.99,
+# pre-integration `auto`); change both together.
+DEFAULTS = "raycast_s0.5_ert0.99_pre"
 out = sys.argv[1]
-rows = list(csv.DictReader(open(os.path.join(out, "accuracy.csv"))))
+rows = [r for r in csv.DictReader(open(os.path.join(out, "accuracy.csv"))) if r["setting"] != "default"]
 for r in rows:
     r["s_per_frame"] = float(r["s_per_frame"])
     r["psnr_db"] = float(r["psnr_db"])
@@ -46,15 +49,16 @@ md = ["# Accuracy against speed\n",
       "versus the CPU reference (mean over the frames). `slicing_sX`: 3D-texture slicing at X "
       "voxels between slices; `raycast_sX_ertE`: GL ray casting at X voxels, early termination at "
       "opacity E (1: off); `adaptive_bB_tT`: ray casting the adaptive blocks (B per axis, "
-      "tolerance T %); `default`: the scene's own settings. Issue 13's tags: `_pre` "
+      "tolerance T %). Issue 13's tags: `_pre` "
       "pre-integrated transfer function, `_astep` adaptive step length, `_shade` gradient shading "
-      "(compared with a shaded reference). Old front: the settings without those tags.\n",
-      "\n| data set | default | fastest >= 45 dB, old | fastest >= 45 dB, new | fastest >= 50 dB, old | "
+      "(compared with a shaded reference). Old front: the settings without those tags. "
+      f"The defaults are `{DEFAULTS}`.\n",
+      "\n| data set | the defaults | fastest >= 45 dB, old | fastest >= 45 dB, new | fastest >= 50 dB, old | "
       "fastest >= 50 dB, new |", "|---|---|---|---|---|---|"]
 for ds in datasets:
     sel = [r for r in rows if r["dataset"] == ds]
     old = [r for r in sel if not r["new"]]
-    d = [r for r in sel if r["setting"] == "default"]
+    d = [r for r in sel if r["setting"] == DEFAULTS]
     dflt = f"{d[0]['s_per_frame']:.3f} s, {d[0]['psnr_db']:.1f} dB" if d else "–"
     md.append(f"| {ds} | {dflt} | {fastest(old, 45)} | {fastest(sel, 45)} | {fastest(old, 50)} | "
               f"{fastest(sel, 50)} |")
@@ -93,6 +97,12 @@ print("\n".join(md))
 
 # Chart: one panel per data set, one point series per family.
 families = sorted({r["family"] for r in rows})
+# The front measured before issue 13 (its build, 2026-11-23; no head CT then), if kept beside.
+before_csv = os.path.join(out, "accuracy_before_issue13.csv")
+before = []
+if os.path.exists(before_csv):
+    before = [dict(r, s_per_frame=float(r["s_per_frame"]), psnr_db=float(r["psnr_db"]))
+              for r in csv.DictReader(open(before_csv))]
 panels = []
 for ds in datasets:
     series = []
@@ -103,18 +113,22 @@ for ds in datasets:
             continue
         with open(dat, "w") as f:
             for r in sorted(pts, key=lambda r: r["s_per_frame"]):
-                f.write(f"{r['s_per_frame']} {r['psnr_db']} \"{r['setting'].split('_', 1)[1]}\"\n")
-        series.append(f'"{dat}" using 1:2 with points pt 7 ps 1.1 title "{fam}", '
+                f.write(f"{r['s_per_frame']} {r['psnr_db']} \"{r['setting'].split('_', 1)[-1]}\"\n")
+        pt = [7, 5, 9, 11, 13, 15, 4, 6, 8, 10, 12, 14][families.index(fam) % 12]
+        series.append(f'"{dat}" using 1:2 with points pt {pt} ps 1.1 title "{fam}", '
                       f'"{dat}" using 1:2:3 with labels offset 0,0.8 font ",6" notitle')
     sel = [r for r in rows if r["dataset"] == ds]
-    for name, colour, f in (("old front", "gray40", pareto([r for r in sel if not r["new"]])),
-                            ("new front", "black", pareto(sel))):
-        dat = os.path.join(out, f"acc_{ds}_front_{name[:3]}.dat")
+    fronts = [("old settings, today's code", "gray40", pareto([r for r in sel if not r["new"]])),
+              ("all settings", "black", pareto(sel))]
+    if any(r["dataset"] == ds for r in before):
+        fronts.insert(0, ("before issue 13", "red", pareto([r for r in before if r["dataset"] == ds])))
+    for name, colour, f in fronts:
+        dat = os.path.join(out, f"acc_{ds}_front_{fronts.index((name, colour, f))}.dat")
         with open(dat, "w") as fh:
             for r in f:
                 fh.write(f"{r['s_per_frame']} {r['psnr_db']}\n")
         series.append(f'"{dat}" using 1:2 with steps lw 2 lc rgb "{colour}" '
-                      f'dashtype {2 if name.startswith("old") else 1} title "{name}"')
+                      f'dashtype {1 if name == "all settings" else 2} title "front: {name}"')
     panels.append((ds, series))
 png = os.path.join(out, "accuracy.png")
 cols = min(2, max(1, len(panels)))
