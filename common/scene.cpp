@@ -313,6 +313,14 @@ bool isFrameKey(const std::string& path) {
   return false;
 }
 
+bool hasSteepOpacity(const std::vector<TfPoint>& points) {
+  for (size_t i = 1; i < points.size(); ++i) {
+    const double dx = points[i].value - points[i - 1].value, da = std::abs(points[i].a - points[i - 1].a);
+    if (da > 0.0 && da >= kSteepOpacitySlope * dx) return true;
+  }
+  return false;
+}
+
 Scene parseScene(const SceneText& text, const std::vector<std::string>& overrides) {
   const std::string& path = text.path;
   YAML::Node root(YAML::NodeType::Map);
@@ -555,7 +563,9 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
   if (!(s.adaptive_tolerance >= 0.0 && s.adaptive_tolerance <= 100.0))
     throw InputError("scene key 'adaptive.tolerance': must be in [0, 100] percent");
   s.adaptive_tolerance /= 100.0;
-  if (preintegrated_auto) s.transfer.preintegrated = s.adaptive_tolerance == 0.0 && s.sample_spacing <= 2.0;
+  if (preintegrated_auto)
+    s.transfer.preintegrated = s.adaptive_tolerance == 0.0 && s.sample_spacing <= 2.0 &&
+                               hasSteepOpacity(s.transfer.points);
   if (s.transfer.preintegrated && s.adaptive_tolerance > 0.0)
     throw InputError("scene keys 'transfer.preintegrated' and 'adaptive.tolerance': pre-integration "
                      "is not supported with adaptive sampling; set transfer.preintegrated: false or "

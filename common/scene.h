@@ -34,6 +34,15 @@ struct TransferSpec {
   TransferFunction build(double data_min, double data_max, double min_spacing) const;
 };
 
+// transfer.preintegrated `auto` turns pre-integration on where the opacity changes steeply: some
+// stretch between control points changes it by kSteepOpacitySlope x the stretch's width (in the
+// normalised range), i.e. by 0.5 or more within 10 % of the range. Measured (results/accuracy, 0.5
+// voxel): on neghip's narrow band it gains 13 dB (34.8 -> 48.0) for 10 % more time; on smooth
+// functions (the engine's ramp, slope 1; the head CT's, 3.5; the default preset's, 1.5) it gains
+// nothing or loses (engine 53.2 -> 48.0 dB) and costs 50-70 % more time.
+inline constexpr double kSteepOpacitySlope = 5.0;
+bool hasSteepOpacity(const std::vector<TfPoint>& points);
+
 struct Scene {
   VolumeDesc volume;           // none when volume.procedural is `none` and there is no file
   ParticleDesc particles;

@@ -169,8 +169,17 @@ TEST(Scene, CompositingStrategies) {
 }
 
 TEST(Scene, Preintegration) {
-  EXPECT_FALSE(loadScene("", {}).transfer.preintegrated);
-  EXPECT_EQ(tableDefault("transfer.preintegrated"), "false");
+  // `auto`: on where the opacity is steep (0.5 within 10 % of the range), where supported.
+  EXPECT_EQ(tableDefault("transfer.preintegrated"), "auto");
+  EXPECT_FALSE(loadScene("", {}).transfer.preintegrated);  // the default preset: slope 1.5
+  EXPECT_FALSE(loadScene("", {"transfer.preset=ramp"}).transfer.preintegrated);
+  EXPECT_TRUE(loadScene("", {"transfer.preset=sharp"}).transfer.preintegrated);  // slope 18
+  EXPECT_FALSE(loadScene("", {"transfer.preset=sharp", "adaptive.tolerance=10"}).transfer.preintegrated);
+  EXPECT_FALSE(loadScene("", {"transfer.preset=sharp", "render.sample_spacing=3"}).transfer.preintegrated);
+  EXPECT_FALSE(loadScene("", {"transfer.preset=sharp", "transfer.preintegrated=false"}).transfer.preintegrated);
+  EXPECT_TRUE(hasSteepOpacity({{0.0, 0, 0, 0, 0}, {0.09, 0, 0, 0, 0.5}}));
+  EXPECT_FALSE(hasSteepOpacity({{0.0, 0, 0, 0, 0}, {0.11, 0, 0, 0, 0.5}}));
+  EXPECT_TRUE(hasSteepOpacity({{0.0, 0, 0, 0, 0.9}, {0.05, 0, 0, 0, 0.0}}));  // falling too
   EXPECT_TRUE(loadScene("", {"transfer.preintegrated=true", "render.sample_spacing=2"}).transfer.preintegrated);
   // Refused: with adaptive sampling, and with steps whose segment ends pass the ghost layer.
   std::string msg = inputErrorOf([] { loadScene("", {"transfer.preintegrated=true", "adaptive.tolerance=10"}); });
