@@ -8,6 +8,7 @@
 
 #include "worker/adaptive_gpu_brick.h"
 #include "worker/gl_program.h"
+#include "worker/preintegration_glsl.h"
 #include "worker/raycast_shaders.h"
 #include "worker/volume_shading.h"
 
@@ -237,7 +238,8 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
       throw std::logic_error("ray caster: gradient shading of an adaptive brick");
     const int v = (preint ? 1 : 0) + (shading_.enabled ? 2 : 0);
     if (!g.adaptive && v != 0 && !variant_programs_[v]) {
-      const std::string src = preint ? variant("PREINTEGRATED") : std::string(shaders::kRaycastFragment);
+      const std::string src = preint ? shaders::withPreintegration(shaders::kRaycastFragment)
+                                     : std::string(shaders::kRaycastFragment);
       variant_programs_[v] = linkProgram(gl_, shaders::kRaycastVertex,
                                          shading_.enabled ? withShading(src.c_str()).c_str() : src.c_str());
     }

@@ -6,6 +6,7 @@
 
 #include "compositing/visibility.h"
 #include "worker/gl_program.h"
+#include "worker/preintegration_glsl.h"
 #include "worker/slice_geometry.h"
 #include "worker/slicing_shaders.h"
 #include "worker/volume_shading.h"
@@ -80,11 +81,8 @@ RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spac
     gl_.BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // premultiplied "over", back to front
     const int v = (preint ? 1 : 0) + (shading_.enabled ? 2 : 0);
     if (v != 0 && !variant_programs_[v]) {
-      // The same source with PREINTEGRATED defined (the #define must follow the #version line).
-      std::string src = shaders::kSliceFragment;
-      const std::string version = "#version 450 core\n";
-      if (src.rfind(version, 0) != 0) throw std::logic_error("slicing shader: no #version line");
-      if (preint) src.insert(version.size(), "#define PREINTEGRATED 1\n");
+      const std::string src = preint ? shaders::withPreintegration(shaders::kSliceFragment)
+                                     : std::string(shaders::kSliceFragment);
       variant_programs_[v] = linkProgram(gl_, shaders::kSliceVertex,
                                          shading_.enabled ? withShading(src.c_str()).c_str() : src.c_str());
     }
