@@ -40,6 +40,12 @@ class TransferFunction {
   // a linearly filtered texture addressed at (x * (n - 1) + 0.5) / n reproduces the table's ends.
   std::vector<float> bakeTable(int n) const;
 
+  // Whether values in [vmin, vmax], looked up in the linearly filtered n-entry table, can read an
+  // entry with non-zero opacity: a value at table coordinate x blends entries floor(x) and
+  // floor(x) + 1 (weight frac(x) on the second), so the span reads entries floor(x(vmin)) ..
+  // ceil(x(vmax)) and nothing else. False means a block of such values is empty, exactly.
+  bool tableSpanVisible(int n, double vmin, double vmax) const;
+
   double rangeLo() const { return lo_; }
   double rangeHi() const { return hi_; }
   double unitLength() const { return unit_; }

@@ -37,19 +37,11 @@ void TransferTable::set(const TransferFunction& tf, int table_size, bool preinte
 }
 
 bool TransferTable::visible(float vmin, float vmax) const {
-  // The filtered lookup of a value at table coordinate x (entries 0 .. n-1) blends entries floor(x)
-  // and floor(x) + 1 with weight frac(x) on the second, so the values in [vmin, vmax] read entries
-  // floor(x(vmin)) .. ceil(x(vmax)) and nothing else (a value on an entry reads that entry alone:
-  // a block of the volume's lowest value under a ramp is empty, which a pad of one entry either
-  // side, the rule before, never found; 63 % of the engine's blocks of 8 cells). The entries are
-  // the function at i / (n - 1), so its largest opacity between those nodes bounds them. The 2D
-  // pre-integrated table (entry (i, j): the segments between values i and j) has n = its size.
+  // The 2D pre-integrated table (entry (i, j): the segments between values i and j) is read like
+  // the 1D one with n = its size.
   int entries = size_;
   if (preintegrated_) entries = std::min(entries, PreintegrationTable::kDefaultSize);
-  const double lo = tf_.rangeLo(), range = tf_.rangeHi() - tf_.rangeLo(), last = entries - 1;
-  auto coordinate = [&](double v) { return std::clamp((v - lo) / range, 0.0, 1.0) * last; };
-  const double i0 = std::floor(coordinate(vmin)), i1 = std::ceil(coordinate(vmax));
-  return tf_.maxOpacity(lo + i0 / last * range, lo + i1 / last * range) > 0.0;
+  return tf_.tableSpanVisible(entries, vmin, vmax);
 }
 
 void TransferTable::use(unsigned program) const {

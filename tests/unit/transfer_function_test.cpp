@@ -2,6 +2,7 @@
 // the baked lookup table.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -110,6 +111,60 @@ TEST(TransferFunction, BakeTableEndsAreTheEndPoints) {
   EXPECT_FLOAT_EQ(t[5], 0.6f);
   EXPECT_FLOAT_EQ(t[6], 0.0f);
   EXPECT_FLOAT_EQ(t[7], float(-std::log(0.6) / 0.5));
+}
+
+// Empty-block rule (tableSpanVisible): a span of values reads table entries floor(x(vmin)) ..
+// ceil(x(vmax)) and no others. Each case fails if the rule pads by an entry, or rounds either end
+// the other way.
+TEST(TransferFunction, TableSpanReadsExactlyItsEntries) {
+  // 11 entries over [0, 100] (one every 10); opacity only between 40 and 60, peak 1 at 50.
+  TransferFunction tf({{0.0, 0, 0, 0, 0.0}, {0.4, 0, 0, 0, 0.0}, {0.5, 1, 1, 1, 1.0},
+                       {0.6, 0, 0, 0, 0.0}, {1.0, 0, 0, 0, 0.0}},
+                      0.0, 100.0, 1.0);
+  const int n = 11;
+  EXPECT_FALSE(tf.tableSpanVisible(n, 40.0, 40.0));  // on entry 4 (zero) only: a pad would see 5
+  EXPECT_FALSE(tf.tableSpanVisible(n, 30.0, 40.0));  // entries 3, 4
+  EXPECT_TRUE(tf.tableSpanVisible(n, 35.0, 41.0));   // 41 blends in entry 5: floor(vmax) misses it
+  EXPECT_TRUE(tf.tableSpanVisible(n, 59.0, 70.0));   // 59 reads entry 5: ceil(vmin) misses it
+  EXPECT_FALSE(tf.tableSpanVisible(n, 60.0, 100.0)); // entries 6 .. 10
+  EXPECT_FALSE(tf.tableSpanVisible(n, -50.0, 40.0)); // clamped below the range: entries 0 .. 4
+  EXPECT_FALSE(tf.tableSpanVisible(n, 60.0, 500.0)); // clamped above
+  EXPECT_TRUE(tf.tableSpanVisible(n, 0.0, 100.0));
+}
+
+// Against brute force: a span is visible exactly when some value in it has non-zero filtered
+// table opacity. Sampling the span's ends and every node and midpoint between nodes inside it
+// meets every (entry, positive weight) pair the span can read.
+TEST(TransferFunction, TableSpanAgreesWithFilteredLookups) {
+  unsigned state = 12345u;
+  auto uniform = [&]() { state = state * 1664525u + 1013904223u; return (state >> 8) / 16777216.0; };
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<TfPoint> points{{0.0, 0, 0, 0, uniform() < 0.5 ? 0.0 : uniform()}};
+    for (double x = 0.1 + 0.2 * uniform(); x < 1.0; x += 0.05 + 0.3 * uniform())
+      points.push_back({x, 0, 0, 0, uniform() < 0.6 ? 0.0 : uniform()});
+    points.push_back({1.0, 0, 0, 0, uniform() < 0.5 ? 0.0 : uniform()});
+    TransferFunction tf(points, -3.0, 5.0, 1.0);
+    const int n = 4 + int(uniform() * 60);
+    const std::vector<float> table = tf.bakeTable(n);
+    auto filtered = [&](double v) {
+      const double x = std::clamp((v + 3.0) / 8.0, 0.0, 1.0) * (n - 1);
+      const int i = std::min(int(std::floor(x)), n - 1), j = std::min(i + 1, n - 1);
+      const double f = x - i;
+      return (1.0 - f) * table[4 * i + 3] + f * table[4 * j + 3];
+    };
+    for (int span = 0; span < 20; ++span) {
+      double a = -4.0 + 10.0 * uniform(), b = -4.0 + 10.0 * uniform();
+      if (uniform() < 0.3) a = -3.0 + 8.0 * std::round(uniform() * (n - 1)) / (n - 1);  // on a node
+      if (a > b) std::swap(a, b);
+      bool any = filtered(a) > 0.0 || filtered(b) > 0.0;
+      for (int k = 0; k < n; ++k)
+        for (double node : {double(k), k + 0.5}) {
+          const double v = -3.0 + 8.0 * node / (n - 1);
+          if (v > a && v < b) any = any || filtered(v) > 0.0;
+        }
+      EXPECT_EQ(tf.tableSpanVisible(n, a, b), any) << "trial " << trial << " span [" << a << ", " << b << "] n " << n;
+    }
+  }
 }
 
 TEST(TransferFunction, InvalidPointsThrow) {
