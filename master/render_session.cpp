@@ -502,6 +502,7 @@ nlohmann::json RenderSession::describe(const std::vector<std::string>& base) con
                    {"render.sample_spacing", b.sample_spacing},
                    {"render.ert_threshold", b.ert_threshold},
                    {"render.shading", b.shading.enabled},
+                   {"transfer.preintegrated", b.transfer.preintegrated},  // as resolved (auto: on or off)
                    {"render.adaptive_step", b.adaptive_step},
                    {"render.adaptive_tolerance", b.adaptive_step_tolerance},
                    {"compositing.strategy", b.strategy},

@@ -144,6 +144,10 @@ function buildRequest(mode) {
     // (the full frame that follows uses the chosen spacing).
     const coarse = mode === 'reduced' && $('coarse') && $('coarse').checked ? 2 : 1;
     r['render.sample_spacing'] = Math.min(100, Number($('spacing').value) * coarse);
+    r['render.shading'] = $('shading').checked;
+    // 'scene' leaves the scene's choice (its auto rule sees the spacing sent above).
+    const preint = $('preint').value;
+    if (preint !== 'scene') r['transfer.preintegrated'] = preint === 'auto' ? 'auto' : preint === 'on';
     if (state.tfEdited) {
       r['transfer.points'] = transferPoints();
       // A named map is drawn with the server's definition of it (transfer.colormap: ParaView's
@@ -421,7 +425,7 @@ function trackSlider(el, onInput) {
   el.addEventListener('change', () => { onInput(); if (!held) interactionEnd(); });
 }
 
-for (const id of ['size', 'method', 'strategy']) $(id).addEventListener('change', () => submit('full'));
+for (const id of ['size', 'method', 'strategy', 'shading', 'preint']) $(id).addEventListener('change', () => submit('full'));
 
 // sample spacing: a log slider and a number box, 0.01 .. 100
 const SPACING_MIN = 0.01, SPACING_MAX = 100;
@@ -536,7 +540,7 @@ $('tf-reset').addEventListener('click', () => {
 // ---------------------------------------------------------------- start
 function setOptions(select, values, current) {
   const list = [...values];
-  if (current !== undefined && !list.some((v) => String(v[0] ?? v) === String(current))) list.push([current, String(current)]);
+  if (current !== undefined && !list.some((v) => String(Array.isArray(v) ? v[0] : v) === String(current))) list.push([current, String(current)]);
   select.replaceChildren(...list.map((v) => {
     const [value, label] = Array.isArray(v) ? v : [v, v];
     const o = document.createElement('option');
@@ -575,7 +579,10 @@ function applyScene(scene) {
   const [sw, sh] = state.sceneSize;
   const sizes = [256, 512, 768, 1024].filter((s) => s <= Math.max(state.limits.max_width || 4096, state.limits.max_height || 4096));
   setOptions($('size'), [['scene', `${sw}×${sh} (scene)`], ...sizes.map((s) => [String(s), `${s} px`])], 'scene');
-  setOptions($('method'), ['slicing', 'raycast'], settings['render.method'] || 'slicing');
+  setOptions($('method'), ['slicing', 'raycast'], settings['render.method'] || 'raycast');
+  $('shading').checked = settings['render.shading'] === true;
+  const scenePreint = settings['transfer.preintegrated'] === true ? 'on' : 'off';
+  setOptions($('preint'), [['scene', `as in scene (${scenePreint})`], ['auto', 'auto'], ['on', 'on'], ['off', 'off']], 'scene');
   setOptions($('strategy'), ['direct', 'binary-swap', 'radix-k'], settings['compositing.strategy'] || 'direct');
   $('spacing').value = Number.isFinite(settings['render.sample_spacing']) ? settings['render.sample_spacing'] : 1;
   syncSpacingSlider();

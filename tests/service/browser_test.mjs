@@ -10,7 +10,8 @@
 // then drags a transfer-function point, checks the image changed again and saves that frame too
 // (tf_frame.png, tf_request.json, tf_render_args.txt), then picks the Viridis colour map, checks
 // the request names it (transfer.colormap) and the image changed, and saves that frame
-// (cm_frame.png, cm_request.json, cm_render_args.txt). Screenshots: initial.png, orbit.png,
+// (cm_frame.png, cm_request.json, cm_render_args.txt), then turns shading on, checks the request
+// has render.shading and the image changed (sh_frame.png, ...). Screenshots: initial.png, orbit.png,
 // final.png. Every wait is bounded; exits 1 with a message on failure.
 
 import { chromium } from 'playwright-core';
@@ -234,6 +235,20 @@ async function main() {
     if (d3.mean < 0.5 && d3.changed < 0.005) await fail('the image did not change with the colour map');
     await saveFrame('cm_frame.png');
     writeFrameFiles('cm_', coloured);
+
+    // ---- shading: the checkbox sends render.shading and the image changes
+    const beforeSh = await snapshot();
+    const n2 = (await viewerState()).framesShown;
+    await page.check('#shading');
+    await waitFor('the full-size frame after turning shading on', (n) => window.sortlastViewer.settled && window.sortlastViewer.framesShown > n, n2);
+    const shaded = await viewerState();
+    if (shaded.lastRequest['render.shading'] !== true)
+      await fail(`the request after turning shading on has render.shading ${JSON.stringify(shaded.lastRequest['render.shading'])}`);
+    const d4 = difference(beforeSh, await snapshot());
+    log(`after turning shading on: image difference mean ${d4.mean.toFixed(2)}, ${(d4.changed * 100).toFixed(1)}% of pixels`);
+    if (d4.mean < 0.5 && d4.changed < 0.005) await fail('the image did not change with shading');
+    await saveFrame('sh_frame.png');
+    writeFrameFiles('sh_', shaded);
   }
 
   const end = await viewerState();
