@@ -132,10 +132,10 @@ PolyMesh proceduralMesh(const std::string& name) {
   if (name == "open_grid") return openGrid();
   for (const std::string prefix : {"pole", "prism"}) {
     const int n = suffixNumber(name, prefix);
-    if (n >= 3 && n <= 16) return prefix == "pole" ? pole(n) : prism(n);
+    if (n >= 3 && n <= 32) return prefix == "pole" ? pole(n) : prism(n);
   }
   throw InputError("unknown procedural surface '" + name +
-                   "' (known: cube, torus, pole<N>, prism<N> for N = 3..16, octahedron, open_grid)");
+                   "' (known: cube, torus, pole<N>, prism<N> for N = 3..32, octahedron, open_grid)");
 }
 
 }  // namespace sortlast

@@ -15,7 +15,7 @@ PolyMesh readObjMesh(const std::string& path);
 // Procedural meshes, by name:
 //   cube             6 quads, eight valence-3 corners
 //   torus            16 x 8 quads, every vertex of valence 4 (the regular case)
-//   pole<N>          an N-gon prism refined once into quads: two poles of valence N (3 <= N <= 16),
+//   pole<N>          an N-gon prism refined once into quads: two poles of valence N (3 <= N <= 32),
 //                    2N valence-3 vertices, slightly and irregularly deformed
 //   prism<N>         the N-gon prism itself (N-gon faces: refined twice before evaluation)
 //   octahedron       8 triangles
