@@ -267,6 +267,10 @@ SubdivFrame SubdivRenderer::render(const Camera& cam, const Box3& clip, double n
   gl_.DrawBuffers(3, buffers);
   gl_.Clear(GL_DEPTH_BUFFER_BIT);
   gl_.Enable(GL_DEPTH_TEST);
+  // The coarse mesh is closed and counter-clockwise from outside: its back faces are hidden except
+  // within the coarse mesh's deviation of a silhouette, and would double the per-fragment
+  // evaluations (the shader writes its depth, so no early depth test saves them).
+  gl_.Enable(GL_CULL_FACE);
   gl_.UseProgram(program_);
   const glm::mat4 vp = cam.viewProjection(near_plane, far_plane);
   auto loc = [&](const char* name) { return gl_.GetUniformLocation(program_, name); };
@@ -291,6 +295,7 @@ SubdivFrame SubdivRenderer::render(const Camera& cam, const Box3& clip, double n
   gl_.DrawArrays(GL_TRIANGLES, 0, vertex_count_);
   gl_.BindVertexArray(0);
   gl_.Disable(GL_DEPTH_TEST);
+  gl_.Disable(GL_CULL_FACE);
 
   SubdivFrame out;
   const size_t n = size_t(width_) * height_;

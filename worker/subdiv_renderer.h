@@ -37,7 +37,7 @@ struct SubdivShading {
   // Newton steps per fragment moving its (u, v) onto the pixel's ray (0: the coarse fragment's
   // interpolated (u, v), as the paper does); a step that leaves the control face continues on
   // the face across that edge.
-  int newton_steps = 3;
+  int newton_steps = 2;
 };
 
 struct SubdivFrame {
