@@ -110,7 +110,7 @@ TEST(SubdivMesh, RefinementCountsAndSeparatesExtraordinaryVertices) {
 // ---- Stam's eigenbasis ----
 
 TEST(SubdivBasis, EigenstructureMatchesCatmullClark) {
-  for (int n = 3; n <= 12; ++n) {
+  for (int n : {3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 16, 25, 32}) {
     const ValenceBasis b(n);
     EXPECT_LT(b.reconstructionError, 1e-9) << n;
     // Rows of A are affine combinations, so 1 is an eigenvalue and the largest; the subdominant
