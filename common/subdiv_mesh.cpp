@@ -200,6 +200,12 @@ void childToParentQuad(int corner, double u, double v, double& pu, double& pv) {
 ControlMesh buildControlMesh(const PolyMesh& input) {
   ControlMesh cm;
   MeshTopology topology = checkMesh(input);
+  // Refinement keeps a vertex's valence, and Stam's eigenbasis needs at least 3 (a valence-2
+  // vertex is a closed mesh's legal fold, but no Catmull-Clark patch layout fits it).
+  for (size_t p = 0; p < topology.valence.size(); ++p)
+    if (topology.valence[p] > 0 && topology.valence[p] < 3)
+      fail(input, "vertex " + std::to_string(p) + " has valence " + std::to_string(topology.valence[p]) +
+                      ": exact evaluation needs every vertex on at least 3 edges");
   PolyMesh mesh = input;
   cm.levels = input.allQuads() ? 1 : 2;
   cm.inputFace.resize(input.faceCount());

@@ -62,7 +62,8 @@ void childToParentQuad(int corner, double u, double v, double& pu, double& pv);
 // (input with triangles or n-gons), so that every face is a quad with at most one extraordinary
 // vertex and every extraordinary vertex's neighbourhood is regular. Per control face, which input
 // face it lies in and the chain of children down to it, so a point (face, u, v) maps back to the
-// input mesh's faces (the reference evaluator needs that).
+// input mesh's faces (the reference evaluator needs that). Throws InputError as checkMesh does,
+// and for vertices of valence 2 (legal in a closed mesh, but outside Stam's method).
 struct ControlMesh {
   PolyMesh mesh;
   MeshTopology topology;

@@ -68,6 +68,14 @@ TEST(SubdivMesh, ChecksNameTheProblem) {
   EXPECT_NE(inputErrorOf([&] { checkMesh(bowtie); }).find("vertex 0 is non-manifold"), std::string::npos);
 
   EXPECT_NE(inputErrorOf([&] { checkMesh(proceduralMesh("open_grid")); }).find("boundary edge"), std::string::npos);
+
+  PolyMesh pillow;  // two quads back to back: closed and manifold, every vertex of valence 2
+  pillow.name = "pillow";
+  pillow.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  pillow.addFace({0, 1, 2, 3});
+  pillow.addFace({3, 2, 1, 0});
+  EXPECT_NO_THROW(checkMesh(pillow));
+  EXPECT_NE(inputErrorOf([&] { SubdivSurface s(pillow); }).find("vertex 0 has valence 2"), std::string::npos);
   EXPECT_NE(inputErrorOf([&] { proceduralMesh("pole2"); }).find("unknown procedural surface 'pole2'"),
             std::string::npos);
 }
