@@ -1,0 +1,83 @@
+#pragma once
+// Exact evaluation of a Catmull-Clark limit surface at any (face, u, v) of its control mesh
+// (Stam 1998), with the per-(patch, n, k) control points the paper precomputes for the GPU.
+//
+// Parameters: (u, v) in [0,1]^2 of control face f (a quad of ControlMesh::mesh), u along the edge
+// from corner 0 to corner 1, v from corner 0 to corner 3. A face with an extraordinary corner r is
+// evaluated in a frame rotated so that corner r is (0, 0); its rotation is stored per patch.
+#include <glm/vec3.hpp>
+
+#include <array>
+#include <map>
+#include <memory>
+#include <vector>
+
+#include "common/subdiv_basis.h"
+#include "common/subdiv_mesh.h"
+
+namespace sortlast {
+
+struct LimitPoint {
+  glm::dvec3 position;
+  glm::dvec3 normal;  // unit, on the side the faces' counter-clockwise order points to
+};
+
+// Deepest level the CPU evaluator goes to near an extraordinary vertex: beyond every positive
+// double, so each (u, v) other than the vertex itself falls in its own sub-patch. At u = v = 0 the
+// level-1100 sub-patch is extrapolated to its corner; Lambda^1099 then keeps only the constant
+// eigen-component for the position (the exact limit point) and only the subdominant pair for the
+// tangents (the exact limit tangent plane).
+constexpr int kCpuMaxLevel = 1100;
+// Levels the GPU tables hold, as in the paper (n <= 15, 45 control-point sets per patch).
+constexpr int kTableLevels = 15;
+
+class SubdivSurface {
+ public:
+  // Checks the mesh (InputError on bad input), refines it to the control mesh and prepares a patch
+  // per control face and an eigenbasis per extraordinary valence present.
+  explicit SubdivSurface(const PolyMesh& input);
+
+  const ControlMesh& control() const { return control_; }
+  int patchCount() const { return control_.mesh.faceCount(); }
+  LimitPoint evaluate(int face, double u, double v) const;
+
+  // Where (u, v) of a face goes in the patch's own frame (extraordinary vertex at (0, 0)), which
+  // (n, k) sub-patch holds it, and its parameters t in that sub-patch's cell. Regular patches:
+  // n = 0, k = 0, t = (u, v) in the patch's own 4 x 4 grid.
+  struct Location {
+    int n = 0, k = 0;
+    double s = 0, t = 0;
+  };
+  Location locate(int face, double u, double v, int maxLevel = kCpuMaxLevel) const;
+  // The 16 B-spline control points of a regular patch (n = 0) or of sub-patch (n, k) of an
+  // irregular one: row b * 4 + a multiplies B_a(s) B_b(t).
+  //
+  // With `tangent`, control points whose patch has the same derivative directions (so the same
+  // normal) without the cancellation that ruins them near an extraordinary vertex: the sub-patch
+  // at level n spans about lambda_sub^n of the mesh, so its derivatives are differences of points
+  // that agree to that many digits (in float, 15 levels lose all of them). The constant
+  // eigen-component (lambda = 1), which has no derivative, is left out, and the others are
+  // scaled by 1 / lambda_sub^(n-1), so the points stay of the order of the mesh.
+  std::array<glm::dvec3, 16> controlPoints(int face, int n, int k, bool tangent = false) const;
+  bool regular(int face) const { return patches_[face].valence == 4; }
+  int rotation(int face) const { return patches_[face].rotation; }
+  const std::map<int, std::unique_ptr<ValenceBasis>>& bases() const { return bases_; }
+
+ private:
+  struct Patch {
+    int valence = 4;
+    int rotation = 0;           // corner of the face at the patch's (0, 0)
+    Eigen::MatrixXd points;     // regular: 16 x 3 grid; irregular: (2N+8) x 3, V^-1 C0 (Stam's C-hat)
+  };
+  ControlMesh control_;
+  std::map<int, std::unique_ptr<ValenceBasis>> bases_;
+  std::vector<Patch> patches_;
+};
+
+// Uniform cubic B-spline basis B_0..B_3 at t and its derivative.
+void bsplineBasis(double t, double b[4], double db[4]);
+// A bicubic B-spline patch: position and both partial derivatives at (s, t).
+void bsplinePatch(const std::array<glm::dvec3, 16>& p, double s, double t, glm::dvec3& position,
+                  glm::dvec3& ds, glm::dvec3& dt);
+
+}  // namespace sortlast

@@ -1,0 +1,141 @@
+#include "common/subdiv_input.h"
+
+#include <tiny_obj_loader.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "common/error.h"
+
+namespace sortlast {
+
+PolyMesh readObjMesh(const std::string& path) {
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = false;  // the faces as written: n-gons get a Catmull-Clark step instead
+  config.vertex_color = false;
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromFile(path, config))
+    throw InputError("surface file '" + path + "' could not be read: " + reader.Error());
+  PolyMesh mesh;
+  mesh.name = path;
+  const auto& v = reader.GetAttrib().vertices;
+  for (size_t i = 0; i + 2 < v.size(); i += 3) mesh.points.emplace_back(v[i], v[i + 1], v[i + 2]);
+  for (const auto& shape : reader.GetShapes()) {
+    for (const auto& tag : shape.mesh.tags)
+      throw InputError("surface file '" + path + "' has the subdivision tag 't " + tag.name +
+                       "': creases, corners and other tags are not supported (remove the 't' lines)");
+    size_t at = 0;
+    for (const auto count : shape.mesh.num_face_vertices) {
+      std::vector<int> corners;
+      for (unsigned i = 0; i < count; ++i) corners.push_back(shape.mesh.indices[at + i].vertex_index);
+      at += count;
+      mesh.addFace(corners);
+    }
+  }
+  return mesh;
+}
+
+namespace {
+
+PolyMesh cube() {
+  PolyMesh m;
+  m.name = "cube";
+  for (int i = 0; i < 8; ++i) m.points.emplace_back(i & 1 ? 1.0 : -1.0, i & 2 ? 1.0 : -1.0, i & 4 ? 1.0 : -1.0);
+  // Counter-clockwise seen from outside.
+  for (const auto& f : {std::vector<int>{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}})
+    m.addFace(f);
+  return m;
+}
+
+PolyMesh torus() {
+  PolyMesh m;
+  m.name = "torus";
+  const int nu = 16, nv = 8;
+  const double pi = std::numbers::pi;
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      const double a = 2 * pi * i / nu, b = 2 * pi * j / nv;
+      const double r = 1.0 + 0.4 * std::cos(b);
+      m.points.emplace_back(r * std::cos(a), r * std::sin(a), 0.4 * std::sin(b));
+    }
+  auto id = [&](int i, int j) { return ((i + nu) % nu) * nv + (j + nv) % nv; };
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) m.addFace({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+  return m;
+}
+
+PolyMesh prism(int n) {
+  PolyMesh m;
+  m.name = "prism" + std::to_string(n);
+  const double pi = std::numbers::pi;
+  for (int k = 0; k < 2; ++k)
+    for (int i = 0; i < n; ++i) {
+      const double a = 2 * pi * i / n;
+      m.points.emplace_back(std::cos(a), std::sin(a), k ? 0.8 : -0.8);
+    }
+  std::vector<int> bottom, top;
+  for (int i = 0; i < n; ++i) {
+    bottom.push_back(n - 1 - i);
+    top.push_back(n + i);
+    m.addFace({i, (i + 1) % n, n + (i + 1) % n, n + i});
+  }
+  m.addFace(bottom);
+  m.addFace(top);
+  return m;
+}
+
+PolyMesh pole(int n) {
+  PolyMesh p = prism(n);
+  RefinedMesh r = catmullClarkStep(p, checkMesh(p));
+  // An irregular deformation, so that no symmetry hides an error in the evaluation.
+  for (size_t i = 0; i < r.mesh.points.size(); ++i) {
+    auto& q = r.mesh.points[i];
+    q += 0.08 * glm::dvec3(std::sin(1.7 * i + 0.3), std::cos(2.3 * i + 1.1), std::sin(0.9 * i + 2.0));
+  }
+  r.mesh.name = "pole" + std::to_string(n);
+  return r.mesh;
+}
+
+PolyMesh octahedron() {
+  PolyMesh m;
+  m.name = "octahedron";
+  m.points = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (const auto& f : {std::vector<int>{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}})
+    m.addFace(f);
+  return m;
+}
+
+PolyMesh openGrid() {
+  PolyMesh m;
+  m.name = "open_grid";
+  for (int j = 0; j <= 4; ++j)
+    for (int i = 0; i <= 4; ++i) m.points.emplace_back(i, j, 0.1 * ((i * j) % 3));
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) m.addFace({j * 5 + i, j * 5 + i + 1, (j + 1) * 5 + i + 1, (j + 1) * 5 + i});
+  return m;
+}
+
+// The N of "pole<N>" / "prism<N>", or 0.
+int suffixNumber(const std::string& name, const std::string& prefix) {
+  if (name.rfind(prefix, 0) != 0 || name.size() == prefix.size()) return 0;
+  for (size_t i = prefix.size(); i < name.size(); ++i)
+    if (name[i] < '0' || name[i] > '9') return 0;
+  return std::stoi(name.substr(prefix.size()));
+}
+
+}  // namespace
+
+PolyMesh proceduralMesh(const std::string& name) {
+  if (name == "cube") return cube();
+  if (name == "torus") return torus();
+  if (name == "octahedron") return octahedron();
+  if (name == "open_grid") return openGrid();
+  for (const std::string prefix : {"pole", "prism"}) {
+    const int n = suffixNumber(name, prefix);
+    if (n >= 3 && n <= 32) return prefix == "pole" ? pole(n) : prism(n);
+  }
+  throw InputError("unknown procedural surface '" + name +
+                   "' (known: cube, torus, pole<N>, prism<N> for N = 3..32, octahedron, open_grid)");
+}
+
+}  // namespace sortlast

@@ -1,0 +1,95 @@
+#include "common/subdiv_tables.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace sortlast {
+
+SubdivTables buildTables(const SubdivSurface& surface) {
+  const auto start = std::chrono::steady_clock::now();
+  SubdivTables t;
+  t.faces.resize(surface.patchCount());
+  auto append = [&](int face, int n, int k) {
+    for (const bool tangent : {false, true}) {
+      auto& out = tangent ? t.tangents : t.positions;
+      for (const glm::dvec3& p : surface.controlPoints(face, n, k, tangent)) out.emplace_back(glm::vec3(p), 0.0f);
+    }
+  };
+  int sets = 0;
+  for (int f = 0; f < surface.patchCount(); ++f) {
+    auto& e = t.faces[f];
+    e.firstSet = sets;
+    e.rotation = surface.rotation(f);
+    e.regular = surface.regular(f) ? 1 : 0;
+    if (e.regular) {
+      append(f, 0, 0);
+      ++sets;
+      continue;
+    }
+    for (int n = 1; n <= kTableLevels; ++n)
+      for (int k = 1; k <= 3; ++k) append(f, n, k);
+    sets += kTableLevels * 3;
+  }
+  t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return t;
+}
+
+namespace {
+
+void basis(float t, float b[4], float db[4]) {
+  const float s = 1.0f - t, t2 = t * t, t3 = t2 * t;
+  b[0] = s * s * s / 6.0f;
+  b[1] = (3.0f * t3 - 6.0f * t2 + 4.0f) / 6.0f;
+  b[2] = (-3.0f * t3 + 3.0f * t2 + 3.0f * t + 1.0f) / 6.0f;
+  b[3] = t3 / 6.0f;
+  db[0] = -0.5f * s * s;
+  db[1] = 1.5f * t2 - 2.0f * t;
+  db[2] = -1.5f * t2 + t + 0.5f;
+  db[3] = 0.5f * t2;
+}
+
+}  // namespace
+
+FloatLimitPoint evaluateTables(const SubdivTables& tables, int face, float u, float v) {
+  const auto& e = tables.faces[face];
+  float pu = u, pv = v;
+  switch (e.rotation) {
+    case 1: pu = v, pv = 1.0f - u; break;
+    case 2: pu = 1.0f - u, pv = 1.0f - v; break;
+    case 3: pu = 1.0f - v, pv = u; break;
+    default: break;
+  }
+  int set = e.firstSet;
+  float s = pu, t = pv;
+  if (!e.regular) {
+    const float m = std::max(pu, pv);
+    int n = kTableLevels;
+    if (m > 0.0f) n = std::clamp(int(std::floor(-std::log2(m))) + 1, 1, kTableLevels);
+    const float su = std::ldexp(pu, n), sv = std::ldexp(pv, n);
+    int k;
+    if (su >= 1.0f && sv >= 1.0f) k = 2;
+    else if (su >= 1.0f) k = 1;
+    else if (sv >= 1.0f) k = 3;
+    else k = su >= sv ? 1 : 3;
+    s = su - (k != 3 ? 1.0f : 0.0f);
+    t = sv - (k != 1 ? 1.0f : 0.0f);
+    set += (n - 1) * 3 + (k - 1);
+  }
+  float bs[4], dbs[4], bt[4], dbt[4];
+  basis(s, bs, dbs);
+  basis(t, bt, dbt);
+  glm::vec3 p(0.0f), ds(0.0f), dt(0.0f);
+  for (int b = 0; b < 4; ++b)
+    for (int a = 0; a < 4; ++a) {
+      const int i = set * 16 + b * 4 + a;
+      p += bs[a] * bt[b] * glm::vec3(tables.positions[i]);
+      ds += dbs[a] * bt[b] * glm::vec3(tables.tangents[i]);
+      dt += bs[a] * dbt[b] * glm::vec3(tables.tangents[i]);
+    }
+  return {p, glm::normalize(glm::cross(ds, dt))};
+}
+
+}  // namespace sortlast

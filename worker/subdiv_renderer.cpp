@@ -1,0 +1,328 @@
+#include "worker/subdiv_renderer.h"
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "worker/gl_program.h"
+
+namespace sortlast {
+
+namespace {
+
+const char* kVertex = R"(#version 450 core
+layout(location = 0) in vec3 position;
+layout(location = 1) in vec3 param;  // u, v, face
+uniform mat4 view_projection;
+out vec3 v_param;
+out vec3 v_world;
+void main() {
+  v_param = param;
+  v_world = position;
+  gl_Position = view_projection * vec4(position, 1.0);
+}
+)";
+
+// The evaluation is common/subdiv_tables.cpp's evaluateTables, line for line.
+const char* kFragment = R"(#version 450 core
+layout(std430, binding = 0) readonly buffer Faces { ivec4 faces[]; };      // firstSet, rotation, regular, -
+layout(std430, binding = 1) readonly buffer Positions { vec4 positions[]; };
+layout(std430, binding = 2) readonly buffer Tangents { vec4 tangents[]; };
+layout(std430, binding = 3) readonly buffer Neighbours { ivec4 neighbours[]; };  // across edge c: face * 4 + its edge
+uniform mat4 view_projection;
+uniform vec3 eye, clip_lo, clip_hi, colour, centre, light_dir, stripe_axis;
+uniform float size, stripe_width;
+uniform int stripes, reflection_lines, newton_steps;
+in vec3 v_param;
+in vec3 v_world;
+layout(location = 0) out vec4 out_colour;
+layout(location = 1) out vec4 out_surface;
+layout(location = 2) out vec4 out_param;
+
+void basis(float t, out vec4 b, out vec4 db) {
+  float s = 1.0 - t, t2 = t * t, t3 = t2 * t;
+  b = vec4(s * s * s, 3.0 * t3 - 6.0 * t2 + 4.0, -3.0 * t3 + 3.0 * t2 + 3.0 * t + 1.0, t3) / 6.0;
+  db = vec4(-0.5 * s * s, 1.5 * t2 - 2.0 * t, -1.5 * t2 + t + 0.5, 0.5 * t2);
+}
+
+// Limit position, tangent-point derivatives (for the normal) and true derivatives in the face's
+// own (u, v) (for the Newton steps) at (face, u, v).
+void evaluate(int face, float u, float v, out vec3 p, out vec3 tu, out vec3 tv, out vec3 su, out vec3 sv) {
+  ivec4 e = faces[face];
+  float pu = u, pv = v;
+  if (e.y == 1) { pu = v; pv = 1.0 - u; }
+  else if (e.y == 2) { pu = 1.0 - u; pv = 1.0 - v; }
+  else if (e.y == 3) { pu = 1.0 - v; pv = u; }
+  int set = e.x;
+  float s = pu, t = pv, scale = 1.0;
+  if (e.z == 0) {
+    float m = max(pu, pv);
+    int n = 15;
+    if (m > 0.0) n = clamp(int(floor(-log2(m))) + 1, 1, 15);
+    float su = ldexp(pu, n), sv = ldexp(pv, n);
+    int k;
+    if (su >= 1.0 && sv >= 1.0) k = 2;
+    else if (su >= 1.0) k = 1;
+    else if (sv >= 1.0) k = 3;
+    else k = su >= sv ? 1 : 3;
+    s = su - (k != 3 ? 1.0 : 0.0);
+    t = sv - (k != 1 ? 1.0 : 0.0);
+    set += (n - 1) * 3 + (k - 1);
+    scale = ldexp(1.0, n);
+  }
+  vec4 bs, dbs, bt, dbt;
+  basis(s, bs, dbs);
+  basis(t, bt, dbt);
+  p = vec3(0.0);
+  vec3 ds = vec3(0.0), dt = vec3(0.0), ps = vec3(0.0), pt = vec3(0.0);
+  for (int b = 0; b < 4; ++b)
+    for (int a = 0; a < 4; ++a) {
+      int i = set * 16 + b * 4 + a;
+      vec3 q = positions[i].xyz, r = tangents[i].xyz;
+      p += bs[a] * bt[b] * q;
+      ps += dbs[a] * bt[b] * q;
+      pt += bs[a] * dbt[b] * q;
+      ds += dbs[a] * bt[b] * r;
+      dt += bs[a] * dbt[b] * r;
+    }
+  tu = ds;
+  tv = dt;
+  ps *= scale;
+  pt *= scale;
+  // Back from the patch's rotated frame to the face's (u, v).
+  if (e.y == 0) { su = ps; sv = pt; }
+  else if (e.y == 1) { su = -pt; sv = ps; }
+  else if (e.y == 2) { su = -ps; sv = -pt; }
+  else { su = pt; sv = -ps; }
+}
+
+void main() {
+  int face = int(round(v_param.z));
+  float u = clamp(v_param.x, 0.0, 1.0), v = clamp(v_param.y, 0.0, 1.0);
+  vec3 p, ds, dt, su, sv;
+  // Newton steps move (u, v) until the limit point lies on this pixel's ray (through the coarse
+  // fragment), so the pixel shows the surface where its ray meets it, whatever the coarse level.
+  vec3 dir = normalize(v_world - eye);
+  vec3 e1 = normalize(abs(dir.x) < 0.9 ? cross(dir, vec3(1, 0, 0)) : cross(dir, vec3(0, 1, 0)));
+  vec3 e2 = cross(dir, e1);
+  for (int i = 0; i < newton_steps; ++i) {
+    evaluate(face, u, v, p, ds, dt, su, sv);
+    vec2 f = vec2(dot(e1, p - eye), dot(e2, p - eye));
+    mat2 J = mat2(dot(e1, su), dot(e2, su), dot(e1, sv), dot(e2, sv));  // columns: d/du, d/dv
+    if (abs(determinant(J)) < 1e-20) break;
+    vec2 next = vec2(u, v) - inverse(J) * f;
+    // Leaving the face across an edge: continue on the neighbour, in its (u, v). Edge c's frame
+    // is (a along the edge from corner c, b into the face); the neighbour's edge runs the other way.
+    float out_by = max(max(-next.x, next.x - 1.0), max(-next.y, next.y - 1.0));
+    if (out_by > 0.0) {
+      int c = -next.y >= out_by ? 0 : (next.x - 1.0 >= out_by ? 1 : (next.y - 1.0 >= out_by ? 2 : 3));
+      vec2 ab = c == 0 ? next : (c == 1 ? vec2(next.y, 1.0 - next.x)
+                              : (c == 2 ? vec2(1.0 - next.x, 1.0 - next.y) : vec2(1.0 - next.y, next.x)));
+      int across = neighbours[face][c];
+      int d = across & 3;
+      vec2 g = vec2(1.0 - ab.x, -ab.y);
+      next = d == 0 ? g : (d == 1 ? vec2(1.0 - g.y, g.x) : (d == 2 ? vec2(1.0 - g.x, 1.0 - g.y) : vec2(g.y, 1.0 - g.x)));
+      face = across >> 2;
+    }
+    u = clamp(next.x, 0.0, 1.0);
+    v = clamp(next.y, 0.0, 1.0);
+  }
+  evaluate(face, u, v, p, ds, dt, su, sv);
+  // The brick owns the fragment whose exact limit point it holds (half-open box).
+  if (any(lessThan(p, clip_lo)) || any(greaterThanEqual(p, clip_hi))) discard;
+  vec3 n = normalize(cross(ds, dt));
+  vec4 clip = view_projection * vec4(p, 1.0);
+  gl_FragDepth = clamp(0.5 * clip.z / clip.w + 0.5, 0.0, 1.0);
+  vec3 view = normalize(p - eye);
+  vec3 rgb;
+  if (reflection_lines == 1) {
+    // The reflected view ray against a striped planar light facing the surface.
+    vec3 r = reflect(view, n);
+    float facing = dot(r, light_dir);
+    float lit = 0.0;
+    if (facing > 1e-6) {
+      vec3 x = p + r * (dot(centre + 2.0 * size * light_dir - p, light_dir) / facing);
+      // A square light 8 sizes wide, its stripes across `stripe_axis`.
+      vec3 along = x - centre;
+      float a = dot(along, stripe_axis) / (8.0 * size), b = dot(along, cross(light_dir, stripe_axis)) / (8.0 * size);
+      // Stripe edges ramp over 4 % of a period: a function of the limit point alone (screen-space
+      // derivatives would differ with the coarse triangles), and no jump from dark to bright for a
+      // rounding-sized shift.
+      float c = float(stripes) * (a + 0.5), f = fract(c);
+      float d = f < stripe_width ? min(f, stripe_width - f) : -min(f - stripe_width, 1.0 - f);
+      if (abs(a) < 0.5 && abs(b) < 0.5) lit = clamp(d / 0.04 + 0.5, 0.0, 1.0);
+    }
+    rgb = colour * (0.12 + 0.88 * lit);
+  } else {
+    float diffuse = abs(dot(n, view));
+    float specular = pow(diffuse, 40.0);  // headlight: the half vector is the view direction
+    rgb = colour * (0.15 + 0.85 * diffuse) + 0.25 * vec3(specular);
+  }
+  out_colour = vec4(clamp(rgb, 0.0, 1.0), 1.0);
+  out_surface = vec4(length(p - eye), n);
+  out_param = vec4(float(face), u, v, 1.0);  // after the Newton steps
+}
+)";
+
+}  // namespace
+
+SubdivRenderer::SubdivRenderer(const GlContext& ctx, int width, int height)
+    : gl_(ctx.gl()), width_(width), height_(height) {
+  program_ = linkProgram(gl_, kVertex, kFragment);
+  gl_.GenFramebuffers(1, &fbo_);
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  unsigned* targets[3] = {&colour_, &surface_, &params_};
+  for (int i = 0; i < 3; ++i) {
+    gl_.GenTextures(1, targets[i]);
+    gl_.BindTexture(GL_TEXTURE_2D, *targets[i]);
+    gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, height, 0, GL_RGBA, GL_FLOAT, nullptr);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_TEXTURE_2D, *targets[i], 0);
+  }
+  gl_.GenTextures(1, &depth_);
+  gl_.BindTexture(GL_TEXTURE_2D, depth_);
+  gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, width, height, 0, GL_DEPTH_COMPONENT, GL_FLOAT, nullptr);
+  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth_, 0);
+  if (gl_.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw std::runtime_error("SubdivRenderer: framebuffer incomplete");
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  gl_.GenVertexArrays(1, &vao_);
+  gl_.GenBuffers(1, &vbo_);
+  gl_.GenBuffers(4, ssbo_);
+}
+
+SubdivRenderer::~SubdivRenderer() {
+  gl_.DeleteBuffers(4, ssbo_);
+  gl_.DeleteBuffers(1, &vbo_);
+  gl_.DeleteVertexArrays(1, &vao_);
+  unsigned textures[4] = {colour_, surface_, params_, depth_};
+  gl_.DeleteTextures(4, textures);
+  gl_.DeleteFramebuffers(1, &fbo_);
+  gl_.DeleteProgram(program_);
+}
+
+void SubdivRenderer::setSurface(const SubdivSurface& surface, int level, const SubdivShading& shading) {
+  const SubdivTables tables = buildTables(surface);
+  const CoarseMesh coarse = buildCoarseMesh(surface, level);
+  shading_ = shading;
+  size_ = surface.control().mesh.size();
+  glm::dvec3 lo(1e300), hi(-1e300);
+  for (const auto& p : surface.control().mesh.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  centre_ = 0.5 * (lo + hi);
+  // Triangles unrolled (no index buffer): position, then (u, v, face); face ids are exact floats
+  // below 2^24.
+  std::vector<float> vertices;
+  vertices.reserve(coarse.triangles.size() * 6);
+  for (unsigned i : coarse.triangles) {
+    const CoarseVertex& c = coarse.vertices[i];
+    vertices.insert(vertices.end(), {c.position.x, c.position.y, c.position.z, c.u, c.v, float(c.face)});
+  }
+  vertex_count_ = int(coarse.triangles.size());
+  gl_.BindVertexArray(vao_);
+  gl_.BindBuffer(GL_ARRAY_BUFFER, vbo_);
+  gl_.BufferData(GL_ARRAY_BUFFER, vertices.size() * sizeof(float), vertices.data(), GL_STATIC_DRAW);
+  gl_.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
+  gl_.VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), reinterpret_cast<void*>(3 * sizeof(float)));
+  gl_.EnableVertexAttribArray(0);
+  gl_.EnableVertexAttribArray(1);
+  gl_.BindVertexArray(0);
+  auto upload = [&](unsigned buffer, const void* data, size_t bytes) {
+    gl_.BindBuffer(GL_SHADER_STORAGE_BUFFER, buffer);
+    gl_.BufferData(GL_SHADER_STORAGE_BUFFER, bytes, data, GL_STATIC_DRAW);
+  };
+  upload(ssbo_[0], tables.faces.data(), tables.faces.size() * sizeof(SubdivTables::FaceEntry));
+  upload(ssbo_[1], tables.positions.data(), tables.positions.size() * sizeof(glm::vec4));
+  upload(ssbo_[2], tables.tangents.data(), tables.tangents.size() * sizeof(glm::vec4));
+  // Per face and edge c (corner c -> c+1): the face across it and that face's edge, as face * 4 + edge.
+  const ControlMesh& cm = surface.control();
+  std::vector<int> neighbours(size_t(cm.mesh.faceCount()) * 4);
+  for (int f = 0; f < cm.mesh.faceCount(); ++f)
+    for (int c = 0; c < 4; ++c) {
+      const auto& t = cm.topology.twin[cm.mesh.faceOffsets[f] + c];
+      neighbours[size_t(f) * 4 + c] = t.face * 4 + t.corner;
+    }
+  upload(ssbo_[3], neighbours.data(), neighbours.size() * sizeof(int));
+}
+
+SubdivFrame SubdivRenderer::render(const Camera& cam, const Box3& clip, double near_plane, double far_plane,
+                                   bool want_parameters) {
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  const unsigned buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+  gl_.DrawBuffers(3, buffers);
+  gl_.Viewport(0, 0, width_, height_);
+  gl_.Disable(GL_BLEND);
+  gl_.Disable(GL_SCISSOR_TEST);
+  // Misses: colour transparent, t = 1e30, face -1. Clear each target to its own value.
+  const float clears[3][4] = {{0, 0, 0, 0}, {1e30f, 0, 0, 0}, {-1, 0, 0, 0}};
+  for (int i = 0; i < 3; ++i) {
+    const unsigned one = buffers[i];
+    gl_.DrawBuffers(1, &one);
+    gl_.ClearColor(clears[i][0], clears[i][1], clears[i][2], clears[i][3]);
+    gl_.Clear(GL_COLOR_BUFFER_BIT);
+  }
+  gl_.DrawBuffers(3, buffers);
+  gl_.Clear(GL_DEPTH_BUFFER_BIT);
+  gl_.Enable(GL_DEPTH_TEST);
+  // The coarse mesh is closed and counter-clockwise from outside: its back faces are hidden except
+  // within the coarse mesh's deviation of a silhouette, and would double the per-fragment
+  // evaluations (the shader writes its depth, so no early depth test saves them).
+  gl_.Enable(GL_CULL_FACE);
+  gl_.UseProgram(program_);
+  const glm::mat4 vp = cam.viewProjection(near_plane, far_plane);
+  auto loc = [&](const char* name) { return gl_.GetUniformLocation(program_, name); };
+  auto vec3 = [&](const char* name, const glm::dvec3& x) { gl_.Uniform3f(loc(name), float(x.x), float(x.y), float(x.z)); };
+  gl_.UniformMatrix4fv(loc("view_projection"), 1, GL_FALSE, glm::value_ptr(vp));
+  vec3("eye", cam.position);
+  vec3("clip_lo", clip.lo);
+  vec3("clip_hi", clip.hi);
+  vec3("colour", shading_.colour);
+  vec3("centre", centre_);
+  const glm::dvec3 light = glm::normalize(shading_.light_direction);
+  const glm::dvec3 other = std::abs(light.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  vec3("light_dir", light);
+  vec3("stripe_axis", glm::normalize(glm::cross(light, other)));
+  gl_.Uniform1f(loc("size"), float(size_));
+  gl_.Uniform1f(loc("stripe_width"), float(shading_.stripe_width));
+  gl_.Uniform1i(loc("stripes"), shading_.stripes);
+  gl_.Uniform1i(loc("reflection_lines"), shading_.mode == "reflection_lines" ? 1 : 0);
+  gl_.Uniform1i(loc("newton_steps"), shading_.newton_steps);
+  for (int i = 0; i < 4; ++i) gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, i, ssbo_[i]);
+  gl_.BindVertexArray(vao_);
+  gl_.DrawArrays(GL_TRIANGLES, 0, vertex_count_);
+  gl_.BindVertexArray(0);
+  gl_.Disable(GL_DEPTH_TEST);
+  gl_.Disable(GL_CULL_FACE);
+
+  SubdivFrame out;
+  const size_t n = size_t(width_) * height_;
+  std::vector<float> rgba(n * 4);
+  auto read = [&](int attachment, std::vector<float>& into) {
+    into.resize(n * 4);
+    gl_.ReadBuffer(GL_COLOR_ATTACHMENT0 + attachment);
+    gl_.ReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, into.data());
+  };
+  read(0, rgba);
+  read(1, out.surface);
+  if (want_parameters) read(2, out.parameters);
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  // GL rows run bottom up; images here top down.
+  auto flip = [&](std::vector<float>& v) {
+    for (int y = 0; y < height_ / 2; ++y)
+      std::swap_ranges(v.begin() + size_t(y) * width_ * 4, v.begin() + size_t(y + 1) * width_ * 4,
+                       v.begin() + size_t(height_ - 1 - y) * width_ * 4);
+  };
+  flip(rgba);
+  flip(out.surface);
+  if (want_parameters) flip(out.parameters);
+  out.pixels = ImageRGBA8(width_, height_);
+  for (size_t i = 0; i < n * 4; ++i) out.pixels.px[i] = uint8_t(std::lround(std::clamp(rgba[i], 0.0f, 1.0f) * 255.0f));
+  return out;
+}
+
+}  // namespace sortlast
