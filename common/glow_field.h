@@ -12,7 +12,7 @@
 namespace sortlast {
 
 struct GlowEmitter {
-  glm::dvec3 centre{0.0};        // M
+  glm::dvec3 centre{0.0};         // M
   glm::dvec3 direction{1, 0, 0};  // D, unit length (the scene normalises it)
   double a = 1.0;                 // sphere strength (back side)
   double b = 1.0;                 // cylinder strength (D side)

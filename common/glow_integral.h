@@ -9,15 +9,14 @@
 // The ratio minus one is rewritten as |q| z with z a sum and quotient of positive terms only,
 //   z = len (1 + (xi0 + xi1) / (R0 + R1)) / (xi0 + R0)        (both xi >= 0),
 // so I = z log1p(|q| z) / (|q| z): no difference of two asinh values, no division by |q| (the ray
-// parallel to the axis gives |q| = 0 and I = len / R exactly), nothing divided by a value that can be
-// 0 (R >= eps > 0). Stretches with xi <= 0 are mirrored; a stretch that passes the closest point is
-// split there. The template is instantiated for double (the reference path, log1p from libm) and for
-// float with the expressions of the GLSL in worker/glow_glsl.h, so its float error can be tested on
-// the CPU.
+// parallel to the axis gives |q| = 0 and I = len / R exactly), nothing divided by a value that can
+// be 0 (R >= eps > 0). Stretches with xi <= 0 are mirrored; a stretch that passes the closest point
+// is split there. The template is instantiated for double (the reference path, log1p from libm) and
+// for float with the expressions of the GLSL in worker/glow_glsl.h, so its float error can be
+// tested on the CPU.
 #include <cmath>
-#include <type_traits>
-
 #include <glm/glm.hpp>
+#include <type_traits>
 
 #include "common/glow_field.h"
 
@@ -105,8 +104,8 @@ T glowSegment(glm::vec<3, T> centre, glm::vec<3, T> dir, T a, T b, T eps, glm::v
 }
 
 // Double-precision entry for the scene's emitters.
-inline double glowSegment(const GlowEmitter& e, double eps, const glm::dvec3& o, const glm::dvec3& u,
-                          double s0, double s1) {
+inline double glowSegment(const GlowEmitter& e, double eps, const glm::dvec3& o,
+                          const glm::dvec3& u, double s0, double s1) {
   return glowSegment<double>(e.centre, e.direction, e.a, e.b, eps, o, u, s0, s1);
 }
 

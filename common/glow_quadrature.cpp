@@ -1,10 +1,9 @@
 #include "common/glow_quadrature.h"
 
 #include <algorithm>
+#include <boost/math/quadrature/tanh_sinh.hpp>
 #include <cmath>
 #include <vector>
-
-#include <boost/math/quadrature/tanh_sinh.hpp>
 
 namespace sortlast {
 
@@ -38,7 +37,9 @@ QuadratureResult glowQuadrature(const GlowEmitter& e, double eps, const glm::dve
     // the nearer end, negative near the left one), not as o + s u: offsets far below the ulp of s
     // stay distinct, so a peak at the end is resolved however narrow.
     const glm::dvec3 left = o + cuts[i] * u, right = o + cuts[i + 1] * u;
-    auto f = [&](double, double xc) { return glowField(e, eps, xc <= 0.0 ? left - xc * u : right - xc * u); };
+    auto f = [&](double, double xc) {
+      return glowField(e, eps, xc <= 0.0 ? left - xc * u : right - xc * u);
+    };
     double err = 0.0;
     r.value += integrator.integrate(f, cuts[i], cuts[i + 1], 1e-13, &err);
     r.error += err;

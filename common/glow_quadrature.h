@@ -9,7 +9,8 @@ namespace sortlast {
 
 struct QuadratureResult {
   double value = 0.0;
-  double error = 0.0;  // Boost's estimate: the change between its last two levels, summed over pieces
+  double error =
+      0.0;  // Boost's estimate: the change between its last two levels, summed over pieces
 };
 
 // int_{s0}^{s1} E(o + s u) ds, u of unit length, by tanh-sinh quadrature (Boost.Math), refined

@@ -2,11 +2,10 @@
 // The scene's glow emitters (the `glow.*` keys, docs/scene.md; the field: common/glow_field.h):
 // what each emitter is at frame 0, how it moves per frame, and how the glow is scaled and
 // tone-mapped. Parsed and validated here, apart from scene.cpp, as one list-valued key.
+#include <glm/glm.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "common/box.h"
 #include "common/glow_field.h"
@@ -26,11 +25,11 @@ struct GlowEmitterSpec {
 
 struct GlowSpec {
   std::vector<GlowEmitterSpec> emitters;
-  double core_radius = 0.01;         // eps, world units
-  double intensity = 1.0;            // radiance = intensity * colour * integral of E
-  std::string tone_map = "none";     // none | exponential
-  double exposure = 1.0;             // exponential: 1 - exp(-exposure * radiance)
-  std::optional<Box3> box;           // glow.box; unset: the scene's bounds
+  double core_radius = 0.01;      // eps, world units
+  double intensity = 1.0;         // radiance = intensity * colour * integral of E
+  std::string tone_map = "none";  // none | exponential
+  double exposure = 1.0;          // exponential: 1 - exp(-exposure * radiance)
+  std::optional<Box3> box;        // glow.box; unset: the scene's bounds
 
   bool enabled() const { return !emitters.empty(); }
   // The emitters at frame `frame` (0: as given; an orbit's frame i: i steps of each rate).

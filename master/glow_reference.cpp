@@ -15,7 +15,8 @@ bool GlowRays::span(const glm::dvec3& o, const glm::dvec3& d, double& t0, double
   return t1 > t0;
 }
 
-glm::dvec3 GlowRays::radiance(const glm::dvec3& o, const glm::dvec3& d, double ta, double tb) const {
+glm::dvec3 GlowRays::radiance(const glm::dvec3& o, const glm::dvec3& d, double ta,
+                              double tb) const {
   double g0, g1;
   glm::dvec3 sum(0.0);
   if (!span(o, d, g0, g1)) return sum;

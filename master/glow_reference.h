@@ -1,10 +1,10 @@
 #pragma once
-// The glow of a scene's emitters along one ray, in double: the reference path (common/glow_integral.h's
-// closed form, which tests/unit/glow_test.cpp checks against quadrature to 1e-6). Only the part of
-// the ray inside `box` counts (the integral along an unbounded ray diverges).
-#include <vector>
-
+// The glow of a scene's emitters along one ray, in double: the reference path
+// (common/glow_integral.h's closed form, which tests/unit/glow_test.cpp checks against quadrature
+// to 1e-6). Only the part of the ray inside `box` counts (the integral along an unbounded ray
+// diverges).
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "common/box.h"
 #include "common/glow_field.h"

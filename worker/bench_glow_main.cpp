@@ -4,7 +4,8 @@
 // double on the CPU. What a brick's glow pass would cost on one rank with d = 1 (the GL path does
 // not draw emitters in `sortlast render` yet: docs/glow.md). See scripts/bench-glow.
 //
-// Usage: bench_glow EMITTERS SIZE FRAMES   -> one CSV line: emitters,size,frames,ms_per_frame,fps,psnr_db
+// Usage: bench_glow EMITTERS SIZE FRAMES   -> one CSV line:
+// emitters,size,frames,ms_per_frame,fps,psnr_db
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -82,10 +83,14 @@ int main(int argc, char** argv) {
   std::vector<Emitter> em;
   std::vector<float> texels;
   for (int i = 0; i < count; ++i) {
-    Emitter e{{c(g), c(g), c(g)}, glm::normalize(glm::vec3(n(g), n(g), n(g))), {u(g), u(g), u(g)}, u(g), u(g)};
+    Emitter e{{c(g), c(g), c(g)},
+              glm::normalize(glm::vec3(n(g), n(g), n(g))),
+              {u(g), u(g), u(g)},
+              u(g),
+              u(g)};
     em.push_back(e);
-    for (float v : {e.centre.x, e.centre.y, e.centre.z, e.a, e.dir.x, e.dir.y, e.dir.z, e.b, e.colour.r,
-                    e.colour.g, e.colour.b, 0.0f})
+    for (float v : {e.centre.x, e.centre.y, e.centre.z, e.a, e.dir.x, e.dir.y, e.dir.z, e.b,
+                    e.colour.r, e.colour.g, e.colour.b, 0.0f})
       texels.push_back(v);
   }
   Camera cam;
@@ -113,7 +118,9 @@ int main(int argc, char** argv) {
   gl.BindTexture(GL_TEXTURE_2D, tex);
   gl.UseProgram(program);
   auto loc = [&](const char* name) { return gl.GetUniformLocation(program, name); };
-  auto u3 = [&](const char* name, glm::dvec3 v) { gl.Uniform3f(loc(name), float(v.x), float(v.y), float(v.z)); };
+  auto u3 = [&](const char* name, glm::dvec3 v) {
+    gl.Uniform3f(loc(name), float(v.x), float(v.y), float(v.z));
+  };
   const double th = std::tan(0.5 * cam.fov_deg * 3.14159265358979323846 / 180.0);
   gl.Uniform1i(loc("u_emitters"), 0);
   gl.Uniform1i(loc("u_count"), count);
@@ -137,7 +144,8 @@ int main(int argc, char** argv) {
     auto t = std::chrono::steady_clock::now();
     gl.DrawArrays(GL_TRIANGLES, 0, 3);
     gl.ReadPixels(0, 0, size, size, GL_RGBA, GL_FLOAT, px.data());
-    double dt = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+    double dt =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
     if (f > 0) ms.push_back(dt);
   }
   std::sort(ms.begin(), ms.end());
@@ -149,13 +157,16 @@ int main(int argc, char** argv) {
     for (int x = 0; x < size; ++x) {
       glm::dvec3 o = cam.position, d = cam.rayDirection(x, y), sum(0.0);
       double t0, t1;
-      if (intersectRayBox(o, d, Box3{glm::dvec3(lo), glm::dvec3(hi)}, t0, t1) && t1 > std::max(t0, 0.0))
+      if (intersectRayBox(o, d, Box3{glm::dvec3(lo), glm::dvec3(hi)}, t0, t1) &&
+          t1 > std::max(t0, 0.0))
         for (const Emitter& e : em)
-          sum += glm::dvec3(e.colour) * glowSegment<double>(glm::dvec3(e.centre), glm::dvec3(e.dir), e.a, e.b, eps,
-                                                             o, d, std::max(t0, 0.0), t1);
+          sum += glm::dvec3(e.colour) * glowSegment<double>(glm::dvec3(e.centre), glm::dvec3(e.dir),
+                                                            e.a, e.b, eps, o, d, std::max(t0, 0.0),
+                                                            t1);
       for (int k = 0; k < 3; ++k) {
         double ref = std::round(255.0 * -std::expm1(-double(exposure) * intensity * sum[k]));
-        double got = std::round(255.0 * std::clamp(double(px[4 * (size_t(y) * size + x) + k]), 0.0, 1.0));
+        double got =
+            std::round(255.0 * std::clamp(double(px[4 * (size_t(y) * size + x) + k]), 0.0, 1.0));
         se += (ref - got) * (ref - got);
       }
     }

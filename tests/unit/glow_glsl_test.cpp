@@ -2,6 +2,8 @@
 // ray per pixel, against the double closed form (common/glow_integral.h) on the same float inputs:
 // the float bound the C++ float instantiation meets (tests/unit/glow_test.cpp, 2e-5) must hold
 // for the shader too. Its own executable: it needs a GL context, which the unit tests never make.
+#include "worker/glow_glsl.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,7 +14,6 @@
 #include "common/glow_integral.h"
 #include "worker/gl_context.h"
 #include "worker/gl_program.h"
-#include "worker/glow_glsl.h"
 
 namespace sortlast {
 namespace {
@@ -23,8 +24,8 @@ struct Ray {
 };
 
 double closed(const Ray& r) {
-  return glowSegment<double>(glm::dvec3(r.centre), glm::dvec3(r.dir), r.a, r.b, r.eps, glm::dvec3(r.o),
-                             glm::dvec3(r.u), r.s0, r.s1);
+  return glowSegment<double>(glm::dvec3(r.centre), glm::dvec3(r.dir), r.a, r.b, r.eps,
+                             glm::dvec3(r.o), glm::dvec3(r.u), r.s0, r.s1);
 }
 
 // Moving M by 4 float ulps of the ray's scale changes the integral by more than a quarter of the
@@ -36,7 +37,8 @@ bool illConditioned(const Ray& r, double bound) {
     for (double sign : {-1.0, 1.0}) {
       glm::dvec3 c(r.centre);
       c[axis] += sign * nudge;
-      double v = glowSegment<double>(c, glm::dvec3(r.dir), r.a, r.b, r.eps, glm::dvec3(r.o), glm::dvec3(r.u), r.s0, r.s1);
+      double v = glowSegment<double>(c, glm::dvec3(r.dir), r.a, r.b, r.eps, glm::dvec3(r.o),
+                                     glm::dvec3(r.u), r.s0, r.s1);
       if (std::abs(v - base) > 0.25 * bound * base) return true;
     }
   return false;
@@ -52,7 +54,9 @@ std::vector<Ray> rays() {
     while (glm::length(v) < 1e-3f);
     return glm::normalize(v);
   };
-  auto logU = [&](float lo, float hi) { return std::exp(std::log(lo) + uni(g) * (std::log(hi) - std::log(lo))); };
+  auto logU = [&](float lo, float hi) {
+    return std::exp(std::log(lo) + uni(g) * (std::log(hi) - std::log(lo)));
+  };
   std::vector<Ray> out;
   for (int i = 0; i < 2048; ++i) {
     Ray r;
@@ -79,7 +83,8 @@ std::vector<Ray> rays() {
         glm::vec3 side = glm::normalize(glm::cross(r.dir, unit()));
         float angle = i % 8 == 2 ? 0.0f : logU(1e-7f, 1e-2f);
         r.u = glm::normalize(r.dir * std::cos(angle) + side * std::sin(angle));
-        r.o = r.centre + logU(1e-3f, 10.0f) * glm::normalize(glm::cross(r.dir, side)) + (c(g) * 5.0f) * r.dir;
+        r.o = r.centre + logU(1e-3f, 10.0f) * glm::normalize(glm::cross(r.dir, side)) +
+              (c(g) * 5.0f) * r.dir;
         r.s1 = logU(1e-3f, 1e3f);
         break;
       }
@@ -117,8 +122,9 @@ TEST(GlowGlsl, ShaderMatchesTheClosedForm) {
   // and s1 in a fifth.
   std::vector<float> texels;
   for (const Ray& r : cases)
-    for (float v : {r.centre.x, r.centre.y, r.centre.z, r.a, r.dir.x, r.dir.y, r.dir.z, r.b, r.o.x, r.o.y, r.o.z,
-                    r.eps, r.u.x, r.u.y, r.u.z, r.s0, r.s1, 0.0f, 0.0f, 0.0f})
+    for (float v :
+         {r.centre.x, r.centre.y, r.centre.z, r.a,   r.dir.x, r.dir.y, r.dir.z, r.b,  r.o.x, r.o.y,
+          r.o.z,      r.eps,      r.u.x,      r.u.y, r.u.z,   r.s0,    r.s1,    0.0f, 0.0f,  0.0f})
       texels.push_back(v);
   std::string fragment = std::string("#version 450 core\n") + shaders::kGlowSegment + R"(
 uniform sampler2D u_cases;
@@ -171,9 +177,10 @@ void main() {
     worst[i % 4] = std::max(worst[i % 4], rel);
     EXPECT_LE(rel, kBound) << "case " << i << ": GLSL " << v << " double " << d;
   }
-  std::printf("glow GLSL on %s: worst relative error anywhere %.2e, through M %.2e, parallel to the axis "
-              "%.2e, along the plane %.2e (bound %.0e); %d of %d rays ill-conditioned in float (finite)\n",
-              ctx->description().c_str(), worst[0], worst[1], worst[2], worst[3], kBound, skipped, n);
+  std::printf(
+      "glow GLSL on %s: worst relative error anywhere %.2e, through M %.2e, parallel to the axis "
+      "%.2e, along the plane %.2e (bound %.0e); %d of %d rays ill-conditioned in float (finite)\n",
+      ctx->description().c_str(), worst[0], worst[1], worst[2], worst[3], kBound, skipped, n);
   gl.DeleteVertexArrays(1, &vao);
   gl.DeleteFramebuffers(1, &fbo);
   gl.DeleteTextures(1, &target);

@@ -1,19 +1,19 @@
 // Glow in scenes: the glow.* keys' validation (common/glow_scene.h), and the reference path
 // (master/glow_reference.h, master/reference.h): per pixel against quadrature, split over bricks,
 // and dimmed by a volume against the exact transmittance-weighted integral.
+#include "master/glow_reference.h"
+
 #include <gtest/gtest.h>
 
+#include <boost/math/quadrature/tanh_sinh.hpp>
 #include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
 
-#include <boost/math/quadrature/tanh_sinh.hpp>
-
 #include "common/glow_quadrature.h"
 #include "common/scene.h"
 #include "master/frame_reference.h"
-#include "master/glow_reference.h"
 #include "master/reference.h"
 #include "tests/unit/input_error_of.h"
 
@@ -32,8 +32,10 @@ const char* kGlowOnly =
     "    - {center: [0, 0, 0], direction: [1, 0, 0], a: 1, b: 0.5, color: [1, 0.5, 0.25]}\n";
 
 TEST(GlowScene, KeysParsedAndAnimated) {
-  Scene s = parse(kGlowOnly, {"camera.orbit.frames=4", "glow.emitters=[{center: [0, 0, 0], direction: [0, 0, 2], "
-                                                         "a: 1, b: 2, velocity: [1, 0, 0], turn: [0, 2, 0], a_rate: 0.5, b_rate: -0.5}]"});
+  Scene s = parse(
+      kGlowOnly, {"camera.orbit.frames=4",
+                  "glow.emitters=[{center: [0, 0, 0], direction: [0, 0, 2], "
+                  "a: 1, b: 2, velocity: [1, 0, 0], turn: [0, 2, 0], a_rate: 0.5, b_rate: -0.5}]"});
   ASSERT_EQ(s.glow.emitters.size(), 1u);
   std::vector<GlowEmitter> f3 = s.glow.emittersAt(3);
   EXPECT_DOUBLE_EQ(f3[0].centre.x, 3.0);
@@ -49,33 +51,53 @@ TEST(GlowScene, BadKeysNameTheKey) {
     return inputErrorOf([&] { parse(yaml, o); });
   };
   auto with = [](const std::string& emitter) {
-    return std::string("volume: {procedural: none}\nglow: {box: [[-1, -1, -1], [1, 1, 1]], emitters: [") + emitter + "]}\n";
+    return std::string(
+               "volume: {procedural: none}\nglow: {box: [[-1, -1, -1], [1, 1, 1]], emitters: [") +
+           emitter + "]}\n";
   };
-  EXPECT_NE(err(with("{center: [0, 0, 0], a: -1}")).find("glow.emitters[0].a': must be >= 0"), std::string::npos);
-  EXPECT_NE(err(with("{center: [0, 0, 0], b: -0.5}")).find("glow.emitters[0].b'"), std::string::npos);
-  EXPECT_NE(err(with("{center: [0, 0, 0], direction: [0, 0, 0]}")).find("glow.emitters[0].direction': must not be zero"),
+  EXPECT_NE(err(with("{center: [0, 0, 0], a: -1}")).find("glow.emitters[0].a': must be >= 0"),
             std::string::npos);
-  EXPECT_NE(err(with("{center: [.nan, 0, 0]}")).find("glow.emitters[0].center': values must be finite"), std::string::npos);
-  EXPECT_NE(err(with("{center: [0, 0, 0], a: .inf}")).find("glow.emitters[0].a': must be finite"), std::string::npos);
-  EXPECT_NE(err(with("{center: [0, 0]}")).find("glow.emitters[0].center': expected a list of 3"), std::string::npos);
-  EXPECT_NE(err(with("{direction: [1, 0, 0]}")).find("glow.emitters[0].center': required"), std::string::npos);
-  EXPECT_NE(err(with("{center: [0, 0, 0], colour: [1, 0, 0]}")).find("unknown scene key 'glow.emitters[0].colour'"),
+  EXPECT_NE(err(with("{center: [0, 0, 0], b: -0.5}")).find("glow.emitters[0].b'"),
             std::string::npos);
-  EXPECT_NE(err(with("{center: [0, 0, 0], color: [2, 0, 0]}")).find("glow.emitters[0].color'"), std::string::npos);
-  EXPECT_NE(err(with("{center: [0, 0, 0]}, 7")).find("glow.emitters[1]': expected a map"), std::string::npos);
-  EXPECT_NE(err(with("{center: [0, 0, 0], a: 1, a_rate: -0.5}"), {"camera.orbit.frames=4"}).find("negative at frame 3"),
+  EXPECT_NE(err(with("{center: [0, 0, 0], direction: [0, 0, 0]}"))
+                .find("glow.emitters[0].direction': must not be zero"),
             std::string::npos);
-  EXPECT_NE(err(with("{center: [0, 0, 0], direction: [1, 0, 0], turn: [-0.5, 0, 0]}"), {"camera.orbit.frames=4"})
+  EXPECT_NE(
+      err(with("{center: [.nan, 0, 0]}")).find("glow.emitters[0].center': values must be finite"),
+      std::string::npos);
+  EXPECT_NE(err(with("{center: [0, 0, 0], a: .inf}")).find("glow.emitters[0].a': must be finite"),
+            std::string::npos);
+  EXPECT_NE(err(with("{center: [0, 0]}")).find("glow.emitters[0].center': expected a list of 3"),
+            std::string::npos);
+  EXPECT_NE(err(with("{direction: [1, 0, 0]}")).find("glow.emitters[0].center': required"),
+            std::string::npos);
+  EXPECT_NE(err(with("{center: [0, 0, 0], colour: [1, 0, 0]}"))
+                .find("unknown scene key 'glow.emitters[0].colour'"),
+            std::string::npos);
+  EXPECT_NE(err(with("{center: [0, 0, 0], color: [2, 0, 0]}")).find("glow.emitters[0].color'"),
+            std::string::npos);
+  EXPECT_NE(err(with("{center: [0, 0, 0]}, 7")).find("glow.emitters[1]': expected a map"),
+            std::string::npos);
+  EXPECT_NE(err(with("{center: [0, 0, 0], a: 1, a_rate: -0.5}"), {"camera.orbit.frames=4"})
+                .find("negative at frame 3"),
+            std::string::npos);
+  EXPECT_NE(err(with("{center: [0, 0, 0], direction: [1, 0, 0], turn: [-0.5, 0, 0]}"),
+                {"camera.orbit.frames=4"})
                 .find("direction becomes zero at frame 2"),
             std::string::npos);
-  EXPECT_NE(err(kGlowOnly, {"glow.emitters=7"}).find("'glow.emitters': expected a list"), std::string::npos);
+  EXPECT_NE(err(kGlowOnly, {"glow.emitters=7"}).find("'glow.emitters': expected a list"),
+            std::string::npos);
   EXPECT_NE(err(kGlowOnly, {"glow.core_radius=0"}).find("glow.core_radius"), std::string::npos);
   EXPECT_NE(err(kGlowOnly, {"glow.intensity=-1"}).find("glow.intensity"), std::string::npos);
-  EXPECT_NE(err(kGlowOnly, {"glow.tone_map=reinhard"}).find("glow.tone_map': expected none or exponential"),
+  EXPECT_NE(err(kGlowOnly, {"glow.tone_map=reinhard"})
+                .find("glow.tone_map': expected none or exponential"),
             std::string::npos);
   EXPECT_NE(err(kGlowOnly, {"glow.exposure=0"}).find("glow.exposure"), std::string::npos);
-  EXPECT_NE(err(kGlowOnly, {"glow.box=[[0, 0, 0], [1, 0, 1]]"}).find("glow.box': needs lo < hi"), std::string::npos);
-  EXPECT_NE(err(kGlowOnly, {"glow.box=auto"}).find("glow.box': a scene of glow emitters alone must set"), std::string::npos);
+  EXPECT_NE(err(kGlowOnly, {"glow.box=[[0, 0, 0], [1, 0, 1]]"}).find("glow.box': needs lo < hi"),
+            std::string::npos);
+  EXPECT_NE(
+      err(kGlowOnly, {"glow.box=auto"}).find("glow.box': a scene of glow emitters alone must set"),
+      std::string::npos);
   EXPECT_NE(err("volume: {procedural: none}\n").find("glow.emitters is empty"), std::string::npos);
 }
 
@@ -121,14 +143,18 @@ TEST(GlowReference, PixelsMatchQuadrature) {
       glm::dvec3 q(0.0);
       if (rays.span(cam.position, d, t0, t1))
         for (const GlowEmitter& e : rays.emitters)
-          q += rays.intensity * e.colour * glowQuadrature(e, rays.eps, cam.position, d, t0, t1).value;
+          q += rays.intensity * e.colour *
+               glowQuadrature(e, rays.eps, cam.position, d, t0, t1).value;
       for (int k = 0; k < 3; ++k) {
         ASSERT_TRUE(std::isfinite(r[k]));
-        if (q[k] > 0.0) worst = std::max(worst, std::abs(r[k] - q[k]) / q[k]);
-        else EXPECT_EQ(r[k], 0.0);
+        if (q[k] > 0.0)
+          worst = std::max(worst, std::abs(r[k] - q[k]) / q[k]);
+        else
+          EXPECT_EQ(r[k], 0.0);
       }
     }
-  std::printf("glow reference pixels vs quadrature: worst relative error %.2e (bound 1e-6)\n", worst);
+  std::printf("glow reference pixels vs quadrature: worst relative error %.2e (bound 1e-6)\n",
+              worst);
   EXPECT_LE(worst, 1e-6);
 }
 
@@ -150,12 +176,14 @@ TEST(GlowReference, BricksAddUpToTheWhole) {
     double worst = 0.0;
     for (int y = 0; y < cam.height; ++y)
       for (int x = 0; x < cam.width; ++x) {
-        glm::dvec3 dir = cam.rayDirection(x, y), sum(0.0), all = whole.radiance(cam.position, dir, 0.0, HUGE_VAL);
+        glm::dvec3 dir = cam.rayDirection(x, y), sum(0.0),
+                   all = whole.radiance(cam.position, dir, 0.0, HUGE_VAL);
         for (const GlowRays& b : bricks) sum += b.radiance(cam.position, dir, 0.0, HUGE_VAL);
         for (int k = 0; k < 3; ++k)
           if (all[k] > 0.0) worst = std::max(worst, std::abs(sum[k] - all[k]) / all[k]);
       }
-    std::printf("glow over %d^3 bricks vs the whole box: worst relative difference %.2e\n", d, worst);
+    std::printf("glow over %d^3 bricks vs the whole box: worst relative difference %.2e\n", d,
+                worst);
     EXPECT_LE(worst, 1e-12) << d;
   }
 }
@@ -206,18 +234,21 @@ TEST(GlowReference, DimmedByTheVolume) {
         if (!(b - a > 1e-12)) continue;
         for (const GlowEmitter& e : rays.emitters)
           exact += rays.intensity * e.colour *
-                   ts.integrate([&](double s) { return glowField(e, rays.eps, o + s * d) * T(s); }, a, b, 1e-12);
+                   ts.integrate([&](double s) { return glowField(e, rays.eps, o + s * d) * T(s); },
+                                a, b, 1e-12);
       }
       for (int k = 0; k < 3; ++k) {
         const double r = img.px[4 * (size_t(y) * cam.width + x) + k];
         // The image is float: its rounding (6e-8) is below the bound by far.
         if (exact[k] > 0.0) worst = std::max(worst, std::abs(r - exact[k]) / exact[k]);
         if (exact[k] > 0.0 && std::abs(r - exact[k]) > bound * exact[k])
-          ADD_FAILURE() << "pixel " << x << ", " << y << " channel " << k << ": reference " << r << " exact " << exact[k];
+          ADD_FAILURE() << "pixel " << x << ", " << y << " channel " << k << ": reference " << r
+                        << " exact " << exact[k];
       }
     }
-  std::printf("glow in an absorbing volume (tau %.3g, step %.4g): worst relative error %.2e (bound %.2e)\n", tau, h,
-              worst, bound);
+  std::printf(
+      "glow in an absorbing volume (tau %.3g, step %.4g): worst relative error %.2e (bound %.2e)\n",
+      tau, h, worst, bound);
   EXPECT_LE(worst, bound);
   EXPECT_GT(worst, 0.0);  // the comparison is live: the volume does dim the glow
 }
@@ -231,23 +262,26 @@ TEST(GlowReference, HardCamerasGiveFinitePixels) {
   };
   const glm::dvec3 m{0.1, -0.2, 0.3};
   const std::vector<View> views = {
-      {m, m + glm::dvec3(0, 0, -1)},                       // at M
-      {m + glm::dvec3(1.5, 0, 0), m + glm::dvec3(3, 0, 0)},  // on the axis, looking along it
-      {m + glm::dvec3(1.5, 0, 0), m},                       // on the axis, looking back at M
+      {m, m + glm::dvec3(0, 0, -1)},                           // at M
+      {m + glm::dvec3(1.5, 0, 0), m + glm::dvec3(3, 0, 0)},    // on the axis, looking along it
+      {m + glm::dvec3(1.5, 0, 0), m},                          // on the axis, looking back at M
       {m + glm::dvec3(0, 0, 1.5), m + glm::dvec3(0, 0.5, 0)},  // in the plane, looking along it
-      {m + glm::dvec3(0, 0, 5), m},                         // outside, the beam across the view
+      {m + glm::dvec3(0, 0, 5), m},                            // outside, the beam across the view
   };
   for (double eps : {1e-9, 1e-3}) {
     char eps_text[32];
     std::snprintf(eps_text, sizeof eps_text, "%g", eps);
     for (const View& v : views) {
-      Scene s = parse(kGlowOnly, {"image.width=33", "image.height=33", std::string("glow.core_radius=") + eps_text,
-                                  "glow.emitters=[{center: [0.1, -0.2, 0.3], direction: [1, 0, 0], a: 1, b: 1}]"});
+      Scene s =
+          parse(kGlowOnly,
+                {"image.width=33", "image.height=33", std::string("glow.core_radius=") + eps_text,
+                 "glow.emitters=[{center: [0.1, -0.2, 0.3], direction: [1, 0, 0], a: 1, b: 1}]"});
       FrameReference ref(s, 1);
       Camera cam = s.camera;
       cam.position = v.position;
       cam.look_at = v.look_at;
-      cam.up = std::abs(glm::normalize(v.look_at - v.position).y) > 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+      cam.up = std::abs(glm::normalize(v.look_at - v.position).y) > 0.9 ? glm::dvec3(1, 0, 0)
+                                                                        : glm::dvec3(0, 1, 0);
       ImageF img = ref.render(cam);
       for (float p : img.px) ASSERT_TRUE(std::isfinite(p)) << eps;
       const glm::dvec3 d = cam.rayDirection(16, 16);

@@ -69,25 +69,30 @@ std::vector<Family> families() {
     return std::exp(x(g));
   };
   std::vector<Family> f;
-  f.push_back({"random", [=](std::mt19937& g, int) mutable {
+  f.push_back({"random",
+               [=](std::mt19937& g, int) mutable {
                  Case k{emitter(g), logUniform(g, 1e-3, 1.0), {}, unit(g), 0, 0};
                  std::uniform_real_distribution<double> c(-5.0, 5.0), s(-3.0, 3.0);
                  k.o = {c(g), c(g), c(g)};
                  k.s0 = s(g);
                  k.s1 = k.s0 + logUniform(g, 1e-3, 20.0);
                  return k;
-               }, 400});
+               },
+               400});
   // Through M (to within 0 .. 1e-9), eps from 1e-6 to 1, segments starting before or at M.
-  f.push_back({"through M", [=](std::mt19937& g, int i) mutable {
+  f.push_back({"through M",
+               [=](std::mt19937& g, int i) mutable {
                  Case k{emitter(g), logUniform(g, 1e-6, 1.0), {}, unit(g), 0, 0};
                  double miss = i % 3 == 0 ? 0.0 : logUniform(g, 1e-15, 1e-9);
                  k.o = k.e.centre - 2.0 * k.u + miss * perpendicular(k.u, g);
                  k.s0 = i % 4 == 0 ? 2.0 : uni(g) * 2.0;  // starting at M or before it
                  k.s1 = k.s0 + logUniform(g, 1e-6, 1e3);
                  return k;
-               }, 300});
+               },
+               300});
   // Crossing the axis (on the cylinder's side) at grazing angles 1e-9 .. 0.1 rad.
-  f.push_back({"grazing across the axis", [=](std::mt19937& g, int i) mutable {
+  f.push_back({"grazing across the axis",
+               [=](std::mt19937& g, int i) mutable {
                  Case k{emitter(g), logUniform(g, 1e-6, 1.0), {}, {}, 0, 0};
                  double angle = logUniform(g, 1e-9, 0.1);
                  glm::dvec3 n = perpendicular(k.e.direction, g);
@@ -99,31 +104,38 @@ std::vector<Family> families() {
                  k.s0 = 0.0;
                  k.s1 = before + logUniform(g, 1e-3, 1e3);
                  return k;
-               }, 300});
+               },
+               300});
   // Parallel to the axis at distances 1e-6 .. 1e3, along D or against it, across the plane or not.
-  f.push_back({"parallel to the axis", [=](std::mt19937& g, int i) mutable {
+  f.push_back({"parallel to the axis",
+               [=](std::mt19937& g, int i) mutable {
                  Case k{emitter(g), logUniform(g, 1e-6, 1.0), {}, {}, 0, 0};
                  double d = logUniform(g, 1e-6, 1e3);
                  k.u = i % 2 ? k.e.direction : -k.e.direction;
-                 k.o = k.e.centre + d * perpendicular(k.e.direction, g) + (uni(g) * 20.0 - 10.0) * k.e.direction;
+                 k.o = k.e.centre + d * perpendicular(k.e.direction, g) +
+                       (uni(g) * 20.0 - 10.0) * k.e.direction;
                  k.s0 = uni(g) * 5.0;
                  k.s1 = k.s0 + logUniform(g, 1e-6, 1e3);
                  return k;
-               }, 300});
+               },
+               300});
   // Segments 1e-6 .. 1e4 long anywhere near the emitter.
-  f.push_back({"segment lengths", [=](std::mt19937& g, int) mutable {
+  f.push_back({"segment lengths",
+               [=](std::mt19937& g, int) mutable {
                  Case k{emitter(g), logUniform(g, 1e-4, 1.0), {}, unit(g), 0, 0};
                  std::uniform_real_distribution<double> c(-3.0, 3.0);
                  k.o = k.e.centre + glm::dvec3(c(g), c(g), c(g));
                  k.s0 = c(g);
                  k.s1 = k.s0 + logUniform(g, 1e-6, 1e4);
                  return k;
-               }, 300});
+               },
+               300});
   // Along the dividing plane: in it, or 1e-12 .. 1e-3 off it, through M or missing it. A ray in
   // the plane with a != b runs along the field's jump, where rounding picks the side point by
   // point in the quadrature (the closed form takes the D side for the whole segment): in-plane rays
   // get a = b, where the field is continuous and the integral well defined.
-  f.push_back({"along the plane", [=](std::mt19937& g, int i) mutable {
+  f.push_back({"along the plane",
+               [=](std::mt19937& g, int i) mutable {
                  Case k{emitter(g), logUniform(g, 1e-6, 1.0), {}, {}, 0, 0};
                  if (i % 3 == 0) k.e.b = k.e.a;
                  k.u = perpendicular(k.e.direction, g);
@@ -134,7 +146,8 @@ std::vector<Family> families() {
                  k.s0 = uni(g) * 3.0;
                  k.s1 = k.s0 + logUniform(g, 1e-6, 1e3);
                  return k;
-               }, 300});
+               },
+               300});
   return f;
 }
 
@@ -150,15 +163,16 @@ TEST(Glow, ClosedFormMatchesQuadrature) {
       QuadratureResult q = glowQuadrature(k.e, k.eps, k.o, k.u, k.s0, k.s1);
       ASSERT_TRUE(std::isfinite(c)) << f.name << " case " << i;
       ASSERT_GT(q.value, 0.0) << f.name << " case " << i;
-      // Boost's own error estimate (the change between its last two levels) is not asserted: on rays
-      // through M it reads up to 6e-5 relative where the two methods agree to 1e-10; two
+      // Boost's own error estimate (the change between its last two levels) is not asserted: on
+      // rays through M it reads up to 6e-5 relative where the two methods agree to 1e-10; two
       // independent methods agreeing is the check.
       double rel = std::abs(c - q.value) / q.value;
       worst = std::max(worst, rel);
-      EXPECT_LE(rel, kDoubleBound) << f.name << " case " << i << ": closed " << c << " quadrature " << q.value
-                                   << " eps " << k.eps << " length " << k.s1 - k.s0;
+      EXPECT_LE(rel, kDoubleBound) << f.name << " case " << i << ": closed " << c << " quadrature "
+                                   << q.value << " eps " << k.eps << " length " << k.s1 - k.s0;
     }
-    std::printf("glow double, %-24s worst relative error %.2e (bound %.0e)\n", f.name.c_str(), worst, kDoubleBound);
+    std::printf("glow double, %-24s worst relative error %.2e (bound %.0e)\n", f.name.c_str(),
+                worst, kDoubleBound);
   }
 }
 
@@ -192,7 +206,8 @@ TEST(Glow, FloatFormulasWithinBound) {
       const double scale = glm::length(r.o - r.e.centre) + std::abs(r.s0) + std::abs(r.s1);
       const double nudge = 4.0 * std::ldexp(scale, -24), base = closedForm(r);
       bool illConditioned = false;
-      for (glm::dvec3 dm : {glm::dvec3(nudge, 0, 0), glm::dvec3(0, nudge, 0), glm::dvec3(0, 0, nudge)})
+      for (glm::dvec3 dm :
+           {glm::dvec3(nudge, 0, 0), glm::dvec3(0, nudge, 0), glm::dvec3(0, 0, nudge)})
         for (double sign : {-1.0, 1.0}) {
           Case m = r;
           m.e.centre += sign * dm;
@@ -207,13 +222,15 @@ TEST(Glow, FloatFormulasWithinBound) {
       worst = std::max(worst, rel);
       EXPECT_LE(rel, kFloatBound) << f.name << " case " << i << ": float " << fl << " double " << d;
     }
-    std::printf("glow float,  %-24s worst relative error %.2e (bound %.0e), %d of %d ill-conditioned in float\n",
-                f.name.c_str(), worst, kFloatBound, skipped, f.count);
+    std::printf(
+        "glow float,  %-24s worst relative error %.2e (bound %.0e), %d of %d ill-conditioned in "
+        "float\n",
+        f.name.c_str(), worst, kFloatBound, skipped, f.count);
   }
 }
 
-// Degenerate inputs: zero-length and reversed segments, a ray starting exactly at M and on the axis,
-// the ray along the axis itself: finite, and zero where the segment is empty.
+// Degenerate inputs: zero-length and reversed segments, a ray starting exactly at M and on the
+// axis, the ray along the axis itself: finite, and zero where the segment is empty.
 TEST(Glow, DegenerateInputsAreFinite) {
   GlowEmitter e;
   e.centre = {0.5, -0.25, 1.0};
@@ -221,10 +238,12 @@ TEST(Glow, DegenerateInputsAreFinite) {
   for (double eps : {1e-12, 1e-6, 1.0}) {
     EXPECT_EQ(glowSegment(e, eps, e.centre, e.direction, 1.0, 1.0), 0.0);
     EXPECT_EQ(glowSegment(e, eps, e.centre, e.direction, 2.0, 1.0), 0.0);
-    for (glm::dvec3 u : {e.direction, -e.direction, glm::normalize(glm::cross(e.direction, glm::dvec3(0, 0, 1)))}) {
+    for (glm::dvec3 u : {e.direction, -e.direction,
+                         glm::normalize(glm::cross(e.direction, glm::dvec3(0, 0, 1)))}) {
       double v = glowSegment(e, eps, e.centre, u, -1.0, 1.0);
       EXPECT_TRUE(std::isfinite(v) && v > 0.0) << eps;
-      float fv = glowSegment<float>(f32(e.centre), f32(e.direction), 1.0f, 1.0f, float(eps), f32(e.centre), f32(u), -1.0f, 1.0f);
+      float fv = glowSegment<float>(f32(e.centre), f32(e.direction), 1.0f, 1.0f, float(eps),
+                                    f32(e.centre), f32(u), -1.0f, 1.0f);
       EXPECT_TRUE(std::isfinite(fv) && fv > 0.0f) << eps;
       QuadratureResult q = glowQuadrature(e, eps, e.centre, u, -1.0, 1.0);
       EXPECT_NEAR(v, q.value, kDoubleBound * q.value) << eps;
