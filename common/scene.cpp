@@ -247,6 +247,50 @@ std::vector<std::string> readSeries(const Reader& r, const std::string& key,
   return files;
 }
 
+// The glow.* keys (common/glow_scene.h has the emitters' own).
+GlowSpec readGlow(const Reader& r) {
+  GlowSpec g;
+  const int orbit = r.as<int>("camera.orbit.frames");  // checked >= 0 with the camera
+  g.emitters = parseGlowEmitters(r.get("glow.emitters"), std::max(1, orbit));
+  g.core_radius = r.as<double>("glow.core_radius");
+  checkLength("glow.core_radius", g.core_radius);
+  g.intensity = r.as<double>("glow.intensity");
+  if (!(g.intensity >= 0.0 && g.intensity <= 1e30))
+    throw InputError("scene key 'glow.intensity': must be in [0, 1e30]");
+  g.tone_map = r.as<std::string>("glow.tone_map");
+  if (g.tone_map != "none" && g.tone_map != "exponential")
+    throw InputError("scene key 'glow.tone_map': expected none or exponential, got '" + g.tone_map + "'");
+  g.exposure = r.as<double>("glow.exposure");
+  if (!(g.exposure > 0.0 && g.exposure <= 1e30))
+    throw InputError("scene key 'glow.exposure': must be in (0, 1e30]");
+  if (!r.isAuto("glow.box")) {
+    YAML::Node n = r.get("glow.box");
+    if (!n.IsSequence() || n.size() != 2)
+      throw InputError("scene key 'glow.box': expected auto or [[x0, y0, z0], [x1, y1, z1]]" + where(n));
+    Box3 b;
+    for (int c = 0; c < 2; ++c) {
+      std::vector<double> v;
+      try {
+        for (const auto& x : n[c]) v.push_back(x.as<double>());
+      } catch (const YAML::Exception&) {
+        v.clear();
+      }
+      if (v.size() != 3)
+        throw InputError("scene key 'glow.box': each corner is a list of 3 numbers" + where(n));
+      glm::dvec3 p{v[0], v[1], v[2]};
+      for (double x : v)
+        if (!std::isfinite(x)) throw InputError("scene key 'glow.box': values must be finite" + where(n));
+      checkCoordinates("glow.box", p);
+      (c == 0 ? b.lo : b.hi) = p;
+    }
+    for (int a = 0; a < 3; ++a)
+      if (!(b.hi[a] - b.lo[a] >= kMinLength))
+        throw InputError("scene key 'glow.box': needs lo < hi on every axis (by at least 1e-12)" + where(n));
+    g.box = b;
+  }
+  return g;
+}
+
 }  // namespace
 
 TransferFunction TransferSpec::build(double data_min, double data_max, double min_spacing) const {
@@ -414,9 +458,15 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
                      std::to_string(s.time_steps) + " time step(s), 0 ... " + std::to_string(s.time_steps - 1));
   if (!s.volume_files.empty()) vol.file = s.volume_files[size_t(s.time_step)];
   if (!s.particle_files.empty()) s.particles.file = s.particle_files[size_t(s.time_step)];
-  if (!s.hasVolume() && !s.particles.enabled())
+  s.glow = readGlow(r);
+  if (!s.hasVolume() && !s.particles.enabled() && !s.glow.enabled())
     throw InputError("the scene has nothing to render: volume.procedural is none with no "
-                     "volume.file, and neither particles.file nor particles.procedural is set");
+                     "volume.file, neither particles.file nor particles.procedural is set, and "
+                     "glow.emitters is empty");
+  if (!s.hasVolume() && !s.particles.enabled() && !s.glow.box)
+    throw InputError("scene key 'glow.box': a scene of glow emitters alone must set the box the "
+                     "glow is integrated in (auto takes the volume's and particles' bounds, and "
+                     "there are none)");
 
   TransferSpec& tf = s.transfer;
   YAML::Node pts = r.get("transfer.points");

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "common/camera.h"
+#include "common/glow_scene.h"
 #include "common/particles.h"
 #include "common/shading.h"
 #include "common/transfer_function.h"
@@ -46,6 +47,7 @@ bool hasSteepOpacity(const std::vector<TfPoint>& points);
 struct Scene {
   VolumeDesc volume;           // none when volume.procedural is `none` and there is no file
   ParticleDesc particles;
+  GlowSpec glow;               // glow.* (emitters: none unless given)
   TransferSpec transfer;
   Camera camera;               // with image width and height
   bool camera_auto = true;     // position derived from the bounds (camera.position: auto)

@@ -250,6 +250,34 @@ const std::vector<SceneKey>& sceneKeys() {
       {"limits.memory_mib", "auto",
        "Memory a rank may use, MiB; scenes estimated to need more are refused before loading. "
        "`auto`: 90% of MemAvailable (/proc/meminfo), shared by the ranks on the node."},
+      {"glow.emitters", "[]",
+       "Energy-wave glow emitters (docs/glow.md): a list of maps `{center: [x, y, z], direction: "
+       "[x, y, z], a, b, color: [r, g, b]}`. Each adds the field b / sqrt(dist(P, axis)^2 + eps^2) on "
+       "the side of the plane through `center` that `direction` points to (the axis: the line "
+       "through `center` along `direction`) and a / sqrt(|P - center|^2 + eps^2) on the other side, "
+       "eps = `glow.core_radius`; a = b makes it continuous. `direction` (default [1, 0, 0]) must "
+       "not be zero; a and b (default 1) must be >= 0; color entries (default [1, 1, 1]) in [0, 1]. "
+       "Per frame of an orbit, optional linear rates: `velocity` [x, y, z] added to the centre, "
+       "`turn` [x, y, z] added to the direction (then normalised), `a_rate`, `b_rate` added to a "
+       "and b (refused if a, b would turn negative or the direction zero by the last frame). Glow "
+       "is emission without opacity, integrated exactly along each ray inside `glow.box`, dimmed "
+       "by the volume in front of it and stopped at opaque surfaces. Drawn by `sortlast "
+       "reference` (and `--psnr`); the GL renderers refuse it so far (docs/glow.md: what is "
+       "missing)."},
+      {"glow.core_radius", "0.01",
+       "eps, the emitters' core radius (world units), > 0: it keeps the field finite at the "
+       "centre and on the axis, where with eps = 0 the integral along a ray through them diverges."},
+      {"glow.intensity", "1", "Glow radiance per unit of integrated field (times each emitter's color), >= 0."},
+      {"glow.tone_map", "none",
+       "`none` (radiance clamped to [0, 1] when written) or `exponential`: 1 - exp(-glow.exposure "
+       "x radiance) per channel. Applied once to the final composited frame (volume included: "
+       "after compositing, glow and volume light are one sum), never per brick: the map is not "
+       "additive, so per-brick mapping would change with the decomposition."},
+      {"glow.exposure", "1", "k of the exponential tone map, > 0."},
+      {"glow.box", "auto",
+       "`[[x0, y0, z0], [x1, y1, z1]]`: the box the glow is integrated in (the field's integral "
+       "along an unbounded ray diverges like log length). `auto`: the scene's bounds (volume and "
+       "particles); a scene of emitters alone must set it."},
       {"reference.step", "0.0625",
        "Step of the CPU reference integrator, in units of the smallest voxel spacing."},
       {"reference.field", "original",

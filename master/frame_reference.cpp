@@ -1,6 +1,7 @@
 #include "master/frame_reference.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <thread>
 
@@ -19,6 +20,25 @@ Box3 reachOf(const MetaballModel& m) {
   for (const glm::dvec3& p : m.positions)
     b.lo = glm::min(b.lo, p - m.h), b.hi = glm::max(b.hi, p + m.h);
   return b;
+}
+
+// Glow where there is no volume: the whole ray inside the glow box, undimmed, up to the surface.
+void addGlowOnly(ImageF& img, const Camera& cam, const GlowRays& g, const SurfaceImage* stop) {
+  for (int y = 0; y < cam.height; ++y)
+    for (int x = 0; x < cam.width; ++x) {
+      const size_t pixel = size_t(y) * cam.width + x;
+      const double t_stop = stop && stop->hit(pixel) ? double(stop->t[pixel]) : HUGE_VAL;
+      const glm::dvec3 r = g.radiance(cam.position, cam.rayDirection(x, y), 0.0, t_stop);
+      for (int k = 0; k < 3; ++k) img.px[4 * pixel + k] += float(r[k]);
+    }
+}
+
+// The tone map on the final frame's premultiplied rgb (alpha kept; the background goes behind
+// later, untouched).
+void applyToneMap(ImageF& img, const GlowSpec& g) {
+  if (g.tone_map == "none") return;
+  for (size_t i = 0; i < img.px.size(); i += 4)
+    for (int k = 0; k < 3; ++k) img.px[i + k] = float(toneMap(g, img.px[i + k]));
 }
 
 }  // namespace
@@ -58,21 +78,39 @@ FrameReference::FrameReference(Scene scene, int threads)
     bounds_ = {glm::min(bounds_.lo, v.lo), glm::max(bounds_.hi, v.hi)};
     volume_ = std::move(in);
   }
+  glow_ = scene.glow;
+  if (glow_.enabled()) {
+    // The scene refuses emitters alone without a box, so one of the two exists.
+    glow_box_ = glow_.box.value_or(bounds_);
+    bounds_ = {glm::min(bounds_.lo, glow_box_.lo), glm::max(bounds_.hi, glow_box_.hi)};
+  }
 }
 
-ImageF FrameReference::render(const Camera& cam, SurfaceImage* surface_out) const {
+ImageF FrameReference::render(const Camera& cam, SurfaceImage* surface_out, int frame) const {
   if (volume_ && volume_->vol.grid.worldBox().contains(cam.position))
     throw InputError("camera.position is inside the volume; move the camera outside it");
+  std::optional<GlowRays> glow;
+  if (glow_.enabled()) glow.emplace(glow_, glow_box_, frame);
+  const GlowRays* g = glow ? &*glow : nullptr;
+  ImageF out(cam.width, cam.height);
   if (!balls_) {
-    if (!volume_) return ImageF(cam.width, cam.height);
-    return renderReference(volume_->vol, volume_->tf, cam, volume_->step, threads_, volume_->shading);
+    if (volume_)
+      out = renderReference(volume_->vol, volume_->tf, cam, volume_->step, threads_, volume_->shading, g);
+    else if (g)
+      addGlowOnly(out, cam, *g, nullptr);
+  } else {
+    SurfaceImage surface = referenceSurface(*balls_, cam, bounds_, threads_);
+    ImageF colour = shadeSurfaceFloat(surface, cam, colour_);
+    if (volume_) {
+      out = renderReference(volume_->vol, volume_->tf, cam, volume_->step, threads_, surface, colour,
+                            volume_->shading, g);
+    } else {
+      out = std::move(colour);
+      if (g) addGlowOnly(out, cam, *g, &surface);
+    }
+    if (surface_out) *surface_out = std::move(surface);
   }
-  SurfaceImage surface = referenceSurface(*balls_, cam, bounds_, threads_);
-  ImageF colour = shadeSurfaceFloat(surface, cam, colour_);
-  ImageF out = volume_ ? renderReference(volume_->vol, volume_->tf, cam, volume_->step, threads_,
-                                         surface, colour, volume_->shading)
-                       : std::move(colour);
-  if (surface_out) *surface_out = std::move(surface);
+  if (g) applyToneMap(out, glow_);
   return out;
 }
 

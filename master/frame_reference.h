@@ -6,7 +6,8 @@
 // Volume only: the emission-absorption integral (of the original samples, or with
 // reference.field: adaptive of the adaptive-sampling field the ray caster's adaptive blocks hold). Particles only: the metaball surface, rays
 // clipped to the particles' bounds grown by h. Both: the volume integrated up to the surface, the
-// surface composited behind it.
+// surface composited behind it. Glow emitters: their light along each ray inside the glow box, in
+// front of the volume, inside it (dimmed step by step) and behind it, up to the surface.
 #include <optional>
 
 #include "common/box.h"
@@ -30,8 +31,12 @@ class FrameReference {
   bool hasVolume() const { return volume_.has_value(); }
   bool hasParticles() const { return balls_.has_value(); }
 
-  // One view, premultiplied. `surface` (scenes with particles): also the surface image.
-  ImageF render(const Camera& cam, SurfaceImage* surface = nullptr) const;
+  bool hasGlow() const { return glow_.enabled(); }
+
+  // One view, premultiplied. `surface` (scenes with particles): also the surface image. `frame`:
+  // the orbit frame, for the emitters' animation. With emitters, their glow is added
+  // (master/reference.h) and the result tone-mapped (glow.tone_map): the final frame.
+  ImageF render(const Camera& cam, SurfaceImage* surface = nullptr, int frame = 0) const;
 
  private:
   struct VolumeInput {
@@ -43,6 +48,8 @@ class FrameReference {
   std::optional<VolumeInput> volume_;
   std::optional<MetaballModel> balls_;
   glm::dvec3 colour_{1.0};
+  GlowSpec glow_;
+  Box3 glow_box_;  // glow.box, or the volume's and particles' bounds
   Box3 bounds_;
   int threads_ = 1;
 };

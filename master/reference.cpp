@@ -43,7 +43,7 @@ namespace {
 // volume-only arithmetic exactly (min(t1, inf) = t1; adding a zero surface changes no bit).
 ImageF integrate(const WholeVolume& vol, const TransferFunction& tf, const Camera& cam, double step,
                  int threads, const SurfaceImage* stop, const ImageF* stop_colour,
-                 const Shading& shading) {
+                 const Shading& shading, const GlowRays* glow) {
   ImageF img(cam.width, cam.height);
   const double flat = flatGradient(tf.rangeLo(), tf.rangeHi(), vol.grid.spacing);
   Box3 box = vol.grid.worldBox();
@@ -55,22 +55,37 @@ ImageF integrate(const WholeVolume& vol, const TransferFunction& tf, const Camer
         glm::dvec3 o = cam.position, d = cam.rayDirection(x, y);
         double t0, t1;
         double rgb[3] = {0, 0, 0}, transmit = 1.0;
+        const double t_stop = stop && stop->hit(pixel) ? double(stop->t[pixel]) : HUGE_VAL;
+        // Glow (emission without opacity) over [ta, tb] seen through transmittance tr.
+        auto addGlow = [&](double ta, double tb, double tr) {
+          if (!glow || !(tb > ta) || tr <= 0.0) return;
+          const glm::dvec3 g = glow->radiance(o, d, ta, tb);
+          for (int k = 0; k < 3; ++k) rgb[k] += tr * g[k];
+        };
+        double t_after = 0.0;  // where the volume's part of the ray ends (glow beyond it: `transmit`)
         if (intersectRayBox(o, d, box, t0, t1)) {
           t0 = std::max(t0, 0.0);
           if (stop && stop->hit(pixel)) t1 = std::min(t1, double(stop->t[pixel]));
+          addGlow(0.0, std::min(t0, t_stop), 1.0);  // in front of the volume
           long long n = t1 > t0 ? std::max(1LL, (long long)std::ceil((t1 - t0) / step)) : 0;
           double h = n > 0 ? (t1 - t0) / double(n) : 0.0;
-          for (long long i = 0; i < n && transmit > 1e-15; ++i) {
+          long long i = 0;
+          for (; i < n && transmit > 1e-15; ++i) {
             const glm::dvec3 u = vol.grid.indexOfWorld(o + (t0 + (i + 0.5) * h) * d);
             double v = vol.at(u);
             double a = 1.0 - std::exp(-tf.extinction(v) * h);
+            // The step's glow: its exact integral times the transmittance at the step's middle
+            // (the midpoint rule in transmittance, exact in the emitters' field).
+            addGlow(t0 + i * h, t0 + (i + 1) * h, transmit * std::sqrt(std::max(0.0, 1.0 - a)));
             if (a <= 0.0) continue;
             auto c = tf.colour(v);
             if (shading.enabled) c = shadeSample(c, vol.gradient(u), d, shading, flat);
             for (int k = 0; k < 3; ++k) rgb[k] += transmit * a * c[k];
             transmit *= 1.0 - a;
           }
+          t_after = i < n ? HUGE_VAL : std::max(t1, t0);  // stopped early: nothing behind counts
         }
+        addGlow(t_after, t_stop, transmit);  // behind the volume, or the whole ray without one
         double alpha = 1.0 - transmit;
         if (stop && stop->hit(pixel)) {
           const float* s = &stop_colour->px[4 * pixel];
@@ -92,20 +107,20 @@ ImageF integrate(const WholeVolume& vol, const TransferFunction& tf, const Camer
 }  // namespace
 
 ImageF renderReference(const WholeVolume& vol, const TransferFunction& tf, const Camera& cam,
-                       double step, int threads, const Shading& shading) {
-  return integrate(vol, tf, cam, step, threads, nullptr, nullptr, shading);
+                       double step, int threads, const Shading& shading, const GlowRays* glow) {
+  return integrate(vol, tf, cam, step, threads, nullptr, nullptr, shading, glow);
 }
 
 ImageF renderReference(const WholeVolume& vol, const TransferFunction& tf, const Camera& cam,
                        double step, int threads, const SurfaceImage& stop,
-                       const ImageF& stop_colour, const Shading& shading) {
+                       const ImageF& stop_colour, const Shading& shading, const GlowRays* glow) {
   if (stop.width != cam.width || stop.height != cam.height || stop_colour.width != cam.width ||
       stop_colour.height != cam.height)
     throw InputError("reference: the surface images (" + std::to_string(stop.width) + "x" +
                      std::to_string(stop.height) + ", colour " + std::to_string(stop_colour.width) +
                      "x" + std::to_string(stop_colour.height) + ") are not the camera's size (" +
                      std::to_string(cam.width) + "x" + std::to_string(cam.height) + ")");
-  return integrate(vol, tf, cam, step, threads, &stop, &stop_colour, shading);
+  return integrate(vol, tf, cam, step, threads, &stop, &stop_colour, shading, glow);
 }
 
 }  // namespace sortlast

@@ -16,6 +16,7 @@
 #include "common/shading.h"
 #include "common/surface_image.h"
 #include "common/transfer_function.h"
+#include "master/glow_reference.h"
 
 namespace sortlast {
 
@@ -32,16 +33,22 @@ struct WholeVolume {
 };
 
 ImageF renderReference(const WholeVolume& vol, const TransferFunction& tf, const Camera& cam,
-                       double step, int threads, const Shading& shading = {});
+                       double step, int threads, const Shading& shading = {},
+                       const GlowRays* glow = nullptr);
 
 // Mixed scenes: an opaque surface (metaballs) in the volume. Per pixel the integral runs only for
 // t < stop.t (the same unit-ray distance the surface reference reports; +inf: no surface) and
 // `stop_colour` (premultiplied; opaque where hit, zero at misses) is composited behind what the
 // volume left: rgb += transmittance * surface rgb, alpha = 1 - transmittance * (1 - surface alpha).
-// Without a surface in a pixel the result is bit-identical to the overload above. Throws
+// Without a surface in a pixel the result is bit-identical to the overload above.
+//
+// `glow` (emitters, master/glow_reference.h): their light is added along the whole ray inside the
+// glow box up to the surface: in front of the volume undimmed, inside it step by step (each step's
+// exact segment integral times the transmittance at the step's middle), behind it through what the
+// volume left. Glow adds to rgb only (no opacity). Throws
 // InputError if either image is not the camera's size.
 ImageF renderReference(const WholeVolume& vol, const TransferFunction& tf, const Camera& cam,
                        double step, int threads, const SurfaceImage& stop, const ImageF& stop_colour,
-                       const Shading& shading = {});
+                       const Shading& shading = {}, const GlowRays* glow = nullptr);
 
 }  // namespace sortlast

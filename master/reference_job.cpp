@@ -39,11 +39,11 @@ int runReferenceJob(const RenderOptions& opts, int threads, const std::string& s
     Progress progress(n, opts.quiet);
     for (int f = 0; f < n; ++f) {
       SurfaceImage surface;
-      ImageF frame = reference.render(cams[f], &surface);
+      ImageF frame = reference.render(cams[f], &surface, f);
       if (!surface_out.empty()) writeSurfaceImage(frameFileName(surface_out, f, n), surface);
       std::string out = frameFileName(opts.output, f, n);
       // Particles alone are rounded like the GL frame before they are written.
-      if (reference.hasVolume())
+      if (reference.hasVolume() || reference.hasGlow())
         writeImage(out, frame, scene.background);
       else
         writeImage(out, toRGBA8(frame), scene.background);

@@ -1,0 +1,47 @@
+#pragma once
+// The scene's glow emitters (the `glow.*` keys, docs/scene.md; the field: common/glow_field.h):
+// what each emitter is at frame 0, how it moves per frame, and how the glow is scaled and
+// tone-mapped. Parsed and validated here, apart from scene.cpp, as one list-valued key.
+#include <glm/glm.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/box.h"
+#include "common/glow_field.h"
+
+namespace YAML {
+class Node;
+}
+
+namespace sortlast {
+
+struct GlowEmitterSpec {
+  GlowEmitter at0;                    // frame 0; direction as given (not zero)
+  glm::dvec3 velocity{0.0};           // added to the centre per frame
+  glm::dvec3 turn{0.0};               // added to the direction as given per frame, then normalised
+  double a_rate = 0.0, b_rate = 0.0;  // added to a and b per frame
+};
+
+struct GlowSpec {
+  std::vector<GlowEmitterSpec> emitters;
+  double core_radius = 0.01;      // eps, world units
+  double intensity = 1.0;         // radiance = intensity * colour * integral of E
+  std::string tone_map = "none";  // none | exponential
+  double exposure = 1.0;          // exponential: 1 - exp(-exposure * radiance)
+  std::optional<Box3> box;        // glow.box; unset: the scene's bounds
+
+  bool enabled() const { return !emitters.empty(); }
+  // The emitters at frame `frame` (0: as given; an orbit's frame i: i steps of each rate).
+  std::vector<GlowEmitter> emittersAt(int frame) const;
+};
+
+// Reads `glow.emitters` (a list of maps) and checks every entry; `frames` is the number of frames
+// the scene renders (1, or the orbit's), so a rate that would make a or b negative or the direction
+// zero in a later frame is refused now. Throws InputError naming the key and entry.
+std::vector<GlowEmitterSpec> parseGlowEmitters(const YAML::Node& list, int frames);
+
+// The tone map, applied once to the final composited radiance (premultiplied rgb; alpha kept).
+double toneMap(const GlowSpec& g, double radiance);
+
+}  // namespace sortlast

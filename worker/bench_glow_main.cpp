@@ -1,0 +1,177 @@
+// The glow emitters' GL cost alone (issue 16): one fullscreen pass per frame evaluates every
+// emitter's exact segment integral (worker/glow_glsl.h) over each pixel's ray inside the glow box,
+// on llvmpipe; then the frame's PSNR (8-bit, after the tone map) against the same integral in
+// double on the CPU. What a brick's glow pass would cost on one rank with d = 1 (the GL path does
+// not draw emitters in `sortlast render` yet: docs/glow.md). See scripts/bench-glow.
+//
+// Usage: bench_glow EMITTERS SIZE FRAMES   -> one CSV line:
+// emitters,size,frames,ms_per_frame,fps,psnr_db
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "common/camera.h"
+#include "common/glow_integral.h"
+#include "worker/gl_context.h"
+#include "worker/gl_program.h"
+#include "worker/glow_glsl.h"
+
+using namespace sortlast;
+
+namespace {
+
+const char* kVertex = R"(#version 450 core
+void main() {
+  vec2 p = vec2((gl_VertexID & 1) * 4 - 1, (gl_VertexID & 2) * 2 - 1);
+  gl_Position = vec4(p, 0.0, 1.0);
+}
+)";
+
+const char* kMain = R"(
+uniform sampler2D u_emitters;  // per emitter (row): (centre, a), (dir, b), (colour, 0)
+uniform int u_count;
+uniform vec3 u_eye, u_forward, u_right, u_up, u_box_lo, u_box_hi;
+uniform vec2 u_pixel_scale;
+uniform float u_eps, u_intensity, u_exposure;
+out vec4 frag;
+void main() {
+  vec2 s = vec2(gl_FragCoord.x * u_pixel_scale.x - 1.0, 1.0 - gl_FragCoord.y * u_pixel_scale.y);
+  vec3 dir = normalize(u_forward + s.x * u_right + s.y * u_up);
+  vec3 inv = 1.0 / dir;  // +-inf on an axis-parallel ray: the slabs below still give the span
+  vec3 ta = (u_box_lo - u_eye) * inv, tb = (u_box_hi - u_eye) * inv;
+  vec3 tn = min(ta, tb), tf = max(ta, tb);
+  float t0 = max(max(max(tn.x, tn.y), tn.z), 0.0), t1 = min(min(tf.x, tf.y), tf.z);
+  vec3 sum = vec3(0.0);
+  if (t1 > t0)
+    for (int i = 0; i < u_count; ++i) {
+      vec4 e0 = texelFetch(u_emitters, ivec2(0, i), 0), e1 = texelFetch(u_emitters, ivec2(1, i), 0);
+      vec3 colour = texelFetch(u_emitters, ivec2(2, i), 0).rgb;
+      sum += colour * glowSegment(e0.xyz, e1.xyz, e0.w, e1.w, u_eps, u_eye, dir, t0, t1);
+    }
+  // Tone-mapped here only because this benchmark has no compositing: one brick, the final frame.
+  frag = vec4(1.0 - exp(-u_exposure * u_intensity * sum), 1.0);
+}
+)";
+
+struct Emitter {
+  glm::vec3 centre, dir, colour;
+  float a, b;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 4) {
+    std::fprintf(stderr, "usage: bench_glow EMITTERS SIZE FRAMES\n");
+    return 2;
+  }
+  const int count = std::atoi(argv[1]), size = std::atoi(argv[2]), frames = std::atoi(argv[3]);
+  if (count < 1 || size < 1 || frames < 1) {
+    std::fprintf(stderr, "bench_glow: EMITTERS, SIZE and FRAMES must be >= 1\n");
+    return 2;
+  }
+  const float eps = 0.02f, intensity = 0.6f / std::sqrt(float(count)), exposure = 1.0f;
+  const glm::vec3 lo(-2.0f), hi(2.0f);
+  std::mt19937 g(16);
+  std::uniform_real_distribution<float> c(-1.5f, 1.5f), u(0.2f, 1.0f);
+  std::normal_distribution<float> n;
+  std::vector<Emitter> em;
+  std::vector<float> texels;
+  for (int i = 0; i < count; ++i) {
+    Emitter e{{c(g), c(g), c(g)},
+              glm::normalize(glm::vec3(n(g), n(g), n(g))),
+              {u(g), u(g), u(g)},
+              u(g),
+              u(g)};
+    em.push_back(e);
+    for (float v : {e.centre.x, e.centre.y, e.centre.z, e.a, e.dir.x, e.dir.y, e.dir.z, e.b,
+                    e.colour.r, e.colour.g, e.colour.b, 0.0f})
+      texels.push_back(v);
+  }
+  Camera cam;
+  cam.position = {1.0, 2.0, 7.0};
+  cam.look_at = {0.0, 0.0, 0.0};
+  cam.width = cam.height = size;
+
+  auto ctx = createGlContext("osmesa");
+  const GlApi& gl = ctx->gl();
+  std::string fragment = std::string("#version 450 core\n") + shaders::kGlowSegment + kMain;
+  unsigned program = linkProgram(gl, kVertex, fragment.c_str());
+  unsigned tex = 0, target = 0, fbo = 0, vao = 0;
+  gl.GenTextures(1, &tex);
+  gl.ActiveTexture(GL_TEXTURE0);
+  gl.BindTexture(GL_TEXTURE_2D, tex);
+  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, 3, count, 0, GL_RGBA, GL_FLOAT, texels.data());
+  gl.GenTextures(1, &target);
+  gl.BindTexture(GL_TEXTURE_2D, target);
+  gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, size, size, 0, GL_RGBA, GL_FLOAT, nullptr);
+  gl.GenFramebuffers(1, &fbo);
+  gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+  gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, target, 0);
+  gl.BindTexture(GL_TEXTURE_2D, tex);
+  gl.UseProgram(program);
+  auto loc = [&](const char* name) { return gl.GetUniformLocation(program, name); };
+  auto u3 = [&](const char* name, glm::dvec3 v) {
+    gl.Uniform3f(loc(name), float(v.x), float(v.y), float(v.z));
+  };
+  const double th = std::tan(0.5 * cam.fov_deg * 3.14159265358979323846 / 180.0);
+  gl.Uniform1i(loc("u_emitters"), 0);
+  gl.Uniform1i(loc("u_count"), count);
+  u3("u_eye", cam.position);
+  u3("u_forward", cam.forward());
+  u3("u_right", cam.right() * th);
+  u3("u_up", cam.trueUp() * th);
+  u3("u_box_lo", glm::dvec3(lo));
+  u3("u_box_hi", glm::dvec3(hi));
+  gl.Uniform2f(loc("u_pixel_scale"), 2.0f / size, 2.0f / size);
+  gl.Uniform1f(loc("u_eps"), eps);
+  gl.Uniform1f(loc("u_intensity"), intensity);
+  gl.Uniform1f(loc("u_exposure"), exposure);
+  gl.GenVertexArrays(1, &vao);
+  gl.BindVertexArray(vao);
+  gl.Viewport(0, 0, size, size);
+  std::vector<float> px(size_t(size) * size * 4);
+  // One untimed frame (shader compile on first draw), then the timed ones: draw and read back.
+  std::vector<double> ms;
+  for (int f = 0; f <= frames; ++f) {
+    auto t = std::chrono::steady_clock::now();
+    gl.DrawArrays(GL_TRIANGLES, 0, 3);
+    gl.ReadPixels(0, 0, size, size, GL_RGBA, GL_FLOAT, px.data());
+    double dt =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+    if (f > 0) ms.push_back(dt);
+  }
+  std::sort(ms.begin(), ms.end());
+  const double median = ms[ms.size() / 2];
+  // PSNR against the double integral, both tone-mapped and rounded to 8 bits. Row y of the
+  // target is image row y from the top (as the ray caster's: s.y = 1 - 2 (y + 0.5) / height).
+  double se = 0.0;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      glm::dvec3 o = cam.position, d = cam.rayDirection(x, y), sum(0.0);
+      double t0, t1;
+      if (intersectRayBox(o, d, Box3{glm::dvec3(lo), glm::dvec3(hi)}, t0, t1) &&
+          t1 > std::max(t0, 0.0))
+        for (const Emitter& e : em)
+          sum += glm::dvec3(e.colour) * glowSegment<double>(glm::dvec3(e.centre), glm::dvec3(e.dir),
+                                                            e.a, e.b, eps, o, d, std::max(t0, 0.0),
+                                                            t1);
+      for (int k = 0; k < 3; ++k) {
+        double ref = std::round(255.0 * -std::expm1(-double(exposure) * intensity * sum[k]));
+        double got =
+            std::round(255.0 * std::clamp(double(px[4 * (size_t(y) * size + x) + k]), 0.0, 1.0));
+        se += (ref - got) * (ref - got);
+      }
+    }
+  const double mse = se / (3.0 * size * size);
+  const double psnr = mse > 0.0 ? 10.0 * std::log10(255.0 * 255.0 / mse) : INFINITY;
+  std::printf("%d,%d,%d,%.3f,%.2f,%.2f\n", count, size, frames, median, 1000.0 / median, psnr);
+  return 0;
+}
