@@ -29,6 +29,8 @@ MetaballSettings metaballSettings(const ParticleDesc& desc) {
   s.samples_per_pass = desc.samples_per_pass;
   s.colour = desc.colour;
   s.method = desc.method;
+  s.anisotropic = desc.anisotropicOn();
+  s.anisotropic_params = desc.anisotropic;
   return s;
 }
 
