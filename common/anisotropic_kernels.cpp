@@ -16,6 +16,8 @@ namespace sortlast {
 
 namespace {
 
+constexpr double kDirectionFade = 0.1;
+
 double smoothstep(double t, double lo, double hi) {
   if (t <= lo) return 0.0;
   if (t >= hi) return 1.0;
@@ -159,19 +161,24 @@ std::vector<ParticleKernel> computeAnisotropicKernels(const std::vector<glm::vec
       for (const Neighbour& n : near) {
         glm::dvec3 v = glm::dvec3(ps[n.j]) - mu;
         double len2 = glm::dot(v, v);
-        // A neighbour on the mean has no direction (coincident particles, the centre of a
-        // symmetric neighbourhood): it adds nothing.
-        if (!(len2 > 1e-24 * hn2)) continue;
+        // Each term is a unit direction, whatever its length: a neighbour (or the particle
+        // itself) almost on the mean would add a full-weight direction that rounding picks (in
+        // a plane of particles the particle's own offset from the mean, 1e-8 h, tilted the disc
+        // by 20 %). So directions fade in over the first kDirectionFade h_n from the mean:
+        // weight g min(1, |c - mu|^2 / (kDirectionFade h_n)^2); none on the mean itself.
+        const double fade = std::min(1.0, len2 / (kDirectionFade * kDirectionFade * hn2));
+        if (!(fade > 0.0)) continue;
         Eigen::Vector3d e(v.x, v.y, v.z);
-        S += (n.g / len2) * (e * e.transpose());
+        S += (n.g * fade / len2) * (e * e.transpose());
       }
       const double trace = S.trace();
       if (!(trace > 0.0)) {
         k = roundKernel(R, R0, h);  // no usable direction: a sphere
       } else {
         Eigen::Matrix3d sigma = (1.0 - s) * Eigen::Matrix3d::Identity() + (s * 3.0 / trace) * S;
-        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-        eig.computeDirect(sigma);
+        // The iterative solver: Eigen's closed form (computeDirect) returned wrong eigenvectors
+        // for the double eigenvalue of a plane of particles (axes off by 5 %).
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(sigma);
         Eigen::Vector3d l = eig.eigenvalues();  // ascending
         const double ratio2 = p.max_axis_ratio * p.max_axis_ratio;
         const double l_max = std::max(l(2), 1.0);  // trace 3: the largest is >= 1 (rounding aside)

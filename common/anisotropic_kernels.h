@@ -12,6 +12,8 @@
 //   R_i   = (1 - s) R_splash + s R_surface    (R in units of h)
 //   mu_i  = sum_j g_j c_j / sum_j g_j
 //   S_i   = sum_j g_j (c_j - mu)(c_j - mu)^T / |c_j - mu|^2 / sum_j g_j   (the paper's Sigma)
+// (Each term of S_i is a unit direction whatever the neighbour's distance from the mean; we fade
+// in the directions of neighbours within 0.1 h_n of it, which rounding alone would orient.)
 // S_i has trace 1 (each term is a unit direction's outer product); we use 3 S_i / trace so that
 // an even spread of directions gives the identity (the paper's R is then our R times sqrt(3)).
 // Only surface particles are smoothed (the paper): the shape is blended to the sphere by s,

@@ -37,6 +37,13 @@ Roughness surfaceRoughness(const SurfaceImage& img, const RoughnessOptions& o) {
       if (y + 1 < y1) pair(i, i + size_t(img.width));
     }
   Roughness r;
+  r.t_min = INFINITY, r.t_max = -INFINITY;
+  for (int y = o.y0; y < y1; ++y)
+    for (int x = o.x0; x < x1; ++x) {
+      size_t i = size_t(y) * img.width + x;
+      if (img.hit(i)) r.t_min = std::min(r.t_min, double(img.t[i])), r.t_max = std::max(r.t_max, double(img.t[i]));
+    }
+  r.t_centre = img.t[size_t((o.y0 + y1) / 2) * img.width + size_t((o.x0 + x1) / 2)];
   r.pairs = (long long)angles.size();
   if (angles.empty()) return r;
   double sum = 0.0, sum2 = 0.0;

@@ -24,6 +24,9 @@ struct Roughness {
   double rms_deg = 0.0;     // RMS angle between their normals (degrees): the roughness figure
   double mean_deg = 0.0;    // mean angle (degrees)
   double p95_deg = 0.0;     // 95th percentile (degrees)
+  // Depth t over the region's hit pixels (relief: with the camera square to a flat surface,
+  // t_max - t_min is its height range), and at the region's centre pixel (inf: a miss).
+  double t_min = 0.0, t_max = 0.0, t_centre = 0.0;
 };
 
 // Throws InputError if the region is empty or outside the image, or max_depth_jump is not > 0.
