@@ -70,7 +70,9 @@ const std::vector<SceneKey>& sceneKeys() {
        "windows of 4; windows of 8 spend more samples in gaps (64 left 1 hole on the dam break "
        "at 512^2, 96 none, for 2% more time). The grid method also samples the rear halves of "
        "spheres, so its samples run out sooner: raise the cap with finer steps (h/12: 144, h/16: 192 "
-       "leave no holes on the dam break)."},
+       "leave no holes on the dam break). With `particles.smoothing: anisotropic` the cap is "
+       "multiplied by the larger of `particles.anisotropic.splash_scale` and `surface_scale` (the "
+       "field reaches that much further)."},
       {"particles.refine_iterations", "3",
        "Refinement passes between the last sample outside and the first inside: each evaluates "
        "the secant estimate (the paper's eq. 5), two points close around it and the midpoint, "
