@@ -10,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include "common/anisotropic_kernels.h"
 #include "common/box.h"
 
 namespace sortlast {
@@ -36,9 +37,24 @@ struct ParticleDesc {
   int refine_iterations = 3;  // refinement passes (4 probes around the secant of eq. 5)
   bool cull = true;           // min/max distance pyramid culling
   int samples_per_pass = 8;   // window of samples per pass: 4 (the paper) or 8 (half the passes)
+  // none (round metaballs) | anisotropic (smoothed ellipsoids, common/anisotropic_kernels.h)
+  std::string smoothing = "none";
+  AnisotropicParams anisotropic;
 
   bool enabled() const { return !file.empty() || procedural != "none"; }
   double influenceRadius() const { return influence ? *influence : radius / (1.0 - threshold); }
+  bool anisotropicOn() const { return smoothing == "anisotropic"; }
+  // The furthest a particle's field reaches from its centre: h, or with anisotropic smoothing
+  // the bound on the longest ellipsoid axis (anisotropicReachBound).
+  double reach() const {
+    return influenceRadius() * (anisotropicOn() ? anisotropicReachBound(anisotropic) : 1.0);
+  }
+  // Ghosts a brick (or rank) needs around its box: those whose field reaches it, and with
+  // anisotropic smoothing also their whole neighbourhoods (radius h_n), so their kernels come
+  // out as on any other rank count.
+  double ghostMargin() const {
+    return reach() + (anisotropicOn() ? anisotropic.neighbourhood * influenceRadius() : 0.0);
+  }
 };
 
 struct ParticleSet {

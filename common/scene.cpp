@@ -214,6 +214,22 @@ ParticleDesc readParticles(const Reader& r, const std::filesystem::path& base_di
   p.samples_per_pass = r.as<int>("particles.samples_per_pass");
   if (p.samples_per_pass != 4 && p.samples_per_pass != 8)
     throw InputError("scene key 'particles.samples_per_pass': must be 4 or 8");
+  p.smoothing = r.as<std::string>("particles.smoothing");
+  if (p.smoothing != "none" && p.smoothing != "anisotropic")
+    throw InputError("scene key 'particles.smoothing': expected none or anisotropic, got '" +
+                     p.smoothing + "'");
+  AnisotropicParams& a = p.anisotropic;
+  a.splash_scale = r.as<double>("particles.anisotropic.splash_scale");
+  a.surface_scale = r.as<double>("particles.anisotropic.surface_scale");
+  a.rho_splash = r.as<double>("particles.anisotropic.rho_splash");
+  a.rho_surface = r.as<double>("particles.anisotropic.rho_surface");
+  a.neighbourhood = r.as<double>("particles.anisotropic.neighbourhood");
+  a.max_axis_ratio = r.as<double>("particles.anisotropic.max_axis_ratio");
+  validateAnisotropic(a);
+  if (p.anisotropicOn() && p.method == "billboards")
+    throw InputError(
+        "scene key 'particles.smoothing': anisotropic needs particles.method: grid (the "
+        "billboard method draws round particles only); got particles.method: billboards");
   return p;
 }
 

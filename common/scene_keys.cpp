@@ -70,7 +70,9 @@ const std::vector<SceneKey>& sceneKeys() {
        "windows of 4; windows of 8 spend more samples in gaps (64 left 1 hole on the dam break "
        "at 512^2, 96 none, for 2% more time). The grid method also samples the rear halves of "
        "spheres, so its samples run out sooner: raise the cap with finer steps (h/12: 144, h/16: 192 "
-       "leave no holes on the dam break)."},
+       "leave no holes on the dam break). With `particles.smoothing: anisotropic` the cap is "
+       "multiplied by the larger of `particles.anisotropic.splash_scale` and `surface_scale` (the "
+       "field reaches that much further)."},
       {"particles.refine_iterations", "3",
        "Refinement passes between the last sample outside and the first inside: each evaluates "
        "the secant estimate (the paper's eq. 5), two points close around it and the midpoint, "
@@ -83,6 +85,32 @@ const std::vector<SceneKey>& sceneKeys() {
       {"particles.cull", "true",
        "Cull particles per screen tile with a min/max pyramid of the rays' sample distances "
        "(the paper's); false: no culling (slower; for checking)."},
+      {"particles.smoothing", "none",
+       "`none`: round metaballs. `anisotropic`: smoothed anisotropic metaballs (Kanamori and "
+       "Nishita's, in 3D; ../shared/PAPERS.md §3): each particle's radius grows with its density "
+       "from `particles.anisotropic.splash_scale` h (splash) to `surface_scale` h (surface and "
+       "inside), and surface particles become ellipsoids along their neighbours' weighted "
+       "covariance, normalised to the same mass (common/anisotropic_kernels.h). Only with "
+       "`particles.method: grid` (the billboard method refuses it)."},
+      {"particles.anisotropic.splash_scale", "1",
+       "R_splash / h: radius factor of splash particles (density at most `rho_splash`); a lone "
+       "particle is the round metaball of radius h x this. In [1/64, 8]."},
+      {"particles.anisotropic.surface_scale", "1.5",
+       "R_surface / h: radius factor of surface and inside particles (density at least "
+       "`rho_surface`); smoothstep in between. Larger: smoother, slower (longer cell lists). "
+       "In [1/64, 8]."},
+      {"particles.anisotropic.rho_splash", "1.5",
+       "Density at or below which a particle is splash. Density: the sum over the neighbours "
+       "within `neighbourhood` h (itself included) of (1 - r^2/h_n^2)^3, so a lone particle has 1."},
+      {"particles.anisotropic.rho_surface", "3",
+       "Density at or above which a particle is surface or inside (fully smoothed); above "
+       "`rho_splash`."},
+      {"particles.anisotropic.neighbourhood", "1",
+       "h_n / h: radius of the neighbourhood the density, mean and covariance are taken over. "
+       "In [1e-6, 8]; bricks and ranks hold ghosts this much further out."},
+      {"particles.anisotropic.max_axis_ratio", "3",
+       "Longest over shortest ellipsoid axis, at most (eigenvalues clamped to sigma_1 / k^2): a "
+       "plane of particles gives a disc of this ratio, a line a cigar. In [1, 100]; 1: spheres."},
       {"transfer.preset", "default",
        "Control points to use when `transfer.points` is not given: `default`, `ramp` (the "
        "paper's opacity = value, grey) or `sharp` (a narrow opaque band)."},

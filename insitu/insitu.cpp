@@ -201,6 +201,10 @@ void InSitu::Impl::prepareStep(const std::vector<size_t>& firing) {
   ext.add_bricks = [this, layout, has_grid, has_particles](BrickRenderer& renderer, const Scene& scene,
                                                            std::vector<int>& handles, double& held) {
     const double rh = has_particles ? scene.particles.influenceRadius() : 0.0;
+    // The simulation's ghost exchange covers h; smoothed kernels need their neighbourhoods too.
+    if (has_particles && scene.particles.anisotropicOn())
+      throw InputError("particles.smoothing: anisotropic is not supported in situ (the ghost "
+                       "exchange reaches h only); use particles.smoothing: none");
     const int d = scene.bricks_per_axis;
     for (int id : layout.mine) {
       Box3 clip = has_grid ? layout.volume_bricks[size_t(id)].world

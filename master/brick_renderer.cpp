@@ -1,5 +1,7 @@
 #include "master/brick_renderer.h"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "common/scene.h"
@@ -24,11 +26,19 @@ MetaballSettings metaballSettings(const ParticleDesc& desc) {
   s.threshold = desc.threshold;
   s.step = desc.step * s.h;
   s.max_samples = desc.max_samples;
+  // Anisotropic kernels reach up to max(splash, surface) scale times as far along a ray: the cap
+  // (on samples where F > 0) grows alike, or it runs out before thin parts (measured at 96 on
+  // the splash at 512^2: 58 holes against 0 round; scaled by 1.5: 1).
+  if (desc.anisotropicOn())
+    s.max_samples = int(std::ceil(desc.max_samples *
+                                  std::max(desc.anisotropic.splash_scale, desc.anisotropic.surface_scale)));
   s.refine_iterations = desc.refine_iterations;
   s.cull = desc.cull;
   s.samples_per_pass = desc.samples_per_pass;
   s.colour = desc.colour;
   s.method = desc.method;
+  s.anisotropic = desc.anisotropicOn();
+  s.anisotropic_params = desc.anisotropic;
   return s;
 }
 

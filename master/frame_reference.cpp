@@ -13,12 +13,13 @@ namespace sortlast {
 
 namespace {
 
-// Where the particles' field can be non-zero: their bounds grown by h (empty: lo > hi).
-Box3 reachOf(const MetaballModel& m) {
+// Where the particles' field can be non-zero: their bounds grown by `reach` (h, or the
+// anisotropic reach bound: the box the GL session frames, so both frame the same camera).
+// Empty: lo > hi.
+Box3 reachOf(const MetaballModel& m, double reach) {
   constexpr double inf = std::numeric_limits<double>::infinity();
   Box3 b{glm::dvec3(inf), glm::dvec3(-inf)};
-  for (const glm::dvec3& p : m.positions)
-    b.lo = glm::min(b.lo, p - m.h), b.hi = glm::max(b.hi, p + m.h);
+  for (const glm::dvec3& p : m.positions) b.lo = glm::min(b.lo, p - reach), b.hi = glm::max(b.hi, p + reach);
   return b;
 }
 
@@ -50,10 +51,14 @@ FrameReference::FrameReference(Scene scene, int threads)
   bounds_ = {glm::dvec3(inf), glm::dvec3(-inf)};
   if (scene.particles.enabled()) {
     MetaballModel m;
-    for (const glm::vec3& p : loadParticles(scene.particles).positions) m.positions.emplace_back(p);
+    ParticleSet set = loadParticles(scene.particles);
+    for (const glm::vec3& p : set.positions) m.positions.emplace_back(p);
     m.h = scene.particles.influenceRadius();
     m.threshold = scene.particles.threshold;
-    bounds_ = reachOf(m);
+    // The same kernels as the GL bricks compute: each depends on its neighbourhood only.
+    if (scene.particles.anisotropicOn())
+      m.kernels = computeAnisotropicKernels(set.positions, m.h, scene.particles.anisotropic);
+    bounds_ = reachOf(m, scene.particles.reach());
     balls_ = std::move(m);
   }
   if (scene.hasVolume()) {

@@ -11,6 +11,7 @@
 #include "master/adaptive_stats_job.h"
 #include "master/collective.h"
 #include "master/compare.h"
+#include "common/surface_roughness.h"
 #include "master/compare_surface.h"
 #include "master/mpi_errors.h"
 #include "master/reference_job.h"
@@ -58,6 +59,23 @@ int runCompare(const std::string& a, const std::string& b, int max_diff, long lo
     std::fprintf(stderr, "sortlast: error: %s\n", e.what());
     return 2;
   }
+}
+
+int runRoughness(const std::string& path, const RoughnessOptions& options, double max_rms_deg) {
+  try {
+    Roughness r = surfaceRoughness(readSurfaceImage(path), options);
+    std::printf("{\"pairs\": %lld, \"roughness_rms_deg\": %.6g, \"roughness_mean_deg\": %.6g, "
+                "\"roughness_p95_deg\": %.6g, \"t_min\": %.9g, \"t_max\": %.9g, \"t_centre\": %.9g}\n",
+                r.pairs, r.rms_deg, r.mean_deg, r.p95_deg, r.t_min, r.t_max, r.t_centre);
+    if (!std::isnan(max_rms_deg) && !(r.rms_deg <= max_rms_deg)) {
+      std::printf("FAIL: roughness %.6g deg RMS > allowed %.6g\n", r.rms_deg, max_rms_deg);
+      return 2;
+    }
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "sortlast: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
 }
 
 struct SurfaceBounds {
@@ -198,6 +216,22 @@ int main(int argc, char** argv) {
   compare_surface->add_flag("--ignore-edges", surf_bounds.ignore_edges,
                             "Leave out silhouette pixels (a 4-neighbour differs in the reference)");
 
+  std::string rough_in;
+  RoughnessOptions rough_opts;
+  std::vector<int> rough_region;
+  double rough_max = std::nan("");
+  auto* roughness = app.add_subcommand(
+      "roughness",
+      "Surface roughness of a surface image (EXR t, nx, ny, nz): RMS angle between the normals of "
+      "neighbouring pixels whose depths are continuous; JSON");
+  roughness->add_option("surface", rough_in, "Surface image (.exr), e.g. from --surface-out")->required();
+  roughness->add_option("--region", rough_region, "Only pixels x0 y0 x1 y1 ([x0, x1) x [y0, y1), row 0 at the top)")
+      ->expected(4);
+  roughness->add_option("--max-depth-jump", rough_opts.max_depth_jump,
+                        "Neighbours are continuous when their depths differ by at most this times the "
+                        "nearer depth (default 0.02)");
+  roughness->add_option("--max-rms-deg", rough_max, "Fail (exit 2) if the RMS angle is larger");
+
   AdaptiveStatsOptions adaptive_opts;
   auto* adaptive_stats = app.add_subcommand(
       "adaptive-stats",
@@ -220,6 +254,12 @@ int main(int argc, char** argv) {
   }
   if (*compare) return runCompare(img_a, img_b, max_diff, allow_pixels, min_psnr, diff_out);
   if (*compare_surface) return runCompareSurface(surf_ref, surf_test, surf_bounds);
+  if (*roughness) {
+    if (rough_region.size() == 4)
+      rough_opts.x0 = rough_region[0], rough_opts.y0 = rough_region[1], rough_opts.x1 = rough_region[2],
+      rough_opts.y1 = rough_region[3];
+    return runRoughness(rough_in, rough_opts, rough_max);
+  }
   if (*reference) return runReferenceJob(ref_opts, threads, surface_out);
   if (*adaptive_stats) return runAdaptiveStatsJob(adaptive_opts);
 

@@ -40,6 +40,9 @@ MetaballField::MetaballField(MetaballModel model) : model_(std::move(model)) {
   if (!(std::isfinite(T) && T > 0.0))
     throw InputError("metaballs: threshold T must be positive and finite (got " +
                      std::to_string(T) + ")");
+  if (!model_.kernels.empty() && model_.kernels.size() != model_.positions.size())
+    throw std::logic_error("MetaballModel: kernels and positions differ in count");
+  cell_ = model_.kernels.empty() ? h : std::max(maxReach(model_.kernels), 1e-300);
   if (model_.positions.size() >= size_t(UINT32_MAX))
     throw InputError("metaballs: too many particles for the reference (at most 2^32 - 2)");
   Box3 bounds{glm::dvec3(kInf), glm::dvec3(-kInf)};
@@ -54,12 +57,12 @@ MetaballField::MetaballField(MetaballModel model) : model_(std::move(model)) {
     reach_ = bounds;  // lo > hi: no ray meets it
     return;
   }
-  glm::dvec3 span = (bounds.hi - bounds.lo) / h;
+  glm::dvec3 span = (bounds.hi - bounds.lo) / cell_;
   if (span.x > 0x1p30 || span.y > 0x1p30 || span.z > 0x1p30)
     throw InputError(
         "metaballs: the particles span over 2^30 influence radii; h is too small "
         "for the reference's neighbour grid");
-  reach_ = {bounds.lo - h, bounds.hi + h};
+  reach_ = {bounds.lo - cell_, bounds.hi + cell_};
   origin_ = bounds.lo;
   cell_count_ = glm::ivec3(glm::floor(span)) + 1;
 
@@ -85,7 +88,7 @@ MetaballField::MetaballField(MetaballModel model) : model_(std::move(model)) {
 glm::ivec3 MetaballField::cellOf(const glm::dvec3& x) const {
   // Clamped so that points outside the grid (queries reach h beyond it) stay in int range and
   // map to the empty border cells.
-  glm::dvec3 c = glm::floor((x - origin_) / model_.h);
+  glm::dvec3 c = glm::floor((x - origin_) / cell_);
   c = glm::clamp(c, glm::dvec3(-2.0), glm::dvec3(cell_count_) + 1.0);
   return glm::ivec3(c);
 }
@@ -97,6 +100,34 @@ void MetaballField::forEachInCell(const glm::ivec3& c, Visit visit) const {
   for (uint32_t k = it->second.first; k < it->second.second; ++k) visit(order_[k]);
 }
 
+double MetaballField::particleReach(uint32_t j) const {
+  return model_.kernels.empty() ? model_.h : double(model_.kernels[j].reach);
+}
+
+// |A v| in double from the float kernel (A symmetric).
+namespace {
+glm::dvec3 frameOf(const ParticleKernel& k, const glm::dvec3& v) {
+  glm::dmat3 a(k.a);
+  return a * v;
+}
+}  // namespace
+
+double MetaballField::particleField(uint32_t j, const glm::dvec3& x) const {
+  glm::dvec3 v = x - model_.positions[j];
+  if (model_.kernels.empty()) return kernel(glm::length(v), model_.h);
+  const ParticleKernel& k = model_.kernels[j];
+  return double(k.c) * kernel(glm::length(frameOf(k, v)), model_.h);
+}
+
+glm::dvec3 MetaballField::particleGradient(uint32_t j, const glm::dvec3& x) const {
+  glm::dvec3 v = x - model_.positions[j];
+  if (model_.kernels.empty()) return kernelGradient(v, glm::length(v), model_.h);
+  const ParticleKernel& k = model_.kernels[j];
+  glm::dvec3 u = frameOf(k, v);
+  // grad of C P(|A v|) = C P'(|u|) A^T u / |u|, A^T = A.
+  return double(k.c) * frameOf(k, kernelGradient(u, glm::length(u), model_.h));
+}
+
 double MetaballField::field(const glm::dvec3& x) const {
   if (!reach_.contains(x)) return 0.0;
   glm::ivec3 c = cellOf(x);
@@ -105,7 +136,7 @@ double MetaballField::field(const glm::dvec3& x) const {
     for (int dy = -1; dy <= 1; ++dy)
       for (int dx = -1; dx <= 1; ++dx)
         forEachInCell(c + glm::ivec3(dx, dy, dz), [&](uint32_t j) {
-          f += kernel(glm::length(x - model_.positions[j]), model_.h);
+          f += particleField(j, x);
         });
   return f;
 }
@@ -118,8 +149,7 @@ glm::dvec3 MetaballField::gradient(const glm::dvec3& x) const {
     for (int dy = -1; dy <= 1; ++dy)
       for (int dx = -1; dx <= 1; ++dx)
         forEachInCell(c + glm::ivec3(dx, dy, dz), [&](uint32_t j) {
-          glm::dvec3 v = x - model_.positions[j];
-          g += kernelGradient(v, glm::length(v), model_.h);
+          g += particleGradient(j, x);
         });
   return g;
 }
@@ -138,7 +168,7 @@ class MetaballCellWalk {
   MetaballCellWalk(const MetaballField& f, const glm::dvec3& o, const glm::dvec3& d, double a,
                    double b)
       : f_(f), b_(b), cell_(f.cellOf(o + a * d)) {
-    const double h = f.model_.h;
+    const double h = f.cell_;
     for (int k = 0; k < 3; ++k) {
       if (d[k] > 0.0) {
         step_[k] = 1;
@@ -220,8 +250,9 @@ RayHit MetaballField::firstHit(const glm::dvec3& o, const glm::dvec3& d, const B
     double tb = glm::dot(v, d);
     glm::dvec3 off = v - tb * d;  // closest approach, not |v|^2 - tb^2: no cancellation
     double d2 = glm::dot(off, off);
-    if (d2 > h * h) return;
-    double s = std::sqrt(h * h - d2);
+    const double reach = particleReach(j);
+    if (d2 > reach * reach) return;
+    double s = std::sqrt(reach * reach - d2);
     double in = std::max(tb - s, entry), out = std::min(tb + s, exit);
     if (in > out) return;
     pending.push_back({in, out, j});
@@ -234,7 +265,7 @@ RayHit MetaballField::firstHit(const glm::dvec3& o, const glm::dvec3& d, const B
   auto implicitAt = [&](double t) {
     glm::dvec3 x = o + t * d;
     double f = 0.0;
-    for (const Span& s : active) f += kernel(glm::length(x - model_.positions[s.particle]), h);
+    for (const Span& s : active) f += particleField(s.particle, x);
     return std::sqrt(f) - T;
   };
 
@@ -278,10 +309,7 @@ RayHit MetaballField::firstHit(const glm::dvec3& o, const glm::dvec3& d, const B
       RayHit hit;
       hit.t = lo + (hi - lo) * (-v_lo / (v_hi - v_lo));
       glm::dvec3 x = o + hit.t * d, g(0.0);
-      for (const Span& s : active) {
-        glm::dvec3 v = x - model_.positions[s.particle];
-        g += kernelGradient(v, glm::length(v), h);
-      }
+      for (const Span& s : active) g += particleGradient(s.particle, x);
       double len = glm::length(g);
       hit.normal = len > 0.0 ? -g / len : -d;
       return hit;

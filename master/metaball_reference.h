@@ -12,7 +12,7 @@
 // front, in another box. Normal N = -grad F / |grad F| (outward); grad F = 0 gives N = -D. In
 // grad F the term of a particle at r = 0 is defined 0 (P is not differentiable there).
 //
-// Method. A uniform grid of cells of size h finds the particles within h of the clipped ray: a
+// Method. A uniform grid of cells of size h (anisotropic: the longest reach) finds the particles within h of the clipped ray: a
 // 3D-DDA walks the cells the ray crosses, front to back, and every particle within h of a point
 // lies in that point's cell or one of its 26 neighbours. Each such particle covers an exact
 // interval [t_b - s, t_b + s] of the ray (t_b the closest approach, s = sqrt(h^2 - d^2)); outside
@@ -33,6 +33,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "common/anisotropic_kernels.h"
 #include "common/box.h"
 #include "common/camera.h"
 #include "common/image.h"
@@ -44,6 +45,11 @@ struct MetaballModel {
   std::vector<glm::dvec3> positions;
   double h = 0.0;          // influence radius
   double threshold = 0.0;  // T
+  // Anisotropic smoothing (common/anisotropic_kernels.h), one per particle; empty: round. Then
+  //   P_j(x) = C_j (1 - |A_j (x - P_j)| / h)^2 where |A_j (x - P_j)| <= h,
+  // in double from the same float kernels the GL ray caster uploads; the grid's cells and the
+  // spans below use each particle's reach (longest semi-axis) instead of h.
+  std::vector<ParticleKernel> kernels;
 };
 
 inline constexpr int kReferenceStepsPerH = 64;  // sample step h / 64
@@ -82,7 +88,12 @@ class MetaballField {
   template <typename Visit>
   void forEachInCell(const glm::ivec3& c, Visit visit) const;
 
+  double particleField(uint32_t j, const glm::dvec3& x) const;       // P_j(x)
+  glm::dvec3 particleGradient(uint32_t j, const glm::dvec3& x) const;  // grad P_j(x)
+  double particleReach(uint32_t j) const;
+
   MetaballModel model_;
+  double cell_ = 1.0;            // grid cell edge: h, or the longest reach with kernels
   Box3 reach_;                   // the particles' bounds grown by h: F = 0 outside
   glm::dvec3 origin_{0.0};       // grid corner: the particles' lower bound
   glm::ivec3 cell_count_{0};     // cells spanning the particles' bounds

@@ -92,6 +92,9 @@ struct GpuKey {
   int step = -1;
   std::string method;
   double h = -1;
+  // Kernels are per brick: new smoothing settings need the bricks again.
+  std::string smoothing;
+  AnisotropicParams anisotropic;
   bool operator==(const GpuKey&) const = default;
 };
 
@@ -277,9 +280,10 @@ Scene RenderSession::State::resolve(const FrameRequest& request) const {
     throw InputError("image size " + std::to_string(sc.camera.width) + " x " + std::to_string(sc.camera.height) +
                      " is larger than this session allows (" + std::to_string(opts.max_image_side) +
                      " pixels per side)");
-  if (sc.particles.enabled() && sc.particles.influenceRadius() > layout.particle_h * (1 + 1e-12))
-    throw InputError("the particles' influence radius h = " + std::to_string(sc.particles.influenceRadius()) +
-                     " (particles.radius / (1 - particles.threshold), or particles.influence) is larger "
+  if (sc.particles.enabled() && sc.particles.reach() > layout.particle_h * (1 + 1e-12))
+    throw InputError("the particles' reach " + std::to_string(sc.particles.reach()) +
+                     " (h = particles.radius / (1 - particles.threshold), or particles.influence, times "
+                     "the anisotropic reach bound with particles.smoothing: anisotropic) is larger "
                      "than the session's " + std::to_string(layout.particle_h) +
                      ", which its brick grid was made for; start the session with the larger radius");
   std::vector<Camera> cams = sc.frameCameras(layout.bounds);
@@ -306,7 +310,8 @@ void RenderSession::State::uploadBricks(const Scene& scene, StepData& d) {
   const int d_axis = scene.bricks_per_axis;
   auto cellOf = [&](int id) { return glm::ivec3(id % d_axis, (id / d_axis) % d_axis, id / (d_axis * d_axis)); };
   const bool has_particles = scene.particles.enabled();
-  const double h = has_particles ? scene.particles.influenceRadius() : 0.0;
+  // Ghosts: those whose field reaches the brick (anisotropic: with their neighbourhoods).
+  const double h = has_particles ? scene.particles.ghostMargin() : 0.0;
   handles.clear();
   particles_held = 0;
   renderer->reset();
@@ -328,7 +333,8 @@ void RenderSession::State::uploadBricks(const Scene& scene, StepData& d) {
 
 void RenderSession::State::bringGpuTo(const Scene& scene) {
   const bool has_particles = scene.particles.enabled();
-  GpuKey want{scene.time_step, scene.volume_method, has_particles ? scene.particles.influenceRadius() : 0.0};
+  GpuKey want{scene.time_step, scene.volume_method, has_particles ? scene.particles.influenceRadius() : 0.0,
+              scene.particles.smoothing, scene.particles.anisotropic};
   if (want == gpu) return;
   if (external) {
     collectively(comm, [&] {
@@ -353,7 +359,8 @@ void RenderSession::State::bringGpuTo(const Scene& scene) {
     if (d.dropped && want.step == gpu.step)
       throw std::logic_error("a batch session cannot change its volume renderer or h");
   });
-  if (has_particles && d.scattered_h != want.h) scatterStepParticles(d, layout, want.h, comm);
+  const double margin = has_particles ? scene.particles.ghostMargin() : 0.0;
+  if (has_particles && d.scattered_h != margin) scatterStepParticles(d, layout, margin, comm);
   collectively(comm, [&] {
     PhaseScope upload("uploading the bricks to the GPU");
     uploadBricks(scene, d);
@@ -398,7 +405,7 @@ FrameResult RenderSession::render(const FrameRequest& request) {
   });
 
   double t_frame = MPI_Wtime();
-  const double h = has_particles ? sc.particles.influenceRadius() : 0.0;
+  const double h = has_particles ? sc.particles.reach() : 0.0;
   // Billboards reach sqrt(3) h beyond a particle: the depth range holds them too.
   auto [near_plane, far_plane] = depthRange(cam, has_particles ? grow(S.layout.bounds, h) : S.layout.bounds);
   RankFrameStats st;

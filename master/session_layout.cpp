@@ -15,7 +15,8 @@ SessionLayout makeLayout(const Scene& scene, const Box3& particle_centres, int r
   const int d = scene.bricks_per_axis;
   L.grid = scene.volume.grid;
   if (scene.hasVolume()) L.volume_bricks = makeBricks(scene.volume.grid, d);
-  L.particle_h = scene.particles.enabled() ? scene.particles.influenceRadius() : 0.0;
+  // The domain holds every particle's field: h, or the anisotropic ellipsoids' reach.
+  L.particle_h = scene.particles.enabled() ? scene.particles.reach() : 0.0;
   L.particle_domain = isEmpty(particle_centres) ? Box3{glm::dvec3(1), glm::dvec3(-1)}
                                                 : grow(particle_centres, L.particle_h);
   if (scene.hasVolume()) {

@@ -37,7 +37,7 @@ void forCellsOf(const ParticleGrid& g, const glm::vec3& p, float r, F&& f) {
 }  // namespace
 
 ParticleGrid buildParticleGrid(const std::vector<glm::vec3>& particles, const Box3& bound, double h,
-                               double cell, size_t max_cells) {
+                               double cell, size_t max_cells, const std::vector<float>* reach) {
   ParticleGrid g;
   // A margin of kGridPad h around the bound: the shader computes where a ray enters and leaves
   // the grid in float, and a brick face that the bound shares must lie strictly inside, or the
@@ -52,15 +52,17 @@ ParticleGrid buildParticleGrid(const std::vector<glm::vec3>& particles, const Bo
     cell *= 1.25;
   }
   const float r = float(h * (1.0 + kGridPad));
+  auto radius = [&](size_t i) { return reach ? float((*reach)[i] + h * kGridPad) : r; };
   // Counting sort: count, prefix sums, fill. Particles are visited in order, so every cell's
   // list comes out ascending.
   g.offsets.assign(g.cellCount() + 1, 0);
-  for (const glm::vec3& p : particles) forCellsOf(g, p, r, [&](size_t c) { ++g.offsets[c + 1]; });
+  for (size_t i = 0; i < particles.size(); ++i)
+    forCellsOf(g, particles[i], radius(i), [&](size_t c) { ++g.offsets[c + 1]; });
   for (size_t c = 0; c < g.cellCount(); ++c) g.offsets[c + 1] += g.offsets[c];
   g.items.resize(g.offsets.back());
   std::vector<uint32_t> cursor(g.offsets.begin(), g.offsets.end() - 1);
   for (size_t i = 0; i < particles.size(); ++i)
-    forCellsOf(g, particles[i], r, [&](size_t c) { g.items[cursor[c]++] = uint32_t(i); });
+    forCellsOf(g, particles[i], radius(i), [&](size_t c) { g.items[cursor[c]++] = uint32_t(i); });
   return g;
 }
 

@@ -34,7 +34,10 @@ constexpr double kGridPad = 0.01;
 // particles' field can be non-zero) plus a margin of kGridPad h. The renderer uses cells of h/2:
 // a particle then lands in about 84 cells (sphere-cube overlap test). `max_cells` bounds
 // dims.x dims.y dims.z: the edge grows (x1.25 steps) until it fits.
+// `reach` (optional, one per particle): each particle's own reach instead of h (anisotropic
+// metaballs: the longest semi-axis of its ellipsoid), padded by kGridPad h likewise.
 ParticleGrid buildParticleGrid(const std::vector<glm::vec3>& particles, const Box3& bound, double h,
-                               double cell, size_t max_cells = size_t(1) << 24);
+                               double cell, size_t max_cells = size_t(1) << 24,
+                               const std::vector<float>* reach = nullptr);
 
 }  // namespace sortlast

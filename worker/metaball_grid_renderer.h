@@ -40,7 +40,7 @@ class MetaballGridRenderer : public ParticleRenderer {
     glm::vec3 lo{0.0f};
     float cell = 1.0f;
     glm::ivec3 dims{0};
-    unsigned centres = 0, offsets = 0, items = 0;  // SSBOs
+    unsigned centres = 0, offsets = 0, items = 0, kernels = 0;  // SSBOs (kernels: anisotropic)
     int count = 0;
   };
   void allocateTargets(int width, int height);

@@ -67,6 +67,33 @@ vec2 gridInterval(vec3 d) {
   vec3 lo = min(a, b), hi = max(a, b);
   return vec2(max(max(lo.x, lo.y), lo.z), min(min(hi.x, hi.y), hi.z));
 }
+#ifdef ANISOTROPIC
+// Smoothed anisotropic metaballs (common/anisotropic_kernels.h). How one particle adds to the
+// field, all in this block: its kernel from the particle index (a list entry's w holds it, as
+// bits), and its field and gradient at offset r = x - c from its centre, measured in its
+// ellipsoid's frame. Per particle 3 vec4: (A row 0, C), (A row 1, reach), (A row 2, unused); A is
+// symmetric, reach the longest semi-axis (what culling uses).
+layout(std430, binding = 3) readonly buffer Kernels { vec4 kernels[]; };
+struct Kernel { vec3 a0, a1, a2; float c, reach; };
+Kernel kernelOf(float entry_w) {
+  uint i = 3u * floatBitsToUint(entry_w);
+  vec4 k0 = kernels[i], k1 = kernels[i + 1u], k2 = kernels[i + 2u];
+  return Kernel(k0.xyz, k1.xyz, k2.xyz, k0.w, k1.w);
+}
+vec3 ellipsoidFrame(Kernel k, vec3 r) { return vec3(dot(k.a0, r), dot(k.a1, r), dot(k.a2, r)); }
+// C (1 - |A r| / h)^2 inside the ellipsoid |A r| < h, else 0.
+float kernelField(Kernel k, vec3 r) {
+  float q = max(1.0 - length(ellipsoidFrame(k, r)) / u_h, 0.0);
+  return k.c * q * q;
+}
+// Its gradient: -2 C (1 - |u|/h) / (h |u|) A u with u = A r (A = A^T); 0 at the centre.
+vec3 kernelGradient(Kernel k, vec3 r) {
+  vec3 u = ellipsoidFrame(k, r);
+  float len = length(u);
+  float q = max(1.0 - len / u_h, 0.0);
+  return len > 0.0 ? (-2.0 * k.c * q / (u_h * len)) * ellipsoidFrame(k, u) : vec3(0.0);
+}
+#endif
 float field(float s, float tb, float perp2) {
   float ds = s - tb;
   float q = max(1.0 - sqrt(perp2 + ds * ds) / u_h, 0.0);
@@ -81,6 +108,17 @@ void sumSamples(uvec2 r, vec3 d, int m) {
   for (int k = 0; k < CHUNK; ++k) g_f[k] = 0.0;
   float hh = u_h * u_h, first = g_s[0] - 1e-3 * u_h, last = g_s[m - 1] + 1e-3 * u_h;
   for (uint j = r.x; j < r.y; ++j) {
+#ifdef ANISOTROPIC
+    vec4 entry = items[j];
+    vec3 oc = entry.xyz - u_eye;
+    float tb = dot(d, oc);
+    vec3 perp = oc - tb * d;
+    float perp2 = dot(perp, perp);
+    float e = tb - clamp(tb, first, last);
+    Kernel kern = kernelOf(entry.w);
+    if (perp2 + e * e >= kern.reach * kern.reach) continue;
+    for (int k = 0; k < m; ++k) g_f[k] += kernelField(kern, (g_s[k] - tb) * d - perp);
+#else
     vec3 oc = items[j].xyz - u_eye;
     float tb = dot(d, oc);
     vec3 perp = oc - tb * d;
@@ -88,6 +126,7 @@ void sumSamples(uvec2 r, vec3 d, int m) {
     float e = tb - clamp(tb, first, last);
     if (perp2 + e * e >= hh) continue;
     for (int k = 0; k < m; ++k) g_f[k] += field(g_s[k], tb, perp2);
+#endif
   }
 }
 // F at the 4 refinement probes q (ascending) into g_f[0..3].
@@ -202,6 +241,15 @@ void main() {
   uvec2 r = cellRange(cellOf(u_eye + t * d));
   vec3 grad = vec3(0.0);
   for (uint j = r.x; j < r.y; ++j) {
+#ifdef ANISOTROPIC
+    vec4 entry = items[j];
+    vec3 oc = entry.xyz - u_eye;
+    float tb = dot(d, oc);
+    vec3 perp = oc - tb * d;
+    Kernel kern = kernelOf(entry.w);
+    if (dot(perp, perp) >= kern.reach * kern.reach) continue;
+    grad += kernelGradient(kern, (t - tb) * d - perp);
+#else
     vec3 oc = items[j].xyz - u_eye;
     float tb = dot(d, oc);
     vec3 perp = oc - tb * d;
@@ -210,6 +258,7 @@ void main() {
     float len = length(rr);
     float q = max(1.0 - len / u_h, 0.0);
     grad += len > 0.0 ? (-2.0 * q / (u_h * len)) * rr : vec3(0.0);
+#endif
   }
   // Shading: common/metaball_shading.h, as the billboard method's shade pass.
   float len = length(grad);

@@ -37,6 +37,7 @@ std::string withCommon(const char* body) { return std::string(shaders::kMetaball
 MetaballRenderer::MetaballRenderer(const GlContext& ctx, int width, int height,
                                    const MetaballSettings& settings)
     : gl_(ctx.gl()), s_(settings) {
+  if (settings.anisotropic) throw std::logic_error("MetaballRenderer: anisotropic smoothing is grid-only");
   allocateTargets(width, height);
   gl_.GenFramebuffers(1, &fbo_);
   gl_.GenVertexArrays(1, &vao_);
@@ -104,6 +105,8 @@ void MetaballRenderer::resize(int width, int height) {
 
 void MetaballRenderer::setSettings(const MetaballSettings& settings) {
   if (settings.h != s_.h) throw std::logic_error("MetaballRenderer::setSettings: h changed");
+  // The scene refuses particles.smoothing: anisotropic with the billboards (common/scene.cpp).
+  if (settings.anisotropic) throw std::logic_error("MetaballRenderer: anisotropic smoothing is grid-only");
   s_ = settings;
 }
 

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "common/anisotropic_kernels.h"
 #include "common/box.h"
 #include "common/camera.h"
 #include "common/image.h"
@@ -36,6 +37,10 @@ struct MetaballSettings {
   // billboards (this renderer, the paper's) | grid (worker/metaball_grid_renderer.h); read by
   // the caller that picks the renderer (master/brick_renderer.cpp)
   std::string method = "grid";
+  // particles.smoothing: anisotropic (grid method only): kernels computed per brick
+  // (common/anisotropic_kernels.h) from the brick's particles and ghosts.
+  bool anisotropic = false;
+  AnisotropicParams anisotropic_params;
 };
 
 struct SurfaceBrick {
