@@ -29,8 +29,10 @@ struct ParticleDesc {
   double threshold = 0.765625;  // T (the paper's)
   glm::dvec3 colour{0.85, 0.9, 1.0};
   // Metaball renderer settings.
-  // billboards (the paper's multi-pass method) | grid (one pass over a grid of cells of edge h)
+  // billboards (the paper's multi-pass method) | grid (one pass over a grid of cells of edge h) |
+  // slices (the field sampled on a lattice, worker/metaball_slices_renderer.h)
   std::string method = "grid";
+  double slice_spacing = 0.25;  // slices: lattice spacing, in units of h
   double step = 0.125;        // sample step along rays, in units of h
   int max_samples = 96;       // cap on field samples per pixel (per brick)
   int refine_iterations = 3;  // refinement passes (4 probes around the secant of eq. 5)
@@ -39,7 +41,17 @@ struct ParticleDesc {
 
   bool enabled() const { return !file.empty() || procedural != "none"; }
   double influenceRadius() const { return influence ? *influence : radius / (1.0 - threshold); }
+  // How far beyond a brick the particles it is given must reach. The slices method takes its
+  // gradient one spacing s outside the brick (per axis) and interpolates there between lattice
+  // points up to s further on each axis: points within sqrt(6) s < 2.5 s of the brick, each the
+  // sum of every particle within h of it. The others need h.
+  double ghostMargin() const {
+    const double h = influenceRadius();
+    return method == "slices" ? h * (1.0 + 2.5 * slice_spacing) : h;
+  }
 };
+
+inline constexpr double kMinSliceSpacing = 0.05, kMaxSliceSpacing = 1.0;  // particles.slice_spacing
 
 struct ParticleSet {
   std::vector<glm::vec3> positions;

@@ -202,8 +202,15 @@ ParticleDesc readParticles(const Reader& r, const std::filesystem::path& base_di
     if (p.colour[c] < 0.0 || p.colour[c] > 1.0)
       throw InputError("scene key 'particles.color': entries must be in [0, 1]");
   p.method = r.as<std::string>("particles.method");
-  if (p.method != "billboards" && p.method != "grid")
-    throw InputError("scene key 'particles.method': expected billboards or grid, got '" + p.method + "'");
+  if (p.method != "billboards" && p.method != "grid" && p.method != "slices")
+    throw InputError("scene key 'particles.method': expected billboards, grid or slices, got '" + p.method + "'");
+  // Below 1/20 h the lattice needs 8000 points per h^3 (memory and splat time grow as the inverse
+  // cube); above h the lattice cannot even hold a lone particle's surface (radius 0.23 h).
+  p.slice_spacing = r.as<double>("particles.slice_spacing");
+  if (!(p.slice_spacing >= kMinSliceSpacing && p.slice_spacing <= kMaxSliceSpacing))
+    throw InputError("scene key 'particles.slice_spacing': must be in [" + std::to_string(kMinSliceSpacing) +
+                     ", " + std::to_string(kMaxSliceSpacing) + "] (units of h), got " +
+                     r.as<std::string>("particles.slice_spacing"));
   p.step = positive("particles.step");
   p.max_samples = r.as<int>("particles.max_samples");
   if (p.max_samples < 1) throw InputError("scene key 'particles.max_samples': must be >= 1");

@@ -29,6 +29,7 @@ MetaballSettings metaballSettings(const ParticleDesc& desc) {
   s.samples_per_pass = desc.samples_per_pass;
   s.colour = desc.colour;
   s.method = desc.method;
+  s.slice_spacing = desc.slice_spacing;
   return s;
 }
 
@@ -51,6 +52,8 @@ void BrickRenderer::enableVolume(const TransferFunction& tf, int table_size, int
 void BrickRenderer::enableParticles(const MetaballSettings& settings) {
   if (settings.method == "grid")
     metaballs_ = std::make_unique<MetaballGridRenderer>(*ctx_, width_, height_, settings);
+  else if (settings.method == "slices")
+    metaballs_ = std::make_unique<MetaballSlicesRenderer>(*ctx_, width_, height_, settings);
   else
     metaballs_ = std::make_unique<MetaballRenderer>(*ctx_, width_, height_, settings);
 }

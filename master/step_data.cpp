@@ -84,7 +84,7 @@ StepData loadStep(const Scene& scene, const SessionLayout& layout, bool adaptive
   }
   if (scene.particles.enabled()) {
     d.root = preloaded ? std::move(*preloaded) : loadParticlesOnRoot(scene.particles, comm);
-    scatterStepParticles(d, layout, scene.particles.influenceRadius(), comm);
+    scatterStepParticles(d, layout, scene.particles.ghostMargin(), comm);
   }
   double mib = 0;
   for (const auto& s : d.samples) mib += double(s.size()) * sizeof(float);
