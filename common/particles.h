@@ -41,13 +41,14 @@ struct ParticleDesc {
 
   bool enabled() const { return !file.empty() || procedural != "none"; }
   double influenceRadius() const { return influence ? *influence : radius / (1.0 - threshold); }
-  // How far beyond a brick the particles it is given must reach. The slices method takes its
-  // gradient one spacing s outside the brick (per axis) and interpolates there between lattice
-  // points up to s further on each axis: points within sqrt(6) s < 2.5 s of the brick, each the
-  // sum of every particle within h of it. The others need h.
+  // How far beyond a brick the particles it is given must reach. The slices method evaluates
+  // the field up to one ray step w before its brick (where its rays' brackets start) and takes
+  // gradients one spacing s further (per axis); interpolation there reads lattice points up to
+  // s further on each axis: points within w + sqrt(6) s < w + 2.5 s of the brick, each the sum
+  // of every particle within h of it. The others need h.
   double ghostMargin() const {
     const double h = influenceRadius();
-    return method == "slices" ? h * (1.0 + 2.5 * slice_spacing) : h;
+    return method == "slices" ? h * (1.0 + step + 2.5 * slice_spacing) : h;
   }
 };
 

@@ -49,14 +49,15 @@ void forVoxelsOf(const SliceLattice& L, const glm::vec3& p, float r, F&& f) {
 }  // namespace
 
 SliceLattice buildSliceLattice(const std::vector<glm::vec3>& particles, const Box3& clip, double h,
-                               double spacing, size_t max_entries) {
+                               double spacing, double step, size_t max_entries) {
   SliceLattice L;
   L.spacing = float(spacing);
   if (particles.empty()) return L;
-  // The shader evaluates the field inside the clip box and, for gradients, one spacing beyond it;
-  // interpolation spreads the field up to one cell diagonal past where it is non-zero. The part
-  // of that box the field can reach, then the cells that part touches, then their voxels.
-  const Box3 reach{clip.lo - spacing, clip.hi + spacing};
+  // The shader evaluates the field inside the clip box, up to one ray step before it (where a
+  // bracket starts) and, for gradients, one spacing beyond that; interpolation spreads the field
+  // up to one cell diagonal past where it is non-zero. The part of that box the field can reach,
+  // then the cells that part touches, then their voxels.
+  const Box3 reach{clip.lo - (spacing + step), clip.hi + (spacing + step)};
   Box3 bound = fieldBoundInside(reach, particles, h + std::sqrt(3.0) * spacing);
   if (glm::any(glm::greaterThanEqual(bound.lo, bound.hi))) return L;
   glm::dvec3 c_lo = glm::floor(bound.lo / spacing), c_hi = glm::floor(bound.hi / spacing);

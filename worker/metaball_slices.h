@@ -40,12 +40,12 @@ struct SliceLattice {
 };
 
 // The coarse voxels whose lattice cells the shader can interpolate in for `clip`'s brick (points in
-// `clip` and, for gradients, one spacing beyond), as far as `particles` (the brick's own and its
+// `clip`, up to one ray step `step` before it, and, for gradients, one spacing beyond), as far as `particles` (the brick's own and its
 // ghosts, ParticleDesc::ghostMargin) can make the interpolated field non-zero there; then the
 // bits, slots and lists. `spacing` in
 // world units. Throws std::length_error when the voxels or the lists would pass `max_entries`
 // (the caller turns it into an error naming particles.slice_spacing).
 SliceLattice buildSliceLattice(const std::vector<glm::vec3>& particles, const Box3& clip, double h,
-                               double spacing, size_t max_entries = size_t(1) << 28);
+                               double spacing, double step, size_t max_entries = size_t(1) << 28);
 
 }  // namespace sortlast

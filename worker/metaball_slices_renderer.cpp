@@ -89,8 +89,8 @@ void MetaballSlicesRenderer::resize(int width, int height) {
 }
 
 void MetaballSlicesRenderer::setSettings(const MetaballSettings& settings) {
-  if (settings.h != s_.h || settings.slice_spacing != s_.slice_spacing)
-    throw std::logic_error("MetaballSlicesRenderer::setSettings: h or the slice spacing changed");
+  if (settings.h != s_.h || settings.slice_spacing != s_.slice_spacing || settings.step > s_.step)
+    throw std::logic_error("MetaballSlicesRenderer::setSettings: h or the slice spacing changed, or the step grew");
   s_ = settings;
 }
 
@@ -102,7 +102,7 @@ int MetaballSlicesRenderer::addBrick(const Box3& clip, const std::vector<glm::ve
   const size_t max_entries = size_t(max_block_bytes_ / 16);
   SliceLattice L;
   try {
-    L = buildSliceLattice(particles, clip, s_.h, spacing, max_entries);
+    L = buildSliceLattice(particles, clip, s_.h, spacing, s_.step, max_entries);
   } catch (const std::length_error& e) {
     throw InputError("scene key 'particles.slice_spacing': " + std::to_string(s_.slice_spacing) +
                      " h needs more lattice samples in one brick than the GPU holds in one buffer (" +

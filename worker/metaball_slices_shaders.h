@@ -11,8 +11,7 @@
 //
 // kSliceRayFragment (appended to kMetaballCommon, worker/metaball_shaders.h, for the ray, the
 // clip interval, the sample lattice along rays and the refinement probes): each pixel's ray
-// samples the trilinear interpolation of the lattice at the same points t = k w as the other
-// methods, jumps the coarse voxels with no slot (the field is 0 there), refines the first sign
+// samples the trilinear interpolation of the lattice at the points t = k w its brick owns, jumps the coarse voxels with no slot (the field is 0 there), refines the first sign
 // change of sqrt(F) - T, and shades with the gradient of the interpolated field (central
 // differences one lattice spacing apart, so it is continuous across cell faces).
 namespace sortlast::shaders {
@@ -115,48 +114,46 @@ void main() {
   float g0 = max(g.x, t_in), g1 = min(g.y, t_out);
   if (g0 >= g1) return;
 
-  // Samples: t_in, every lattice point k w up to t_out, then t_out (as the grid method). A
-  // sample in a voxel without a slot has F = 0: the march jumps to where the ray leaves that
-  // voxel, and the lattice point before the next sample (in the jumped stretch) starts the
-  // bracket with I = -T, as if every jumped sample had been taken.
-  float s = t_in, t_last = t_in, i_last = -u_T, n = 0.0;
+  // Samples: the lattice points k w in [t_in, t_out): each point belongs to exactly one brick
+  // (the half-open rule of the volume bricks), and no brick adds samples at its faces, so every
+  // decomposition takes the same samples. The bracket starts at the point before the first one
+  // (in the brick in front, or before the data), evaluated here: the lattice reaches w + s
+  // beyond the brick. If it is already inside, the brick in front found this surface. A sample
+  // in a voxel without a slot has F = 0: the march jumps to where the ray leaves that voxel, and
+  // the point before the next sample (in the jumped stretch) carries the bracket with I = -T, as
+  // if every jumped sample had been taken.
+  float s = latticeCeil(t_in);
+  if (s >= t_out || s > g1) return;
+  float t_last = (round(s / u_w) - 1.0) * u_w;
+  float i_last = sqrt(fieldAt(u_eye + t_last * d)) - u_T, n = 0.0;
+  if (i_last >= 0.0) return;
   bool hit = false;
   vec4 b = vec4(0.0);
-  if (g0 > t_in) {
-    float c = latticeCeil(g0);
-    float prev = (round(c / u_w) - 1.0) * u_w;
-    s = min(c, t_out);
-    if (prev > t_last && prev < s) t_last = prev;
-  }
   for (int iter = 0; iter < 1000000; ++iter) {
-    if (s > g1) break;
+    if (s >= t_out || s > g1) break;
     int slot;
     float F = fieldAt(u_eye + s * d, slot);
     if (slot < 0) {
       float t_exit = voxelExit(voxelOfCell(ivec3(floor((u_eye + s * d) / u_spacing))), d);
-      if (t_exit >= g1 || s >= t_out) break;
       float c = latticeCeil(t_exit);
       if (c <= s) c = latticeNext(s);
       float prev = (round(c / u_w) - 1.0) * u_w;
-      t_last = s;
+      t_last = max(s, prev);
       i_last = -u_T;
-      if (prev > t_last && prev < c) t_last = prev;
-      s = min(c, t_out);
+      s = c;
       continue;
     }
     if (n >= u_cap) break;  // out of samples: a hole, as the other methods
     if (F > 0.0) n += 1.0;
     float value = sqrt(F) - u_T;
     if (value >= 0.0) {
-      // Already inside at the box entry: the surface lies in front of this brick (its owner
-      // draws it).
-      if (s > t_in) { hit = true; b = vec4(t_last, i_last, s, value); }
+      hit = true;
+      b = vec4(t_last, i_last, s, value);
       break;
     }
     t_last = s;
     i_last = value;
-    if (s >= t_out) break;
-    s = min(latticeNext(s), t_out);
+    s = latticeNext(s);
   }
   if (!hit) return;
 
