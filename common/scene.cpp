@@ -207,10 +207,12 @@ ParticleDesc readParticles(const Reader& r, const std::filesystem::path& base_di
   // Below 1/20 h the lattice needs 8000 points per h^3 (memory and splat time grow as the inverse
   // cube); above h the lattice cannot even hold a lone particle's surface (radius 0.23 h).
   p.slice_spacing = r.as<double>("particles.slice_spacing");
-  if (!(p.slice_spacing >= kMinSliceSpacing && p.slice_spacing <= kMaxSliceSpacing))
-    throw InputError("scene key 'particles.slice_spacing': must be in [" + std::to_string(kMinSliceSpacing) +
-                     ", " + std::to_string(kMaxSliceSpacing) + "] (units of h), got " +
-                     r.as<std::string>("particles.slice_spacing"));
+  if (!(p.slice_spacing >= kMinSliceSpacing && p.slice_spacing <= kMaxSliceSpacing)) {
+    std::ostringstream msg;
+    msg << "scene key 'particles.slice_spacing': must be in [" << kMinSliceSpacing << ", " << kMaxSliceSpacing
+        << "] (units of h), got " << r.as<std::string>("particles.slice_spacing");
+    throw InputError(msg.str());
+  }
   p.step = positive("particles.step");
   p.max_samples = r.as<int>("particles.max_samples");
   if (p.max_samples < 1) throw InputError("scene key 'particles.max_samples': must be >= 1");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -104,9 +105,11 @@ int MetaballSlicesRenderer::addBrick(const Box3& clip, const std::vector<glm::ve
   try {
     L = buildSliceLattice(particles, clip, s_.h, spacing, s_.step, max_entries);
   } catch (const std::length_error& e) {
-    throw InputError("scene key 'particles.slice_spacing': " + std::to_string(s_.slice_spacing) +
-                     " h needs more lattice samples in one brick than the GPU holds in one buffer (" +
-                     e.what() + "); use a larger spacing or more bricks (bricks.per_axis)");
+    std::ostringstream msg;
+    msg << "scene key 'particles.slice_spacing': " << s_.slice_spacing
+        << " h needs more lattice samples in one brick than the GPU holds in one buffer (" << e.what()
+        << "); use a larger spacing or more bricks (bricks.per_axis)";
+    throw InputError(msg.str());
   }
   if (L.slots() > 0) splat(g, L, particles);
   bricks_.push_back(g);
