@@ -94,7 +94,8 @@ using PfnDrawArrays = void(APIENTRYP)(GLenum, GLint, GLsizei);
   X(DrawBuffers, PFNGLDRAWBUFFERSPROC)                          \
   X(BindBufferBase, PFNGLBINDBUFFERBASEPROC)                    \
   X(ReadBuffer, PFNGLREADBUFFERPROC)                            \
-  X(DispatchCompute, PFNGLDISPATCHCOMPUTEPROC)
+  X(DispatchCompute, PFNGLDISPATCHCOMPUTEPROC)                  \
+  X(GetBufferSubData, PFNGLGETBUFFERSUBDATAPROC)
 
 struct GlApi {
 #define SORTLAST_GL_MEMBER(name, type) type name = nullptr;

@@ -48,8 +48,8 @@ void forVoxelsOf(const SliceLattice& L, const glm::vec3& p, float r, F&& f) {
 
 }  // namespace
 
-SliceLattice buildSliceLattice(const std::vector<glm::vec3>& particles, const Box3& clip, double h,
-                               double spacing, double step, size_t max_entries) {
+SliceLattice markSliceVoxels(const std::vector<glm::vec3>& particles, const Box3& clip, double h,
+                             double spacing, double step, size_t max_entries) {
   SliceLattice L;
   L.spacing = float(spacing);
   if (particles.empty()) return L;
@@ -78,6 +78,12 @@ SliceLattice buildSliceLattice(const std::vector<glm::vec3>& particles, const Bo
   L.bits.assign((n + 63) / 64, 0);
   for (const glm::vec3& p : particles)
     forVoxelsOf(L, p, r, [&](size_t v) { L.bits[v >> 6] |= uint64_t(1) << (v & 63); });
+  return L;
+}
+
+void allocateSlices(SliceLattice& L, const std::vector<glm::vec3>& particles, double h, size_t max_entries) {
+  const size_t n = L.voxelCount();
+  const float r = float(h * (1.0 + kSlicePad));
   // 2. Slots for the set bits, in voxel order.
   L.slot_of.assign(n, -1);
   for (size_t v = 0; v < n; ++v)
@@ -85,7 +91,7 @@ SliceLattice buildSliceLattice(const std::vector<glm::vec3>& particles, const Bo
       L.slot_of[v] = int32_t(L.slot_voxel.size());
       const int x = int(v % size_t(L.dims.x)), y = int(v / size_t(L.dims.x) % size_t(L.dims.y)),
                 z = int(v / (size_t(L.dims.x) * L.dims.y));
-      L.slot_voxel.emplace_back(v_lo + glm::ivec3(x, y, z), 0);
+      L.slot_voxel.emplace_back(L.voxel_lo + glm::ivec3(x, y, z), 0);
     }
   if (L.slots() * size_t(kSliceSlotPoints) > max_entries) throw std::length_error("too many samples");
   // 3. Each slot's particles, by counting sort: particles in order, so every list ascends.
@@ -93,11 +99,17 @@ SliceLattice buildSliceLattice(const std::vector<glm::vec3>& particles, const Bo
   for (const glm::vec3& p : particles)
     forVoxelsOf(L, p, r, [&](size_t v) { ++L.offsets[size_t(L.slot_of[v]) + 1]; });
   for (size_t s = 0; s < L.slots(); ++s) L.offsets[s + 1] += L.offsets[s];
-  if (L.offsets.back() > max_entries) throw std::length_error("too many list entries");
+  if (size_t(L.offsets.back()) * 4 > max_entries) throw std::length_error("too many list entries");
   L.items.resize(L.offsets.back());
   std::vector<uint32_t> cursor(L.offsets.begin(), L.offsets.end() - 1);
   for (size_t i = 0; i < particles.size(); ++i)
     forVoxelsOf(L, particles[i], r, [&](size_t v) { L.items[cursor[size_t(L.slot_of[v])]++] = uint32_t(i); });
+}
+
+SliceLattice buildSliceLattice(const std::vector<glm::vec3>& particles, const Box3& clip, double h,
+                               double spacing, double step, size_t max_entries) {
+  SliceLattice L = markSliceVoxels(particles, clip, h, spacing, step, max_entries);
+  if (L.voxelCount() > 0) allocateSlices(L, particles, h, max_entries);
   return L;
 }
 

@@ -43,9 +43,16 @@ struct SliceLattice {
 // `clip`, up to one ray step `step` before it, and, for gradients, one spacing beyond), as far as `particles` (the brick's own and its
 // ghosts, ParticleDesc::ghostMargin) can make the interpolated field non-zero there; then the
 // bits, slots and lists. `spacing` in
-// world units. Throws std::length_error when the voxels or the lists would pass `max_entries`
-// (the caller turns it into an error naming particles.slice_spacing).
+// world units. Throws std::length_error when the voxels, the samples or the lists (4 words an
+// entry) would pass `max_entries` 4-byte words, what one GPU buffer holds (the caller turns it
+// into an error naming particles.slice_spacing).
 SliceLattice buildSliceLattice(const std::vector<glm::vec3>& particles, const Box3& clip, double h,
                                double spacing, double step, size_t max_entries = size_t(1) << 28);
+
+// The two steps of buildSliceLattice: the voxels and their bits; then the slots and lists.
+SliceLattice markSliceVoxels(const std::vector<glm::vec3>& particles, const Box3& clip, double h,
+                             double spacing, double step, size_t max_entries = size_t(1) << 28);
+void allocateSlices(SliceLattice& L, const std::vector<glm::vec3>& particles, double h,
+                    size_t max_entries = size_t(1) << 28);
 
 }  // namespace sortlast

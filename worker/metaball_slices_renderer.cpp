@@ -99,8 +99,9 @@ int MetaballSlicesRenderer::addBrick(const Box3& clip, const std::vector<glm::ve
   GpuBrick g;
   g.clip = clip;
   const double spacing = s_.slice_spacing * s_.h;
-  // What one storage block holds bounds the samples (4 bytes each) and the list entries (16).
-  const size_t max_entries = size_t(max_block_bytes_ / 16);
+  // What one storage block holds bounds the voxels and samples (4 bytes each) and the list
+  // entries (16).
+  const size_t max_entries = size_t(max_block_bytes_ / 4);
   SliceLattice L;
   try {
     L = buildSliceLattice(particles, clip, s_.h, spacing, s_.step, max_entries);
