@@ -229,7 +229,7 @@ for sp in sorted({re.match(r"spacing([0-9.]+)-", os.path.basename(p)).group(1)
                 for k in ("0.1", "0.2", "1")}
     c = tol_runs["0.1"]
     times = [min(f["total_s"] for f in json.load(open(p))["frames"])
-             for p in glob.glob(os.path.join(stats_dir, "slices", f"spacing{sp}-t*.json"))]
+             for p in glob.glob(os.path.join(stats_dir, "slices", f"spacing{sp}-t[0-9]*.json"))]
     slices.append({"slice_spacing_h": float(sp), "s_per_frame": round(min(times), 4) if times else "",
                    "pixels": c["pixels_hit_both"], "holes": c["holes"], "extra_hits": c["extra_hits"],
                    "depth_rms": round(c["depth_error_rms"], 6), "depth_max": round(c["depth_error_max"], 4),
@@ -303,10 +303,11 @@ if accuracy:
                                      "depth_rms", "depth_outliers", "pixels", "depth_max", "extra_hits"]), ""]
 if slices:
     md += ["## Slices: accuracy against the lattice spacing", "",
-           f"[CSV](bench-metaballs-slices.csv). The dam break at {acc_width}², 1 rank, d = 1, default ray "
-           f"settings, against the same CPU reference surface, silhouette edges ignored. over_kh: pixels "
-           f"whose depth error passes k h (h = 0.107). s_per_frame: the smallest total_s of single-frame "
-           f"runs, so it includes the splat (paid once per time step).", "",
+           f"[CSV](bench-metaballs-slices.csv). The dam break at {acc_width}², 1 rank, d = 2 (the same image "
+           f"as d = 1), default ray settings, against the same CPU reference surface, silhouette edges "
+           f"ignored. over_kh: pixels whose depth error passes k h (h = 0.107). s_per_frame: the smallest "
+           f"total_s of single-frame runs; like every frame time here it leaves out the splat, paid once "
+           f"per time step when the bricks are uploaded (see the per-brick work below).", "",
            md_table(slices, list(slices[0].keys())), ""]
 if slices_build:
     md += ["## Slices: per-brick work (`bench_metaball_slices`)", "",
