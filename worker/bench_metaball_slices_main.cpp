@@ -5,7 +5,8 @@
 // the bit grid, read back), which the renderer does not use: it is measured here against the
 // CPU pass it would replace. One brick over the whole set; prints one JSON line, the fastest of
 // --repeats runs.
-// Usage: bench_metaball_slices [procedural (splash | layers)] [count] [spacing (units of h)] [repeats]
+// Usage: bench_metaball_slices [procedural (splash | layers)] [count] [spacing (units of h)]
+// [repeats]
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -20,7 +21,9 @@
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 
 // The GL bit voxelization: the same test as worker/metaball_slices.cpp (sphere of radius h
 // padded 1% against each voxel's closed box), one bit per voxel, x fastest.
@@ -96,7 +99,8 @@ int main(int argc, char** argv) {
     unsigned buf[2];
     gl.GenBuffers(2, buf);
     gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, buf[0]);
-    gl.BufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(centres.size() * 16), centres.data(), GL_STATIC_DRAW);
+    gl.BufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(centres.size() * 16), centres.data(),
+                  GL_STATIC_DRAW);
     std::vector<uint32_t> zero(words, 0);
     gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, buf[1]);
     gl.BufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(words * 4), zero.data(), GL_DYNAMIC_READ);
@@ -119,10 +123,12 @@ int main(int argc, char** argv) {
   size_t differ = 0;
   for (size_t v = 0; v < L.voxelCount(); ++v)
     differ += L.occupied(v) != bool((bits[v >> 5] >> (v & 31)) & 1u);
-  std::printf("{\"procedural\": \"%s\", \"particles\": %lld, \"slice_spacing\": %g, \"voxels\": %zu, "
-              "\"slots\": %zu, \"list_entries\": %zu, \"samples_mib\": %.1f, \"cpu_bits_s\": %.4f, "
-              "\"gl_bits_s\": %.4f, \"bits_differ\": %zu, \"cpu_lattice_s\": %.4f, \"add_brick_s\": %.4f}\n",
-              name.c_str(), count, rel, L.voxelCount(), L.slots(), L.items.size(),
-              double(L.slots()) * kSliceSlotPoints * 4 / 1048576.0, cpu_bits, glvox, differ, cpu, brick);
+  std::printf(
+      "{\"procedural\": \"%s\", \"particles\": %lld, \"slice_spacing\": %g, \"voxels\": %zu, "
+      "\"slots\": %zu, \"list_entries\": %zu, \"samples_mib\": %.1f, \"cpu_bits_s\": %.4f, "
+      "\"gl_bits_s\": %.4f, \"bits_differ\": %zu, \"cpu_lattice_s\": %.4f, \"add_brick_s\": "
+      "%.4f}\n",
+      name.c_str(), count, rel, L.voxelCount(), L.slots(), L.items.size(),
+      double(L.slots()) * kSliceSlotPoints * 4 / 1048576.0, cpu_bits, glvox, differ, cpu, brick);
   return 0;
 }

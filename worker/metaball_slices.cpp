@@ -81,7 +81,8 @@ SliceLattice markSliceVoxels(const std::vector<glm::vec3>& particles, const Box3
   return L;
 }
 
-void allocateSlices(SliceLattice& L, const std::vector<glm::vec3>& particles, double h, size_t max_entries) {
+void allocateSlices(SliceLattice& L, const std::vector<glm::vec3>& particles, double h,
+                    size_t max_entries) {
   const size_t n = L.voxelCount();
   const float r = float(h * (1.0 + kSlicePad));
   // 2. Slots for the set bits, in voxel order.
@@ -93,7 +94,8 @@ void allocateSlices(SliceLattice& L, const std::vector<glm::vec3>& particles, do
                 z = int(v / (size_t(L.dims.x) * L.dims.y));
       L.slot_voxel.emplace_back(L.voxel_lo + glm::ivec3(x, y, z), 0);
     }
-  if (L.slots() * size_t(kSliceSlotPoints) > max_entries) throw std::length_error("too many samples");
+  if (L.slots() * size_t(kSliceSlotPoints) > max_entries)
+    throw std::length_error("too many samples");
   // 3. Each slot's particles, by counting sort: particles in order, so every list ascends.
   L.offsets.assign(L.slots() + 1, 0);
   for (const glm::vec3& p : particles)
@@ -103,7 +105,8 @@ void allocateSlices(SliceLattice& L, const std::vector<glm::vec3>& particles, do
   L.items.resize(L.offsets.back());
   std::vector<uint32_t> cursor(L.offsets.begin(), L.offsets.end() - 1);
   for (size_t i = 0; i < particles.size(); ++i)
-    forVoxelsOf(L, particles[i], r, [&](size_t v) { L.items[cursor[size_t(L.slot_of[v])]++] = uint32_t(i); });
+    forVoxelsOf(L, particles[i], r,
+                [&](size_t v) { L.items[cursor[size_t(L.slot_of[v])]++] = uint32_t(i); });
 }
 
 SliceLattice buildSliceLattice(const std::vector<glm::vec3>& particles, const Box3& clip, double h,

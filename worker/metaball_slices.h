@@ -9,7 +9,8 @@
 // (the paper's bit voxelization) and gives only those a slot of (kSliceVoxelCells + 1)^3 samples
 // (the paper's dynamic allocation; the extra layer repeats the next voxel's first points, so a
 // trilinear lookup never leaves its slot). Each slot lists the particles that reach it, in the
-// brick's (global) order: the GPU sums them per point in that order (worker/metaball_slices_shaders.h).
+// brick's (global) order: the GPU sums them per point in that order
+// (worker/metaball_slices_shaders.h).
 #include <cstdint>
 #include <vector>
 
@@ -30,26 +31,26 @@ inline constexpr int kSliceSlotSide = kSliceVoxelCells + 1;
 inline constexpr int kSliceSlotPoints = kSliceSlotSide * kSliceSlotSide * kSliceSlotSide;
 
 struct SliceLattice {
-  float spacing = 1.0f;              // lattice spacing (world units)
-  glm::ivec3 voxel_lo{0};            // global index of the brick's coarse voxel (0, 0, 0)
-  glm::ivec3 dims{0};                // coarse voxels per axis
-  std::vector<uint64_t> bits;        // 1 bit per coarse voxel: some particle reaches it
-  std::vector<int32_t> slot_of;      // per coarse voxel (x fastest): its slot, -1 if empty
+  float spacing = 1.0f;                // lattice spacing (world units)
+  glm::ivec3 voxel_lo{0};              // global index of the brick's coarse voxel (0, 0, 0)
+  glm::ivec3 dims{0};                  // coarse voxels per axis
+  std::vector<uint64_t> bits;          // 1 bit per coarse voxel: some particle reaches it
+  std::vector<int32_t> slot_of;        // per coarse voxel (x fastest): its slot, -1 if empty
   std::vector<glm::ivec4> slot_voxel;  // per slot: its global voxel index (xyz, w unused)
-  std::vector<uint32_t> offsets;     // slots + 1: slot i lists items[offsets[i], offsets[i+1])
-  std::vector<uint32_t> items;       // particle indices, ascending within each slot
+  std::vector<uint32_t> offsets;       // slots + 1: slot i lists items[offsets[i], offsets[i+1])
+  std::vector<uint32_t> items;         // particle indices, ascending within each slot
   size_t voxelCount() const { return size_t(dims.x) * dims.y * dims.z; }
   size_t slots() const { return slot_voxel.size(); }
   bool occupied(size_t voxel) const { return (bits[voxel >> 6] >> (voxel & 63)) & 1u; }
 };
 
 // The coarse voxels whose lattice cells the shader can interpolate in for `clip`'s brick (points in
-// `clip`, up to one ray step `step` before it, and, for gradients, one spacing beyond), as far as `particles` (the brick's own and its
-// ghosts, ParticleDesc::ghostMargin) can make the interpolated field non-zero there; then the
-// bits, slots and lists. `spacing` in
-// world units. Throws std::length_error when the voxels, the samples or the lists (4 words an
-// entry) would pass `max_entries` 4-byte words, what one GPU buffer holds (the caller turns it
-// into an error naming particles.slice_spacing).
+// `clip`, up to one ray step `step` before it, and, for gradients, one spacing beyond), as far as
+// `particles` (the brick's own and its ghosts, ParticleDesc::ghostMargin) can make the interpolated
+// field non-zero there; then the bits, slots and lists. `spacing` in world units. Throws
+// std::length_error when the voxels, the samples or the lists (4 words an entry) would pass
+// `max_entries` 4-byte words, what one GPU buffer holds (the caller turns it into an error naming
+// particles.slice_spacing).
 SliceLattice buildSliceLattice(const std::vector<glm::vec3>& particles, const Box3& clip, double h,
                                double spacing, double step, size_t max_entries = size_t(1) << 28);
 

@@ -31,8 +31,8 @@ unsigned upload(const GlApi& gl, const void* data, size_t bytes) {
   gl.GenBuffers(1, &b);
   gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, b);
   // An empty list still needs a buffer to bind: 4 bytes.
-  gl.BufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(bytes > 0 ? bytes : 4), bytes > 0 ? data : nullptr,
-                GL_STATIC_DRAW);
+  gl.BufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(bytes > 0 ? bytes : 4),
+                bytes > 0 ? data : nullptr, GL_STATIC_DRAW);
   return b;
 }
 
@@ -91,7 +91,8 @@ void MetaballSlicesRenderer::resize(int width, int height) {
 
 void MetaballSlicesRenderer::setSettings(const MetaballSettings& settings) {
   if (settings.h != s_.h || settings.slice_spacing != s_.slice_spacing || settings.step > s_.step)
-    throw std::logic_error("MetaballSlicesRenderer::setSettings: h or the slice spacing changed, or the step grew");
+    throw std::logic_error(
+        "MetaballSlicesRenderer::setSettings: h or the slice spacing changed, or the step grew");
   s_ = settings;
 }
 
@@ -108,8 +109,8 @@ int MetaballSlicesRenderer::addBrick(const Box3& clip, const std::vector<glm::ve
   } catch (const std::length_error& e) {
     std::ostringstream msg;
     msg << "scene key 'particles.slice_spacing': " << s_.slice_spacing
-        << " h needs more lattice samples in one brick than the GPU holds in one buffer (" << e.what()
-        << "); use a larger spacing or more bricks (bricks.per_axis)";
+        << " h needs more lattice samples in one brick than the GPU holds in one buffer ("
+        << e.what() << "); use a larger spacing or more bricks (bricks.per_axis)";
     throw InputError(msg.str());
   }
   if (L.slots() > 0) splat(g, L, particles);
@@ -117,7 +118,8 @@ int MetaballSlicesRenderer::addBrick(const Box3& clip, const std::vector<glm::ve
   return int(bricks_.size()) - 1;
 }
 
-void MetaballSlicesRenderer::splat(GpuBrick& g, const SliceLattice& L, const std::vector<glm::vec3>& particles) {
+void MetaballSlicesRenderer::splat(GpuBrick& g, const SliceLattice& L,
+                                   const std::vector<glm::vec3>& particles) {
   const float edge = L.spacing * float(kSliceVoxelCells);
   g.voxel_lo = L.voxel_lo;
   g.dims = L.dims;
@@ -139,8 +141,8 @@ void MetaballSlicesRenderer::splat(GpuBrick& g, const SliceLattice& L, const std
   g.slot_of = upload(gl_, L.slot_of.data(), L.slot_of.size() * 4);
   g.samples = upload(gl_, nullptr, 0);
   gl_.BindBuffer(GL_SHADER_STORAGE_BUFFER, g.samples);
-  gl_.BufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(g.slots * kSliceSlotPoints * sizeof(float)), nullptr,
-                 GL_STATIC_DRAW);
+  gl_.BufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(g.slots * kSliceSlotPoints * sizeof(float)),
+                 nullptr, GL_STATIC_DRAW);
 
   gl_.UseProgram(splat_);
   gl_.Uniform1f(gl_.GetUniformLocation(splat_, "u_h"), float(s_.h));
@@ -160,7 +162,8 @@ void MetaballSlicesRenderer::splat(GpuBrick& g, const SliceLattice& L, const std
   gl_.check("metaball slices splat");
 }
 
-SurfaceBrick MetaballSlicesRenderer::render(int handle, const Camera& cam, double, double, bool want_surface) {
+SurfaceBrick MetaballSlicesRenderer::render(int handle, const Camera& cam, double, double,
+                                            bool want_surface) {
   const GpuBrick& b = bricks_.at(size_t(handle));
   SurfaceBrick out;
   if (b.slots == 0) return out;
@@ -172,7 +175,9 @@ SurfaceBrick MetaballSlicesRenderer::render(int handle, const Camera& cam, doubl
   auto v3 = [&](const char* name, const glm::dvec3& v) {
     gl_.Uniform3f(gl_.GetUniformLocation(p, name), float(v.x), float(v.y), float(v.z));
   };
-  auto f1 = [&](const char* name, double v) { gl_.Uniform1f(gl_.GetUniformLocation(p, name), float(v)); };
+  auto f1 = [&](const char* name, double v) {
+    gl_.Uniform1f(gl_.GetUniformLocation(p, name), float(v));
+  };
   double th = std::tan(0.5 * cam.fov_deg * 3.14159265358979323846 / 180.0);
   v3("u_eye", cam.position);
   v3("u_fwd", cam.forward());
@@ -188,7 +193,8 @@ SurfaceBrick MetaballSlicesRenderer::render(int handle, const Camera& cam, doubl
   v3("u_box_lo", b.clip.lo);
   v3("u_box_hi", b.clip.hi);
   f1("u_spacing", float(s_.slice_spacing * s_.h));
-  gl_.Uniform4i(gl_.GetUniformLocation(p, "u_voxel_lo"), b.voxel_lo.x, b.voxel_lo.y, b.voxel_lo.z, 0);
+  gl_.Uniform4i(gl_.GetUniformLocation(p, "u_voxel_lo"), b.voxel_lo.x, b.voxel_lo.y, b.voxel_lo.z,
+                0);
   gl_.Uniform4i(gl_.GetUniformLocation(p, "u_dims"), b.dims.x, b.dims.y, b.dims.z, 0);
   gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, b.slot_of);
   gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, b.samples);

@@ -20,7 +20,8 @@ namespace sortlast {
 
 class MetaballSlicesRenderer : public ParticleRenderer {
  public:
-  MetaballSlicesRenderer(const GlContext& ctx, int width, int height, const MetaballSettings& settings);
+  MetaballSlicesRenderer(const GlContext& ctx, int width, int height,
+                         const MetaballSettings& settings);
   ~MetaballSlicesRenderer() override;
   MetaballSlicesRenderer(const MetaballSlicesRenderer&) = delete;
   MetaballSlicesRenderer& operator=(const MetaballSlicesRenderer&) = delete;
