@@ -23,8 +23,9 @@ namespace sortlast {
 // Lattice cells per coarse voxel edge. At the default spacing h/4 a voxel is h wide: a slot's list
 // holds the particles within h of an h-cube. Measured with build/bench_metaball_slices (65,536
 // splash particles, one brick, busy 2-core machine), a brick's whole work (lattice, upload,
-// splat) and its samples: 2 cells 2.87 s, 23.8 MiB; 4 cells 1.95 s, 17.8 MiB; 8 cells 2.51 s,
-// 19.7 MiB. Smaller voxels fit the particles closer but list each particle in more slots; larger
+// splat) and its samples: 2 cells 0.93 s, 23.8 MiB; 4 cells 0.54 s, 17.8 MiB; 8 cells 0.71 s,
+// 19.7 MiB (with a point per invocation, before the splat summed columns: 2.87 / 1.35-1.95 /
+// 2.51 s). Smaller voxels fit the particles closer but list each particle in more slots; larger
 // ones make every point of a slot walk a longer list.
 inline constexpr int kSliceVoxelCells = 4;
 inline constexpr int kSliceSlotSide = kSliceVoxelCells + 1;

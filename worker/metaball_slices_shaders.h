@@ -17,7 +17,7 @@
 namespace sortlast::shaders {
 
 inline constexpr const char* kSliceSplatCompute = R"(#version 450 core
-layout(local_size_x = SIDE, local_size_y = SIDE, local_size_z = SIDE) in;
+layout(local_size_x = SIDE, local_size_y = SIDE, local_size_z = 1) in;
 layout(std430, binding = 1) readonly buffer Offsets { uint offsets[]; };
 // The lists as the particles' centres (xyz) and numbers (w, as uint bits): one load per entry.
 layout(std430, binding = 2) readonly buffer Items { vec4 items[]; };
@@ -37,15 +37,26 @@ float kernelAt(vec4 item, vec3 x) {
   return q * q;
 }
 
+// Each invocation sums one column of SIDE points along z: one load of a list entry serves them all
+// (measured 3.5x faster than one point per invocation: 0.5 against 1.75 s for the 65,536-particle
+// splash in one brick, build/bench_metaball_slices). Every point still adds its list in order.
 void main() {
   uint slot = u_first + gl_WorkGroupID.x;
   if (slot >= u_slots) return;
-  ivec3 local = ivec3(gl_LocalInvocationID);
-  ivec3 k = slot_voxel[slot].xyz * (SIDE - 1) + local;
-  vec3 x = vec3(k) * u_spacing;
-  float f = 0.0;
-  for (uint j = offsets[slot]; j < offsets[slot + 1]; ++j) f += kernelAt(items[j], x);
-  samples[slot * uint(SIDE * SIDE * SIDE) + uint((local.z * SIDE + local.y) * SIDE + local.x)] = f;
+  ivec2 local = ivec2(gl_LocalInvocationID.xy);
+  ivec3 k0 = slot_voxel[slot].xyz * (SIDE - 1) + ivec3(local, 0);
+  vec3 x[SIDE];
+  float f[SIDE];
+  for (int z = 0; z < SIDE; ++z) {
+    x[z] = vec3(k0 + ivec3(0, 0, z)) * u_spacing;
+    f[z] = 0.0;
+  }
+  for (uint j = offsets[slot]; j < offsets[slot + 1]; ++j) {
+    vec4 item = items[j];
+    for (int z = 0; z < SIDE; ++z) f[z] += kernelAt(item, x[z]);
+  }
+  uint base = slot * uint(SIDE * SIDE * SIDE) + uint(local.y * SIDE + local.x);
+  for (int z = 0; z < SIDE; ++z) samples[base + uint(z * SIDE * SIDE)] = f[z];
 }
 )";
 
