@@ -30,8 +30,10 @@ struct ParticleDesc {
   double threshold = 0.765625;  // T (the paper's)
   glm::dvec3 colour{0.85, 0.9, 1.0};
   // Metaball renderer settings.
-  // billboards (the paper's multi-pass method) | grid (one pass over a grid of cells of edge h)
+  // billboards (the paper's multi-pass method) | grid (one pass over a grid of cells of edge h) |
+  // slices (the field sampled on a lattice, worker/metaball_slices_renderer.h)
   std::string method = "grid";
+  double slice_spacing = 0.25;  // slices: lattice spacing, in units of h
   double step = 0.125;        // sample step along rays, in units of h
   int max_samples = 96;       // cap on field samples per pixel (per brick)
   int refine_iterations = 3;  // refinement passes (4 probes around the secant of eq. 5)
@@ -49,13 +51,21 @@ struct ParticleDesc {
   double reach() const {
     return influenceRadius() * (anisotropicOn() ? anisotropicReachBound(anisotropic) : 1.0);
   }
-  // Ghosts a brick (or rank) needs around its box: those whose field reaches it, and with
-  // anisotropic smoothing also their whole neighbourhoods (radius h_n), so their kernels come
-  // out as on any other rank count.
+  // How far beyond a brick (or rank) the particles it is given must reach. Round metaballs: h.
+  // Anisotropic smoothing: the reach bound plus each particle's whole neighbourhood (radius h_n),
+  // so its kernel comes out as on any other rank count. The slices method (round only) evaluates
+  // the field up to one ray step w before its brick (where its rays' brackets start) and takes
+  // gradients one spacing s further (per axis); interpolation there reads lattice points up to
+  // s further on each axis: points within w + sqrt(6) s < w + 2.5 s of the brick, each the sum
+  // of every particle within h of it.
   double ghostMargin() const {
-    return reach() + (anisotropicOn() ? anisotropic.neighbourhood * influenceRadius() : 0.0);
+    const double h = influenceRadius();
+    if (method == "slices") return h * (1.0 + step + 2.5 * slice_spacing);
+    return reach() + (anisotropicOn() ? anisotropic.neighbourhood * h : 0.0);
   }
 };
+
+inline constexpr double kMinSliceSpacing = 0.05, kMaxSliceSpacing = 1.0;  // particles.slice_spacing
 
 struct ParticleSet {
   std::vector<glm::vec3> positions;

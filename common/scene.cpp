@@ -202,8 +202,17 @@ ParticleDesc readParticles(const Reader& r, const std::filesystem::path& base_di
     if (p.colour[c] < 0.0 || p.colour[c] > 1.0)
       throw InputError("scene key 'particles.color': entries must be in [0, 1]");
   p.method = r.as<std::string>("particles.method");
-  if (p.method != "billboards" && p.method != "grid")
-    throw InputError("scene key 'particles.method': expected billboards or grid, got '" + p.method + "'");
+  if (p.method != "billboards" && p.method != "grid" && p.method != "slices")
+    throw InputError("scene key 'particles.method': expected billboards, grid or slices, got '" + p.method + "'");
+  // Below 1/20 h the lattice needs 8000 points per h^3 (memory and splat time grow as the inverse
+  // cube); above h the lattice cannot even hold a lone particle's surface (radius 0.23 h).
+  p.slice_spacing = r.as<double>("particles.slice_spacing");
+  if (!(p.slice_spacing >= kMinSliceSpacing && p.slice_spacing <= kMaxSliceSpacing)) {
+    std::ostringstream msg;
+    msg << "scene key 'particles.slice_spacing': must be in [" << kMinSliceSpacing << ", " << kMaxSliceSpacing
+        << "] (units of h), got " << r.as<std::string>("particles.slice_spacing");
+    throw InputError(msg.str());
+  }
   p.step = positive("particles.step");
   p.max_samples = r.as<int>("particles.max_samples");
   if (p.max_samples < 1) throw InputError("scene key 'particles.max_samples': must be >= 1");
@@ -226,10 +235,9 @@ ParticleDesc readParticles(const Reader& r, const std::filesystem::path& base_di
   a.neighbourhood = r.as<double>("particles.anisotropic.neighbourhood");
   a.max_axis_ratio = r.as<double>("particles.anisotropic.max_axis_ratio");
   validateAnisotropic(a);
-  if (p.anisotropicOn() && p.method == "billboards")
-    throw InputError(
-        "scene key 'particles.smoothing': anisotropic needs particles.method: grid (the "
-        "billboard method draws round particles only); got particles.method: billboards");
+  if (p.anisotropicOn() && p.method != "grid")
+    throw InputError("scene key 'particles.smoothing': anisotropic needs particles.method: grid (the " +
+                     p.method + " method draws round particles only); got particles.method: " + p.method);
   return p;
 }
 

@@ -60,7 +60,15 @@ const std::vector<SceneKey>& sceneKeys() {
        "marching every ray through the cells). Both sum the same particles in the same order at the "
        "same lattice points, refine and shade alike: the surfaces agree but for a few silhouette "
        "pixels (the grid also samples the rear halves of spheres, which the billboards skip). "
-       "`grid` is 11-81x faster on llvmpipe (results/README.md)."},
+       "`grid` is 11-81x faster on llvmpipe (results/README.md). `slices` (the third paper's "
+       "dynamic slices): the field summed once per brick and time step on a global lattice of "
+       "spacing `particles.slice_spacing`, only in the coarse voxels a particle reaches, and each "
+       "ray cast through its trilinear interpolation; a sampled field, so its surface is less "
+       "exact (bounds in tests/mpi/particles_slices.sh)."},
+      {"particles.slice_spacing", "0.25",
+       "`particles.method: slices`: the field's lattice spacing, in units of h, in [0.05, 1]. "
+       "Depth error grows with it and memory and splat time shrink as its cube "
+       "(results/metaballs/)."},
       {"particles.step", "0.125",
        "Distance between field samples along a ray, in units of h (the paper: below 1/8 avoids "
        "holes)."},

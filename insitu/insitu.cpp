@@ -69,6 +69,11 @@ double influenceOf(const std::vector<std::string>& overrides) {
   return parseScene(SceneText{}, overrides).particles.influenceRadius();
 }
 
+// How far beyond its region a rank needs particles (ParticleDesc::ghostMargin: h, more for slices).
+double ghostMarginOf(const std::vector<std::string>& overrides) {
+  return parseScene(SceneText{}, overrides).particles.ghostMargin();
+}
+
 }  // namespace
 
 struct InSitu::Impl {
@@ -130,7 +135,11 @@ void InSitu::Impl::answerLiveView() {
 void InSitu::Impl::prepareStep(const std::vector<size_t>& firing) {
   // Every render that fires may have its own radius: the ghost margin is the largest.
   double h = 0;
-  for (size_t i : firing) h = std::max(h, influenceOf(actions.renders[i].overrides));
+  double margin = 0;
+  for (size_t i : firing) {
+    h = std::max(h, influenceOf(actions.renders[i].overrides));
+    margin = std::max(margin, ghostMarginOf(actions.renders[i].overrides));
+  }
   int local_grid = data.grid.dims[0] > 0 || data.grid.dims[1] > 0 || data.grid.dims[2] > 0, has_grid = 0;
   MPI_Allreduce(&local_grid, &has_grid, 1, MPI_INT, MPI_MAX, comm);
   samples.reset();
@@ -196,11 +205,11 @@ void InSitu::Impl::prepareStep(const std::vector<size_t>& firing) {
       if (L.assignment.region[size_t(r)].count() > 0)
         regions[size_t(r)] = cellRangeBox(L.planes, L.assignment.region[size_t(r)]);
   }
-  if (has_particles) particles = exchangeParticles(data.particles, shift, regions, h, comm);
+  if (has_particles) particles = exchangeParticles(data.particles, shift, regions, margin, comm);
   const SessionLayout layout = L;
   ext.add_bricks = [this, layout, has_grid, has_particles](BrickRenderer& renderer, const Scene& scene,
                                                            std::vector<int>& handles, double& held) {
-    const double rh = has_particles ? scene.particles.influenceRadius() : 0.0;
+    const double rh = has_particles ? scene.particles.ghostMargin() : 0.0;
     // The simulation's ghost exchange covers h; smoothed kernels need their neighbourhoods too.
     if (has_particles && scene.particles.anisotropicOn())
       throw InputError("particles.smoothing: anisotropic is not supported in situ (the ghost "

@@ -39,6 +39,7 @@ MetaballSettings metaballSettings(const ParticleDesc& desc) {
   s.method = desc.method;
   s.anisotropic = desc.anisotropicOn();
   s.anisotropic_params = desc.anisotropic;
+  s.slice_spacing = desc.slice_spacing;
   return s;
 }
 
@@ -61,6 +62,8 @@ void BrickRenderer::enableVolume(const TransferFunction& tf, int table_size, int
 void BrickRenderer::enableParticles(const MetaballSettings& settings) {
   if (settings.method == "grid")
     metaballs_ = std::make_unique<MetaballGridRenderer>(*ctx_, width_, height_, settings);
+  else if (settings.method == "slices")
+    metaballs_ = std::make_unique<MetaballSlicesRenderer>(*ctx_, width_, height_, settings);
   else
     metaballs_ = std::make_unique<MetaballRenderer>(*ctx_, width_, height_, settings);
 }

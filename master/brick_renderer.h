@@ -17,6 +17,7 @@
 #include "worker/gl_context.h"
 #include "worker/metaball_grid_renderer.h"
 #include "worker/metaball_renderer.h"
+#include "worker/metaball_slices_renderer.h"
 #include "worker/raycast_renderer.h"
 #include "worker/slicing_renderer.h"
 

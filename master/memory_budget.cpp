@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "worker/metaball_slices.h"  // kSliceVoxelCells, kSliceSlotPoints
 
 namespace sortlast {
 
@@ -160,6 +161,20 @@ MemoryNeed sessionNeed(const Scene& scene, const SessionLayout& layout, long lon
            ++i)  // cells of h/2 over a brick grown by h, at most 2^24
         cells += std::min(std::pow((side + 2 * h) / (0.5 * h), 3.0), double(1 << 24));
       n.add("metaball grids (host and GPU)", 2.0 * 4.0 * (held * kGridEntries + cells));
+    }
+    if (scene.particles.method == "slices") {
+      // A particle's ball (radius h) meets on average (e^3 + 6 e^2 h + 3 pi e h^2 + 4/3 pi h^3) / e^3
+      // voxels of edge e (the volume of the cube grown by h; measured 20.6 list entries per
+      // particle at e = h). Slots: at most one per voxel of a brick grown by the ghost margin,
+      // and at most one per list entry. Lists: 4 + 16 bytes an entry on the host, 16 on the GPU.
+      const double pi = 3.14159265358979, margin = scene.particles.ghostMargin();
+      const double e = scene.particles.slice_spacing * h * kSliceVoxelCells;
+      const double entries = held * (1 + 6 * h / e + 3 * pi * std::pow(h / e, 2) + 4.0 / 3.0 * pi * std::pow(h / e, 3));
+      double voxels = 0;
+      for (size_t i = 0; i < layout.mine.size(); ++i) voxels += std::pow((side + 2 * margin) / e + 1, 3.0);
+      const double slots = std::min(voxels, entries);
+      n.add("metaball slices: samples (GPU), voxel slots and lists (host and GPU)",
+            4.0 * kSliceSlotPoints * slots + 8.0 * voxels + 36.0 * entries);
     }
     step_host += held * kParticle;
   }

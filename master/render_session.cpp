@@ -91,7 +91,7 @@ struct CompositorKey {
 struct GpuKey {
   int step = -1;
   std::string method;
-  double h = -1;
+  double h = -1;  // the particles' ghost margin (ParticleDesc::ghostMargin)
   // Kernels are per brick: new smoothing settings need the bricks again.
   std::string smoothing;
   AnisotropicParams anisotropic;
@@ -310,8 +310,7 @@ void RenderSession::State::uploadBricks(const Scene& scene, StepData& d) {
   const int d_axis = scene.bricks_per_axis;
   auto cellOf = [&](int id) { return glm::ivec3(id % d_axis, (id / d_axis) % d_axis, id / (d_axis * d_axis)); };
   const bool has_particles = scene.particles.enabled();
-  // Ghosts: those whose field reaches the brick (anisotropic: with their neighbourhoods).
-  const double h = has_particles ? scene.particles.ghostMargin() : 0.0;
+  const double margin = has_particles ? scene.particles.ghostMargin() : 0.0;
   handles.clear();
   particles_held = 0;
   renderer->reset();
@@ -322,7 +321,7 @@ void RenderSession::State::uploadBricks(const Scene& scene, StepData& d) {
   for (size_t i = 0; i < layout.mine.size(); ++i) {
     const int id = layout.mine[i];
     Box3 clip = brickBox(layout.planes, cellOf(id));
-    std::vector<glm::vec3> near = has_particles ? particlesNear(d.particles, clip, h) : std::vector<glm::vec3>();
+    std::vector<glm::vec3> near = has_particles ? particlesNear(d.particles, clip, margin) : std::vector<glm::vec3>();
     particles_held += double(near.size());
     const Brick* vb = scene.hasVolume() ? &layout.volume_bricks[size_t(id)] : nullptr;
     handles.push_back(renderer->addBrick(vb, &layout.grid, vb && !adaptive ? &d.samples[i] : nullptr, clip,
@@ -333,7 +332,7 @@ void RenderSession::State::uploadBricks(const Scene& scene, StepData& d) {
 
 void RenderSession::State::bringGpuTo(const Scene& scene) {
   const bool has_particles = scene.particles.enabled();
-  GpuKey want{scene.time_step, scene.volume_method, has_particles ? scene.particles.influenceRadius() : 0.0,
+  GpuKey want{scene.time_step, scene.volume_method, has_particles ? scene.particles.ghostMargin() : 0.0,
               scene.particles.smoothing, scene.particles.anisotropic};
   if (want == gpu) return;
   if (external) {

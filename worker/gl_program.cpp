@@ -1,5 +1,6 @@
 #include "worker/gl_program.h"
 
+#include <initializer_list>
 #include <stdexcept>
 #include <string>
 
@@ -22,16 +23,10 @@ unsigned compile(const GlApi& gl, GLenum type, const char* src) {
   return s;
 }
 
-}  // namespace
-
-unsigned linkProgram(const GlApi& gl, const char* vs, const char* fs) {
-  unsigned p = gl.CreateProgram();
-  unsigned v = compile(gl, GL_VERTEX_SHADER, vs), f = compile(gl, GL_FRAGMENT_SHADER, fs);
-  gl.AttachShader(p, v);
-  gl.AttachShader(p, f);
+// Links p (its shaders attached), deletes the shaders; throws with the log on failure.
+unsigned link(const GlApi& gl, unsigned p, std::initializer_list<unsigned> shaders) {
   gl.LinkProgram(p);
-  gl.DeleteShader(v);
-  gl.DeleteShader(f);
+  for (unsigned s : shaders) gl.DeleteShader(s);
   int ok = 0;
   gl.GetProgramiv(p, GL_LINK_STATUS, &ok);
   if (!ok) {
@@ -40,6 +35,23 @@ unsigned linkProgram(const GlApi& gl, const char* vs, const char* fs) {
     throw std::runtime_error(std::string("GLSL link error: ") + log);
   }
   return p;
+}
+
+}  // namespace
+
+unsigned linkProgram(const GlApi& gl, const char* vs, const char* fs) {
+  unsigned p = gl.CreateProgram();
+  unsigned v = compile(gl, GL_VERTEX_SHADER, vs), f = compile(gl, GL_FRAGMENT_SHADER, fs);
+  gl.AttachShader(p, v);
+  gl.AttachShader(p, f);
+  return link(gl, p, {v, f});
+}
+
+unsigned linkComputeProgram(const GlApi& gl, const char* cs) {
+  unsigned p = gl.CreateProgram();
+  unsigned c = compile(gl, GL_COMPUTE_SHADER, cs);
+  gl.AttachShader(p, c);
+  return link(gl, p, {c});
 }
 
 }  // namespace sortlast

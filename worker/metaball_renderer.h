@@ -34,13 +34,15 @@ struct MetaballSettings {
   int refine_iterations = 3;
   bool cull = true;
   glm::dvec3 colour{0.85, 0.9, 1.0};
-  // billboards (this renderer, the paper's) | grid (worker/metaball_grid_renderer.h); read by
-  // the caller that picks the renderer (master/brick_renderer.cpp)
+  // billboards (this renderer, the paper's) | grid (worker/metaball_grid_renderer.h) | slices
+  // (worker/metaball_slices_renderer.h); read by the caller that picks the renderer
+  // (master/brick_renderer.cpp)
   std::string method = "grid";
   // particles.smoothing: anisotropic (grid method only): kernels computed per brick
   // (common/anisotropic_kernels.h) from the brick's particles and ghosts.
   bool anisotropic = false;
   AnisotropicParams anisotropic_params;
+  double slice_spacing = 0.25;  // slices: lattice spacing in units of h
 };
 
 struct SurfaceBrick {

@@ -78,5 +78,7 @@ expect_error "particles.anisotropic.rho_surface" "$DATA/one_particle.yaml" "${A[
   --set particles.anisotropic.rho_surface=1
 expect_error "particles.smoothing.*particles.method: billboards" "$DATA/one_particle.yaml" "${A[@]}" \
   --set particles.method=billboards
+expect_error "particles.smoothing.*particles.method: slices" "$DATA/one_particle.yaml" "${A[@]}" \
+  --set particles.method=slices
 expect_error "particles.smoothing" "$DATA/one_particle.yaml" --set particles.smoothing=bumpy
 echo "anisotropic: all checks passed"

@@ -1,0 +1,238 @@
+#include "worker/metaball_slices_renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "common/error.h"
+#include "worker/gl_program.h"
+#include "worker/metaball_shaders.h"
+#include "worker/metaball_slices_shaders.h"
+
+namespace sortlast {
+
+namespace {
+
+unsigned makeTarget(const GlApi& gl, int w, int h) {
+  unsigned t = 0;
+  gl.GenTextures(1, &t);
+  gl.BindTexture(GL_TEXTURE_2D, t);
+  gl.TexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, w, h);
+  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  return t;
+}
+
+unsigned upload(const GlApi& gl, const void* data, size_t bytes) {
+  unsigned b = 0;
+  gl.GenBuffers(1, &b);
+  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, b);
+  // An empty list still needs a buffer to bind: 4 bytes.
+  gl.BufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(bytes > 0 ? bytes : 4),
+                bytes > 0 ? data : nullptr, GL_STATIC_DRAW);
+  return b;
+}
+
+// The shaders with the slot side filled in.
+std::string withSide(const std::string& src) {
+  std::string def = "#define SIDE " + std::to_string(kSliceSlotSide) + "\n";
+  size_t eol = src.find('\n');  // after #version
+  return src.substr(0, eol + 1) + def + src.substr(eol + 1);
+}
+
+}  // namespace
+
+MetaballSlicesRenderer::MetaballSlicesRenderer(const GlContext& ctx, int width, int height,
+                                               const MetaballSettings& settings)
+    : gl_(ctx.gl()), s_(settings) {
+  allocateTargets(width, height);
+  gl_.GenFramebuffers(1, &fbo_);
+  gl_.GenVertexArrays(1, &empty_vao_);
+  GLint max_block = 0;
+  gl_.GetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+  max_block_bytes_ = max_block > 0 ? max_block : (1LL << 27);
+  std::string fs = withSide(std::string(shaders::kMetaballCommon) + shaders::kSliceRayFragment);
+  program_ = linkProgram(gl_, shaders::kFullscreenVertex, fs.c_str());
+  splat_ = linkComputeProgram(gl_, withSide(shaders::kSliceSplatCompute).c_str());
+  gl_.check("metaball slices renderer setup");
+}
+
+MetaballSlicesRenderer::~MetaballSlicesRenderer() {
+  for (auto& b : bricks_)
+    for (unsigned buf : {b.slot_of, b.samples})
+      if (buf) gl_.DeleteBuffers(1, &buf);
+  gl_.DeleteProgram(program_);
+  gl_.DeleteProgram(splat_);
+  freeTargets();
+  gl_.DeleteVertexArrays(1, &empty_vao_);
+  gl_.DeleteFramebuffers(1, &fbo_);
+}
+
+void MetaballSlicesRenderer::allocateTargets(int width, int height) {
+  width_ = width;
+  height_ = height;
+  colour_ = makeTarget(gl_, width, height);
+  surface_ = makeTarget(gl_, width, height);
+}
+
+void MetaballSlicesRenderer::freeTargets() {
+  for (unsigned t : {colour_, surface_}) gl_.DeleteTextures(1, &t);
+}
+
+void MetaballSlicesRenderer::resize(int width, int height) {
+  if (width == width_ && height == height_) return;
+  freeTargets();
+  allocateTargets(width, height);
+  gl_.check("metaball slices renderer resize");
+}
+
+void MetaballSlicesRenderer::setSettings(const MetaballSettings& settings) {
+  if (settings.h != s_.h || settings.slice_spacing != s_.slice_spacing || settings.step > s_.step)
+    throw std::logic_error(
+        "MetaballSlicesRenderer::setSettings: h or the slice spacing changed, or the step grew");
+  s_ = settings;
+}
+
+int MetaballSlicesRenderer::addBrick(const Box3& clip, const std::vector<glm::vec3>& particles) {
+  GpuBrick g;
+  g.clip = clip;
+  const double spacing = s_.slice_spacing * s_.h;
+  // What one storage block holds bounds the voxels and samples (4 bytes each) and the list
+  // entries (16).
+  const size_t max_entries = size_t(max_block_bytes_ / 4);
+  SliceLattice L;
+  try {
+    L = buildSliceLattice(particles, clip, s_.h, spacing, s_.step, max_entries);
+  } catch (const std::length_error& e) {
+    std::ostringstream msg;
+    msg << "scene key 'particles.slice_spacing': " << s_.slice_spacing
+        << " h needs more lattice samples in one brick than the GPU holds in one buffer ("
+        << e.what() << "); use a larger spacing or more bricks (bricks.per_axis)";
+    throw InputError(msg.str());
+  }
+  if (L.slots() > 0) splat(g, L, particles);
+  bricks_.push_back(g);
+  return int(bricks_.size()) - 1;
+}
+
+void MetaballSlicesRenderer::splat(GpuBrick& g, const SliceLattice& L,
+                                   const std::vector<glm::vec3>& particles) {
+  const float edge = L.spacing * float(kSliceVoxelCells);
+  g.voxel_lo = L.voxel_lo;
+  g.dims = L.dims;
+  g.slots = L.slots();
+  g.bound = {glm::max(g.clip.lo, glm::dvec3(glm::vec3(L.voxel_lo) * edge)),
+             glm::min(g.clip.hi, glm::dvec3(glm::vec3(L.voxel_lo + L.dims) * edge))};
+  // The lists hold the centres and, in w, the particle's number (for a per-particle kernel).
+  std::vector<glm::vec4> items(L.items.size());
+  for (size_t i = 0; i < items.size(); ++i) {
+    const uint32_t k = L.items[i];
+    float w;
+    static_assert(sizeof w == sizeof k);
+    std::memcpy(&w, &k, sizeof w);
+    items[i] = glm::vec4(particles[k], w);
+  }
+  unsigned offsets = upload(gl_, L.offsets.data(), L.offsets.size() * 4);
+  unsigned list = upload(gl_, items.data(), items.size() * sizeof(glm::vec4));
+  unsigned voxels = upload(gl_, L.slot_voxel.data(), L.slot_voxel.size() * sizeof(glm::ivec4));
+  g.slot_of = upload(gl_, L.slot_of.data(), L.slot_of.size() * 4);
+  g.samples = upload(gl_, nullptr, 0);
+  gl_.BindBuffer(GL_SHADER_STORAGE_BUFFER, g.samples);
+  gl_.BufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(g.slots * kSliceSlotPoints * sizeof(float)),
+                 nullptr, GL_STATIC_DRAW);
+
+  gl_.UseProgram(splat_);
+  gl_.Uniform1f(gl_.GetUniformLocation(splat_, "u_h"), float(s_.h));
+  gl_.Uniform1f(gl_.GetUniformLocation(splat_, "u_spacing"), L.spacing);
+  gl_.Uniform1ui(gl_.GetUniformLocation(splat_, "u_slots"), unsigned(g.slots));
+  gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, offsets);
+  gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, list);
+  gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, voxels);
+  gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, g.samples);
+  // At most 65,535 work groups per dispatch (the minimum GL guarantees).
+  for (size_t first = 0; first < g.slots; first += 65535) {
+    gl_.Uniform1ui(gl_.GetUniformLocation(splat_, "u_first"), unsigned(first));
+    gl_.DispatchCompute(unsigned(std::min<size_t>(65535, g.slots - first)), 1, 1);
+  }
+  gl_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  for (unsigned b : {offsets, list, voxels}) gl_.DeleteBuffers(1, &b);
+  gl_.check("metaball slices splat");
+}
+
+SurfaceBrick MetaballSlicesRenderer::render(int handle, const Camera& cam, double, double,
+                                            bool want_surface) {
+  const GpuBrick& b = bricks_.at(size_t(handle));
+  SurfaceBrick out;
+  if (b.slots == 0) return out;
+  Rect r = screenRectOf(cam, b.bound);
+  if (r.empty()) return out;
+
+  const unsigned p = program_;
+  gl_.UseProgram(p);
+  auto v3 = [&](const char* name, const glm::dvec3& v) {
+    gl_.Uniform3f(gl_.GetUniformLocation(p, name), float(v.x), float(v.y), float(v.z));
+  };
+  auto f1 = [&](const char* name, double v) {
+    gl_.Uniform1f(gl_.GetUniformLocation(p, name), float(v));
+  };
+  double th = std::tan(0.5 * cam.fov_deg * 3.14159265358979323846 / 180.0);
+  v3("u_eye", cam.position);
+  v3("u_fwd", cam.forward());
+  v3("u_right_s", cam.right() * th * (double(cam.width) / cam.height));
+  v3("u_up_s", cam.trueUp() * th);
+  gl_.Uniform2f(gl_.GetUniformLocation(p, "u_size"), float(width_), float(height_));
+  f1("u_h", s_.h);
+  f1("u_T", s_.threshold);
+  f1("u_w", s_.step);
+  f1("u_cap", s_.max_samples);
+  gl_.Uniform1i(gl_.GetUniformLocation(p, "u_refine"), s_.refine_iterations);
+  v3("u_colour", s_.colour);
+  v3("u_box_lo", b.clip.lo);
+  v3("u_box_hi", b.clip.hi);
+  f1("u_spacing", float(s_.slice_spacing * s_.h));
+  gl_.Uniform4i(gl_.GetUniformLocation(p, "u_voxel_lo"), b.voxel_lo.x, b.voxel_lo.y, b.voxel_lo.z,
+                0);
+  gl_.Uniform4i(gl_.GetUniformLocation(p, "u_dims"), b.dims.x, b.dims.y, b.dims.z, 0);
+  gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, b.slot_of);
+  gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, b.samples);
+
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, colour_, 0);
+  gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, surface_, 0);
+  const GLenum both[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  gl_.DrawBuffers(2, both);
+  if (gl_.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw std::runtime_error("OpenGL: metaball slices framebuffer is not complete");
+  gl_.Viewport(0, 0, width_, height_);
+  gl_.Enable(GL_SCISSOR_TEST);
+  gl_.Scissor(r.x, r.y, r.w, r.h);
+  gl_.Disable(GL_BLEND);
+  gl_.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  gl_.BindVertexArray(empty_vao_);
+  gl_.DrawArrays(GL_TRIANGLES, 0, 3);
+
+  readback_.resize(size_t(r.area()) * 4);
+  gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
+  gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);
+  gl_.ReadPixels(r.x, r.y, r.w, r.h, GL_RGBA, GL_FLOAT, readback_.data());
+  out.rect = r;
+  out.rounds = 1;
+  out.pixels = ImageRGBA8(r.w, r.h);
+  for (size_t i = 0; i < size_t(r.area()); ++i) toRGBA8(&readback_[4 * i], &out.pixels.px[4 * i]);
+  if (want_surface) {
+    gl_.ReadBuffer(GL_COLOR_ATTACHMENT1);
+    out.surface.resize(size_t(r.area()) * 4);
+    gl_.ReadPixels(r.x, r.y, r.w, r.h, GL_RGBA, GL_FLOAT, out.surface.data());
+  }
+  gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);
+  gl_.DrawBuffers(1, both);
+  gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, 0, 0);
+  gl_.Disable(GL_SCISSOR_TEST);
+  gl_.check("metaball slices render");
+  return out;
+}
+
+}  // namespace sortlast
