@@ -45,7 +45,8 @@ MetaballGridRenderer::MetaballGridRenderer(const GlContext& ctx, int width, int 
   GLint max_block = 0;
   gl_.GetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
   max_block_bytes_ = max_block > 0 ? max_block : (1LL << 27);
-  std::string fs = std::string(shaders::kMetaballCommon) + shaders::kGridFragment;
+  std::string fs = std::string(shaders::kMetaballCommon) + shaders::kGridChunkFragment + shaders::kGridLists +
+                   shaders::kGridFragment + shaders::kGridFinish;
   program_ = linkProgram(gl_, shaders::kFullscreenVertex, fs.c_str());
   gl_.check("metaball grid renderer setup");
 }

@@ -30,7 +30,15 @@
 // - Buffer textures instead of storage buffers for the lists: no difference.
 namespace sortlast::shaders {
 
-inline constexpr const char* kGridFragment = R"(
+// Samples per list walk: the fragment march's chunk (one cell, below); the tile scheme
+// (worker/metaball_grid_tile_shaders.h) walks a depth segment of 8 lattice steps, plus the
+// ray's entry and exit samples.
+inline constexpr const char* kGridChunkFragment = "const int CHUNK = 8;\n";
+inline constexpr const char* kGridChunkTile = "const int CHUNK = 10;\n";
+
+// The cell lists, the sums over them, and the refinement and shading of a bracketed hit: shared
+// by the fragment march (kGridFragment) and the tile march.
+inline constexpr const char* kGridLists = R"(
 layout(std430, binding = 1) readonly buffer Offsets { uint offsets[]; };
 // The cells' lists as the particles' centres themselves (xyz, w unused): one load per entry.
 layout(std430, binding = 2) readonly buffer Items { vec4 items[]; };
@@ -40,12 +48,9 @@ uniform ivec4 u_dims;     // cells per axis in xyz
 uniform float u_cap;       // samples allowed per pixel (those with field > 0 count)
 uniform int u_refine;      // refinement passes
 uniform vec3 u_colour;
-layout(location = 0) out vec4 o_colour;
-layout(location = 1) out vec4 o_surface;
 
-// Samples taken per walk of a cell's list: a ray crosses a cell of edge h/2 in at most
-// sqrt(3) (h/2) / w + 1 = 7.9 samples at the default step h/8, so one walk covers a cell.
-const int CHUNK = 8;
+// CHUNK (kGridChunk*): a ray crosses a cell of edge h/2 in at most sqrt(3) (h/2) / w + 1 = 7.9
+// samples at the default step h/8, so one walk covers a cell.
 float g_s[CHUNK];   // sample distances
 float g_f[CHUNK];   // field at them
 
@@ -72,6 +77,16 @@ float field(float s, float tb, float perp2) {
   float q = max(1.0 - sqrt(perp2 + ds * ds) / u_h, 0.0);
   return q * q;
 }
+// One particle's field (oc: its centre less the eye) added to g_f[0..m-1] at g_s[0..m-1], which
+// lie within [first, last]; the one place the per-particle contribution is computed.
+void addParticle(vec3 oc, vec3 d, float first, float last, int m) {
+  float tb = dot(d, oc);
+  vec3 perp = oc - tb * d;
+  float perp2 = dot(perp, perp);
+  float e = tb - clamp(tb, first, last);
+  if (perp2 + e * e >= u_h * u_h) return;
+  for (int k = 0; k < m; ++k) g_f[k] += field(g_s[k], tb, perp2);
+}
 // F at g_s[0..m-1] (ascending, all in the cell whose list is r), summed in list order, which is
 // global particle order. Particles whose reach along the ray misses [g_s[0], g_s[m-1]] (with a
 // margin) are skipped: they would add zeros. The test compares the squared distance from the
@@ -79,16 +94,8 @@ float field(float s, float tb, float perp2) {
 // but for ones at distance h + O(ulp) beyond the 1e-3 h margin, which add exactly 0 anyway.
 void sumSamples(uvec2 r, vec3 d, int m) {
   for (int k = 0; k < CHUNK; ++k) g_f[k] = 0.0;
-  float hh = u_h * u_h, first = g_s[0] - 1e-3 * u_h, last = g_s[m - 1] + 1e-3 * u_h;
-  for (uint j = r.x; j < r.y; ++j) {
-    vec3 oc = items[j].xyz - u_eye;
-    float tb = dot(d, oc);
-    vec3 perp = oc - tb * d;
-    float perp2 = dot(perp, perp);
-    float e = tb - clamp(tb, first, last);
-    if (perp2 + e * e >= hh) continue;
-    for (int k = 0; k < m; ++k) g_f[k] += field(g_s[k], tb, perp2);
-  }
+  float first = g_s[0] - 1e-3 * u_h, last = g_s[m - 1] + 1e-3 * u_h;
+  for (uint j = r.x; j < r.y; ++j) addParticle(items[j].xyz - u_eye, d, first, last, m);
 }
 // F at the 4 refinement probes q (ascending) into g_f[0..3].
 void sumProbes(float q[4], vec3 d) {
@@ -106,6 +113,15 @@ void sumProbes(float q[4], vec3 d) {
   }
   for (int k = 0; k < 4; ++k) g_f[k] = f[k];
 }
+
+// The refined hit inside bracket b = (t_neg, I_neg, t_pos, I_pos), shaded: colour and surface
+// (t, normal) as the fragment outputs carry them.
+void finishHit(vec3 d, vec4 b, out vec4 colour, out vec4 surface);
+)";
+
+inline constexpr const char* kGridFragment = R"(
+layout(location = 0) out vec4 o_colour;
+layout(location = 1) out vec4 o_surface;
 
 void main() {
   o_colour = vec4(0.0);
@@ -175,7 +191,12 @@ void main() {
     s = min(latticeNext(g_s[m - 1]), t_out);
   }
   if (!hit) return;
+  finishHit(d, b, o_colour, o_surface);
+}
+)";
 
+inline constexpr const char* kGridFinish = R"(
+void finishHit(vec3 d, vec4 b, out vec4 colour, out vec4 surface) {
   // Refinement (eqs. 5-6): the first sign change among t_neg, the 4 probes and t_pos. (Gathering
   // the particles that reach the bracket once, instead of walking the cell's list per pass, was
   // measured no faster on llvmpipe: 0.131 against 0.128 s on the 65,536-particle layers.)
@@ -215,8 +236,8 @@ void main() {
   float len = length(grad);
   vec3 nrm = len > 0.0 ? -grad / len : -d;
   float diffuse = max(dot(nrm, -d), 0.0);
-  o_colour = vec4(clamp(u_colour * (0.2 + 0.8 * diffuse), 0.0, 1.0), 1.0);
-  o_surface = vec4(t, nrm);
+  colour = vec4(clamp(u_colour * (0.2 + 0.8 * diffuse), 0.0, 1.0), 1.0);
+  surface = vec4(t, nrm);
 }
 )";
 
