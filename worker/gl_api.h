@@ -93,7 +93,8 @@ using PfnDrawArrays = void(APIENTRYP)(GLenum, GLint, GLsizei);
   X(CopyImageSubData, PFNGLCOPYIMAGESUBDATAPROC)                \
   X(DrawBuffers, PFNGLDRAWBUFFERSPROC)                          \
   X(BindBufferBase, PFNGLBINDBUFFERBASEPROC)                    \
-  X(ReadBuffer, PFNGLREADBUFFERPROC)
+  X(ReadBuffer, PFNGLREADBUFFERPROC)                            \
+  X(DispatchCompute, PFNGLDISPATCHCOMPUTEPROC)
 
 struct GlApi {
 #define SORTLAST_GL_MEMBER(name, type) type name = nullptr;

@@ -1,13 +1,17 @@
 #include "worker/metaball_grid_renderer.h"
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 
 #include "common/particles.h"
 #include <string>
 
 #include "worker/gl_program.h"
+#include "worker/metaball_bins.h"
 #include "worker/metaball_grid_shaders.h"
+#include "worker/metaball_grid_tile_shaders.h"
 #include "worker/metaball_shaders.h"
 
 namespace sortlast {
@@ -34,6 +38,19 @@ unsigned upload(const GlApi& gl, const void* data, size_t bytes) {
   return b;
 }
 
+// Experiment switches: SORTLAST_GRID_TILE_DEFS=A,B -> "#define A\n#define B\n".
+std::string tileDefines() {
+  std::string out, names = std::getenv("SORTLAST_GRID_TILE_DEFS") ? std::getenv("SORTLAST_GRID_TILE_DEFS") : "";
+  size_t at = 0;
+  while (at < names.size()) {
+    size_t end = names.find(',', at);
+    if (end == std::string::npos) end = names.size();
+    if (end > at) out += "#define " + names.substr(at, end - at) + "\n";
+    at = end + 1;
+  }
+  return out;
+}
+
 }  // namespace
 
 MetaballGridRenderer::MetaballGridRenderer(const GlContext& ctx, int width, int height,
@@ -48,14 +65,24 @@ MetaballGridRenderer::MetaballGridRenderer(const GlContext& ctx, int width, int 
   std::string fs = std::string(shaders::kMetaballCommon) + shaders::kGridChunkFragment + shaders::kGridLists +
                    shaders::kGridFragment + shaders::kGridFinish;
   program_ = linkProgram(gl_, shaders::kFullscreenVertex, fs.c_str());
+  if (const char* e = std::getenv("SORTLAST_GRID_TILE")) tile_ = std::atoi(e);
+  if (const char* e = std::getenv("SORTLAST_GRID_BIN")) bin_cell_h_ = std::atof(e);
+  if (tile_ > 0) {
+    std::string cs = std::string(shaders::kMetaballCommon) + "#define TILE " + std::to_string(tile_) + "\n" +
+                     tileDefines() +
+                     shaders::kGridChunkTile + shaders::kGridLists + shaders::kGridTileCompute +
+                     shaders::kGridFinish;
+    tile_program_ = linkComputeProgram(gl_, cs.c_str());
+  }
   gl_.check("metaball grid renderer setup");
 }
 
 MetaballGridRenderer::~MetaballGridRenderer() {
   for (auto& b : bricks_)
-    for (unsigned buf : {b.offsets, b.items})
+    for (unsigned buf : {b.offsets, b.items, b.bin_offsets, b.bins})
       if (buf) gl_.DeleteBuffers(1, &buf);
   gl_.DeleteProgram(program_);
+  if (tile_program_) gl_.DeleteProgram(tile_program_);
   freeTargets();
   gl_.DeleteVertexArrays(1, &empty_vao_);
   gl_.DeleteFramebuffers(1, &fbo_);
@@ -112,6 +139,14 @@ int MetaballGridRenderer::addBrick(const Box3& clip, const std::vector<glm::vec3
     g.dims = grid.dims;
     g.offsets = upload(gl_, grid.offsets.data(), grid.offsets.size() * 4);
     g.items = upload(gl_, items.data(), items.size() * sizeof(glm::vec4));
+    if (tile_ > 0) {
+      ParticleBins bins = binParticles(particles, bin_cell_h_ * s_.h);
+      g.bin_lo = bins.lo;
+      g.bin_cell = bins.cell;
+      g.bin_dims = bins.dims;
+      g.bin_offsets = upload(gl_, bins.offsets.data(), bins.offsets.size() * 4);
+      g.bins = upload(gl_, bins.entries.data(), bins.entries.size() * sizeof(glm::vec4));
+    }
     gl_.check("metaball grid upload");
   }
   bricks_.push_back(g);
@@ -126,7 +161,7 @@ SurfaceBrick MetaballGridRenderer::render(int handle, const Camera& cam, double,
   Rect r = screenRectOf(cam, b.bound);
   if (r.empty()) return out;
 
-  const unsigned p = program_;
+  const unsigned p = tile_ > 0 ? tile_program_ : program_;
   gl_.UseProgram(p);
   auto v3 = [&](const char* name, const glm::dvec3& v) {
     gl_.Uniform3f(gl_.GetUniformLocation(p, name), float(v.x), float(v.y), float(v.z));
@@ -151,6 +186,18 @@ SurfaceBrick MetaballGridRenderer::render(int handle, const Camera& cam, double,
   gl_.Uniform4i(gl_.GetUniformLocation(p, "u_dims"), b.dims.x, b.dims.y, b.dims.z, 0);
   gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, b.offsets);
   gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, b.items);
+  if (tile_ > 0) {
+    v3("u_bin_lo", glm::dvec3(b.bin_lo));
+    f1("u_bin_cell", b.bin_cell);
+    gl_.Uniform4i(gl_.GetUniformLocation(p, "u_bin_dims"), b.bin_dims.x, b.bin_dims.y, b.bin_dims.z, 0);
+    gl_.Uniform4i(gl_.GetUniformLocation(p, "u_rect"), r.x, r.y, r.w, r.h);
+    gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, b.bin_offsets);
+    gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, b.bins);
+    gl_.BindImageTexture(0, colour_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    gl_.BindImageTexture(1, surface_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    gl_.DispatchCompute(unsigned((r.w + tile_ - 1) / tile_), unsigned((r.h + tile_ - 1) / tile_), 1);
+    gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
+  }
 
   gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
   gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, colour_, 0);
@@ -165,7 +212,7 @@ SurfaceBrick MetaballGridRenderer::render(int handle, const Camera& cam, double,
   gl_.Disable(GL_BLEND);
   gl_.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   gl_.BindVertexArray(empty_vao_);
-  gl_.DrawArrays(GL_TRIANGLES, 0, 3);
+  if (tile_ == 0) gl_.DrawArrays(GL_TRIANGLES, 0, 3);
 
   readback_.resize(size_t(r.area()) * 4);
   gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
