@@ -38,14 +38,16 @@ unsigned upload(const GlApi& gl, const void* data, size_t bytes) {
   return b;
 }
 
-// Experiment switches: SORTLAST_GRID_TILE_DEFS=A,B -> "#define A\n#define B\n".
+// Experiment switches: SORTLAST_GRID_TILE_DEFS=A,B:1 -> "#define A\n#define B 1\n".
 std::string tileDefines() {
   std::string out, names = std::getenv("SORTLAST_GRID_TILE_DEFS") ? std::getenv("SORTLAST_GRID_TILE_DEFS") : "";
   size_t at = 0;
   while (at < names.size()) {
     size_t end = names.find(',', at);
     if (end == std::string::npos) end = names.size();
-    if (end > at) out += "#define " + names.substr(at, end - at) + "\n";
+    std::string def = names.substr(at, end - at);
+    if (def.find(':') != std::string::npos) def[def.find(':')] = ' ';
+    if (end > at) out += "#define " + def + "\n";
     at = end + 1;
   }
   return out;
@@ -62,13 +64,15 @@ MetaballGridRenderer::MetaballGridRenderer(const GlContext& ctx, int width, int 
   GLint max_block = 0;
   gl_.GetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
   max_block_bytes_ = max_block > 0 ? max_block : (1LL << 27);
-  std::string fs = std::string(shaders::kMetaballCommon) + shaders::kGridChunkFragment + shaders::kGridLists +
+  packed_ = std::getenv("SORTLAST_GRID_PACKED") != nullptr;
+  const std::string packed = packed_ ? "#define PACKED\n" : "";
+  std::string fs = std::string(shaders::kMetaballCommon) + packed + shaders::kGridChunkFragment + shaders::kGridLists +
                    shaders::kGridFragment + shaders::kGridFinish;
   program_ = linkProgram(gl_, shaders::kFullscreenVertex, fs.c_str());
   if (const char* e = std::getenv("SORTLAST_GRID_TILE")) tile_ = std::atoi(e);
   if (const char* e = std::getenv("SORTLAST_GRID_BIN")) bin_cell_h_ = std::atof(e);
   if (tile_ > 0) {
-    std::string cs = std::string(shaders::kMetaballCommon) + "#define TILE " + std::to_string(tile_) + "\n" +
+    std::string cs = std::string(shaders::kMetaballCommon) + "#define TILE " + std::to_string(tile_) + "\n" + packed +
                      tileDefines() +
                      shaders::kGridChunkTile + shaders::kGridLists + shaders::kGridTileCompute +
                      shaders::kGridFinish;
@@ -132,13 +136,31 @@ int MetaballGridRenderer::addBrick(const Box3& clip, const std::vector<glm::vec3
       grid = buildParticleGrid(particles, g.bound, s_.h, cell);
     }
     // The lists hold the centres, not their indices: the shader then loads each entry once.
-    std::vector<glm::vec4> items(grid.items.size());
-    for (size_t i = 0; i < items.size(); ++i) items[i] = glm::vec4(particles[grid.items[i]], 0.0f);
     g.lo = grid.lo;
     g.cell = grid.cell;
     g.dims = grid.dims;
     g.offsets = upload(gl_, grid.offsets.data(), grid.offsets.size() * 4);
-    g.items = upload(gl_, items.data(), items.size() * sizeof(glm::vec4));
+    if (packed_) {
+      // A cell lists centres within h (1 + kGridPad) of it: per axis [corner - pad, corner + cell + pad].
+      g.pack_pad = float(s_.h * (1.0 + kGridPad));
+      g.pack_scale = (g.cell + 2.0f * g.pack_pad) / 65535.0f;
+      std::vector<glm::uvec2> items(grid.items.size());
+      for (int z = 0; z < g.dims.z; ++z)
+        for (int y = 0; y < g.dims.y; ++y)
+          for (int x = 0; x < g.dims.x; ++x) {
+            size_t c = (size_t(z) * g.dims.y + y) * g.dims.x + x;
+            glm::vec3 base = g.lo + glm::vec3(x, y, z) * g.cell - g.pack_pad;
+            for (uint32_t k = grid.offsets[c]; k < grid.offsets[c + 1]; ++k) {
+              glm::vec3 q = glm::clamp(glm::round((particles[grid.items[k]] - base) / g.pack_scale), 0.0f, 65535.0f);
+              items[k] = glm::uvec2(uint32_t(q.x) | (uint32_t(q.y) << 16), uint32_t(q.z));
+            }
+          }
+      g.items = upload(gl_, items.data(), items.size() * sizeof(glm::uvec2));
+    } else {
+      std::vector<glm::vec4> items(grid.items.size());
+      for (size_t i = 0; i < items.size(); ++i) items[i] = glm::vec4(particles[grid.items[i]], 0.0f);
+      g.items = upload(gl_, items.data(), items.size() * sizeof(glm::vec4));
+    }
     if (tile_ > 0) {
       ParticleBins bins = binParticles(particles, bin_cell_h_ * s_.h);
       g.bin_lo = bins.lo;
@@ -186,6 +208,10 @@ SurfaceBrick MetaballGridRenderer::render(int handle, const Camera& cam, double,
   gl_.Uniform4i(gl_.GetUniformLocation(p, "u_dims"), b.dims.x, b.dims.y, b.dims.z, 0);
   gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, b.offsets);
   gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, b.items);
+  if (packed_) {
+    f1("u_pack_scale", b.pack_scale);
+    f1("u_pack_pad", b.pack_pad);
+  }
   if (tile_ > 0) {
     v3("u_bin_lo", glm::dvec3(b.bin_lo));
     f1("u_bin_cell", b.bin_cell);

@@ -40,6 +40,7 @@ class MetaballGridRenderer : public ParticleRenderer {
     glm::vec3 lo{0.0f};
     float cell = 1.0f;
     glm::ivec3 dims{0};
+    float pack_scale = 0.0f, pack_pad = 0.0f;
     unsigned centres = 0, offsets = 0, items = 0;  // SSBOs
     // The tile march's bins (worker/metaball_bins.h), when tile_ > 0.
     glm::vec3 bin_lo{0.0f};
@@ -61,6 +62,7 @@ class MetaballGridRenderer : public ParticleRenderer {
   int tile_ = 0;
   double bin_cell_h_ = 1.0;  // bin edge in h (SORTLAST_GRID_BIN)
   unsigned tile_program_ = 0;
+  bool packed_ = false;  // 16-bit cell-relative centres (SORTLAST_GRID_PACKED), an experiment
   std::vector<GpuBrick> bricks_;
   std::vector<float> readback_;
 };

@@ -14,7 +14,7 @@
 namespace sortlast::shaders {
 
 inline constexpr const char* kGridTileCompute = R"(
-layout(local_size_x = TILE, local_size_y = TILE) in;
+layout(local_size_x = TILE * TILE) in;
 layout(rgba32f, binding = 0) writeonly uniform image2D u_colour_img;
 layout(rgba32f, binding = 1) writeonly uniform image2D u_surface_img;
 // The particles binned by centre: cell i holds bins[bin_offsets[i] .. bin_offsets[i + 1]),
@@ -26,26 +26,44 @@ uniform float u_bin_cell;
 uniform ivec4 u_bin_dims;
 uniform ivec4 u_rect;     // the brick's screen rectangle: x, y, w, h
 
+#ifndef SEG
+#define SEG 8
+#endif
 const int CAP = 512;
 const int NT = TILE * TILE;
 shared vec4 s_raw[CAP];   // gathered, unordered: centre, number
+#ifdef GROUPS
+// Lists per group of 8 invocations (llvmpipe's SIMD width: a 4 x 2 pixel block each).
+const int NG = TILE * TILE / 8, GCAP = 160;
+shared vec4 s_list[NG * GCAP];
+shared vec4 s_gdir[NG];   // the block's centre direction, its chord
+shared uint s_gn[2][NG];
+#else
 shared vec4 s_list[CAP];  // in particle order: centre less the eye
+#endif
 shared uint s_count[2];   // entries gathered, by segment parity
 shared uint s_next[2];   // the earliest next sample of the tile's rays (float bits), by parity
 shared uint s_active;     // rays of the tile still marching
 shared uint s_tmin, s_tmax;  // the tile's first sample and last grid exit (float bits, >= 0)
 
 // F at g_s[0..m-1] over the shared list's n entries.
-void sumShared(vec3 d, int m, uint n) {
+void sumShared(vec3 d, int m, uint base, uint n) {
   for (int k = 0; k < CHUNK; ++k) g_f[k] = 0.0;
   float first = g_s[0] - 1e-3 * u_h, last = g_s[m - 1] + 1e-3 * u_h;
-  for (uint j = 0u; j < n; ++j) addParticle(s_list[j].xyz, d, first, last, m);
+  for (uint j = base; j < base + n; ++j) addParticle(s_list[j].xyz, d, first, last, m);
 }
 
 void main() {
   uint lid = gl_LocalInvocationIndex;
-  ivec2 px = u_rect.xy + ivec2(gl_GlobalInvocationID.xy);
-  bool mine = all(lessThan(gl_GlobalInvocationID.xy, uvec2(u_rect.zw)));
+#ifdef GROUPS
+  uint grp = lid / 8u, lane = lid % 8u;
+  ivec2 off = ivec2(4u * (grp % uint(TILE / 4)) + lane % 4u, 2u * (grp / uint(TILE / 4)) + lane / 4u);
+#else
+  ivec2 off = ivec2(lid % uint(TILE), lid / uint(TILE));
+#endif
+  ivec2 loc = ivec2(gl_WorkGroupID.xy) * TILE + off;
+  ivec2 px = u_rect.xy + loc;
+  bool mine = all(lessThan(loc, u_rect.zw));
 #ifdef EARLYOUT
   if (mine) { imageStore(u_colour_img, px, vec4(0.0)); imageStore(u_surface_img, px, vec4(INF, 0.0, 0.0, 0.0)); }
   return;
@@ -87,9 +105,19 @@ void main() {
     chord = max(chord, length(rayDir(corner) - dc));
   }
   chord = chord * 1.001 + 1e-6;
+#ifdef GROUPS
+  if (lid < uint(NG)) {
+    vec2 b0 = t0 + vec2(4.0 * float(lid % uint(TILE / 4)), 2.0 * float(lid / uint(TILE / 4)));
+    vec3 gd = safeDir(rayDir(b0 + vec2(2.0, 1.0)));
+    float gc = 0.0;
+    for (int k = 0; k < 4; ++k) gc = max(gc, length(rayDir(b0 + 0.5 + vec2(float(k & 1) * 3.0, float(k >> 1))) - gd));
+    s_gdir[lid] = vec4(gd, gc * 1.001 + 1e-6);
+    s_gn[0][lid] = 0u;
+  }
+#endif
   barrier();
 
-  float seg = 8.0 * u_w;
+  float seg = float(SEG) * u_w;
   int j0 = max(int(floor(uintBitsToFloat(s_tmin) / seg)) - 1, 0);
   int j1 = int(floor(uintBitsToFloat(s_tmax) / seg)) + 1;
   int j_next = j0;
@@ -97,7 +125,7 @@ void main() {
     int j = j_next;
     if (s_active == 0u || j > j1) break;
     uint par = uint(iter) & 1u;
-    float ta = float(8 * j) * u_w, te = float(8 * j + 8) * u_w;
+    float ta = float(SEG * j) * u_w, te = float(SEG * j + SEG) * u_w;
     // Gather: particles within reach of the central ray's stretch [ta, te], widened by the
     // tile's spread there and a margin (as the cell lists' kGridPad).
     float reach = u_h * 1.01 + te * chord + 1e-3 * u_h;
@@ -109,6 +137,9 @@ void main() {
     vec3 ab = pb - pa;
     float ab2 = max(dot(ab, ab), 1e-30);
     float cell_reach = reach + 0.8660254 * u_bin_cell;
+#ifdef NOGATHER
+    cells = 0;
+#endif
     for (int ci = int(lid); ci < cells; ci += NT) {
       ivec3 c = clo + ivec3(ci % cn.x, (ci / cn.x) % cn.y, ci / (cn.x * cn.y));
       vec3 cc = u_bin_lo + (vec3(c) + 0.5) * u_bin_cell;
@@ -126,6 +157,22 @@ void main() {
     barrier();
     uint n = s_count[par];
     if (lid == 0u) { s_count[par ^ 1u] = 0u; s_next[par ^ 1u] = floatBitsToUint(INF); }
+#ifdef GROUPS
+    if (lid < uint(NG)) s_gn[par ^ 1u][lid] = 0u;
+    if (n <= uint(CAP))
+      for (uint i = lid; i < n; i += uint(NT)) {
+        vec4 p = s_raw[i];
+        for (int gi = 0; gi < NG; ++gi) {
+          vec4 gd = s_gdir[gi];
+          float rg = u_h * 1.01 + te * gd.w + 1e-3 * u_h;
+          vec3 ga = u_eye + (ta - 1e-3 * u_h) * gd.xyz, gab = (te - ta + 1e-3 * u_h) * gd.xyz;
+          vec3 rr = p.xyz - ga - clamp(dot(p.xyz - ga, gab) / max(dot(gab, gab), 1e-30), 0.0, 1.0) * gab;
+          if (dot(rr, rr) > rg * rg) continue;
+          uint at = atomicAdd(s_gn[par][gi], 1u);
+          if (at < uint(GCAP)) s_list[uint(gi * GCAP) + at] = vec4(p.xyz - u_eye, p.w);
+        }
+      }
+#else
     // Order: each entry's rank among the gathered numbers.
     if (n <= uint(CAP))
       for (uint i = lid; i < n; i += uint(NT)) {
@@ -138,18 +185,28 @@ void main() {
 #endif
         s_list[rank] = vec4(s_raw[i].xyz - u_eye, 0.0);
       }
+#endif
     barrier();
+#ifdef GROUPS
+    uint base = grp * uint(GCAP), nl = s_gn[par][grp];
+    bool over = n > uint(CAP) || nl > uint(GCAP);
+#ifdef FORCEOVER
+    over = true;
+#endif
+#else
+    uint base = 0u, nl = n;
+    bool over = n > uint(CAP);
+#endif
 
     // March this ray's samples in [.., te).
     bool was = marching;
     while (marching && s < te) {
       if (s > g1) { marching = false; break; }
       float limit = te;
-      uvec2 r = uvec2(0u);
-      if (n > uint(CAP)) {  // overflow: this cell's list, as the fragment march
-        ivec3 c = cellOf(u_eye + s * d);
+      ivec3 c = ivec3(0);
+      if (over) {  // overflow: this cell's list, as the fragment march
+        c = cellOf(u_eye + s * d);
         limit = min(te, cellExit(c, d));
-        r = cellRange(c);
       }
       g_s[0] = s;
       int m = 1;
@@ -158,12 +215,12 @@ void main() {
         if (nx >= limit) break;
         g_s[m++] = nx;
       }
-      if (n > uint(CAP)) sumSamples(r, d, m);
+      if (over) sumSamples(c, d, m);
       else {
 #ifdef NOWALK
         for (int k = 0; k < CHUNK; ++k) g_f[k] = 0.0;
 #else
-        sumShared(d, m, n);
+        sumShared(d, m, base, nl);
 #endif
       }
       for (int k = 0; k < m; ++k) {
@@ -204,8 +261,8 @@ void main() {
     // The segment holding the earliest next sample: [8 k w, 8 (k + 1) w) contains it.
     float tn = uintBitsToFloat(s_next[par]);
     int k = int(floor(tn / seg));
-    if (tn < float(8 * k) * u_w) --k;
-    if (tn >= float(8 * k + 8) * u_w) ++k;
+    if (tn < float(SEG * k) * u_w) --k;
+    if (tn >= float(SEG * k + SEG) * u_w) ++k;
     j_next = max(j + 1, k);
   }
 
