@@ -93,8 +93,7 @@ using PfnDrawArrays = void(APIENTRYP)(GLenum, GLint, GLsizei);
   X(CopyImageSubData, PFNGLCOPYIMAGESUBDATAPROC)                \
   X(DrawBuffers, PFNGLDRAWBUFFERSPROC)                          \
   X(BindBufferBase, PFNGLBINDBUFFERBASEPROC)                    \
-  X(ReadBuffer, PFNGLREADBUFFERPROC)                            \
-  X(DispatchCompute, PFNGLDISPATCHCOMPUTEPROC)
+  X(ReadBuffer, PFNGLREADBUFFERPROC)
 
 struct GlApi {
 #define SORTLAST_GL_MEMBER(name, type) type name = nullptr;

@@ -22,18 +22,6 @@ unsigned compile(const GlApi& gl, GLenum type, const char* src) {
   return s;
 }
 
-// Throws with the link log unless p linked; returns p.
-unsigned checkLinked(const GlApi& gl, unsigned p) {
-  int ok = 0;
-  gl.GetProgramiv(p, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[4096];
-    gl.GetProgramInfoLog(p, sizeof log, nullptr, log);
-    throw std::runtime_error(std::string("GLSL link error: ") + log);
-  }
-  return p;
-}
-
 }  // namespace
 
 unsigned linkProgram(const GlApi& gl, const char* vs, const char* fs) {
@@ -44,16 +32,14 @@ unsigned linkProgram(const GlApi& gl, const char* vs, const char* fs) {
   gl.LinkProgram(p);
   gl.DeleteShader(v);
   gl.DeleteShader(f);
-  return checkLinked(gl, p);
-}
-
-unsigned linkComputeProgram(const GlApi& gl, const char* cs) {
-  unsigned p = gl.CreateProgram();
-  unsigned c = compile(gl, GL_COMPUTE_SHADER, cs);
-  gl.AttachShader(p, c);
-  gl.LinkProgram(p);
-  gl.DeleteShader(c);
-  return checkLinked(gl, p);
+  int ok = 0;
+  gl.GetProgramiv(p, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[4096];
+    gl.GetProgramInfoLog(p, sizeof log, nullptr, log);
+    throw std::runtime_error(std::string("GLSL link error: ") + log);
+  }
+  return p;
 }
 
 }  // namespace sortlast

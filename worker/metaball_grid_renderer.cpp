@@ -1,17 +1,13 @@
 #include "worker/metaball_grid_renderer.h"
 
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <stdexcept>
 
 #include "common/particles.h"
 #include <string>
 
 #include "worker/gl_program.h"
-#include "worker/metaball_bins.h"
 #include "worker/metaball_grid_shaders.h"
-#include "worker/metaball_grid_tile_shaders.h"
 #include "worker/metaball_shaders.h"
 
 namespace sortlast {
@@ -38,21 +34,6 @@ unsigned upload(const GlApi& gl, const void* data, size_t bytes) {
   return b;
 }
 
-// Experiment switches: SORTLAST_GRID_TILE_DEFS=A,B:1 -> "#define A\n#define B 1\n".
-std::string tileDefines() {
-  std::string out, names = std::getenv("SORTLAST_GRID_TILE_DEFS") ? std::getenv("SORTLAST_GRID_TILE_DEFS") : "";
-  size_t at = 0;
-  while (at < names.size()) {
-    size_t end = names.find(',', at);
-    if (end == std::string::npos) end = names.size();
-    std::string def = names.substr(at, end - at);
-    if (def.find(':') != std::string::npos) def[def.find(':')] = ' ';
-    if (end > at) out += "#define " + def + "\n";
-    at = end + 1;
-  }
-  return out;
-}
-
 }  // namespace
 
 MetaballGridRenderer::MetaballGridRenderer(const GlContext& ctx, int width, int height,
@@ -64,29 +45,17 @@ MetaballGridRenderer::MetaballGridRenderer(const GlContext& ctx, int width, int 
   GLint max_block = 0;
   gl_.GetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
   max_block_bytes_ = max_block > 0 ? max_block : (1LL << 27);
-  packed_ = std::getenv("SORTLAST_GRID_PACKED") != nullptr;
-  const std::string packed = packed_ ? "#define PACKED\n" : "";
-  std::string fs = std::string(shaders::kMetaballCommon) + packed + shaders::kGridChunkFragment + shaders::kGridLists +
+  std::string fs = std::string(shaders::kMetaballCommon) + shaders::kGridChunkFragment + shaders::kGridLists +
                    shaders::kGridFragment + shaders::kGridFinish;
   program_ = linkProgram(gl_, shaders::kFullscreenVertex, fs.c_str());
-  if (const char* e = std::getenv("SORTLAST_GRID_TILE")) tile_ = std::atoi(e);
-  if (const char* e = std::getenv("SORTLAST_GRID_BIN")) bin_cell_h_ = std::atof(e);
-  if (tile_ > 0) {
-    std::string cs = std::string(shaders::kMetaballCommon) + "#define TILE " + std::to_string(tile_) + "\n" + packed +
-                     tileDefines() +
-                     shaders::kGridChunkTile + shaders::kGridLists + shaders::kGridTileCompute +
-                     shaders::kGridFinish;
-    tile_program_ = linkComputeProgram(gl_, cs.c_str());
-  }
   gl_.check("metaball grid renderer setup");
 }
 
 MetaballGridRenderer::~MetaballGridRenderer() {
   for (auto& b : bricks_)
-    for (unsigned buf : {b.offsets, b.items, b.bin_offsets, b.bins})
+    for (unsigned buf : {b.offsets, b.items})
       if (buf) gl_.DeleteBuffers(1, &buf);
   gl_.DeleteProgram(program_);
-  if (tile_program_) gl_.DeleteProgram(tile_program_);
   freeTargets();
   gl_.DeleteVertexArrays(1, &empty_vao_);
   gl_.DeleteFramebuffers(1, &fbo_);
@@ -136,39 +105,13 @@ int MetaballGridRenderer::addBrick(const Box3& clip, const std::vector<glm::vec3
       grid = buildParticleGrid(particles, g.bound, s_.h, cell);
     }
     // The lists hold the centres, not their indices: the shader then loads each entry once.
+    std::vector<glm::vec4> items(grid.items.size());
+    for (size_t i = 0; i < items.size(); ++i) items[i] = glm::vec4(particles[grid.items[i]], 0.0f);
     g.lo = grid.lo;
     g.cell = grid.cell;
     g.dims = grid.dims;
     g.offsets = upload(gl_, grid.offsets.data(), grid.offsets.size() * 4);
-    if (packed_) {
-      // A cell lists centres within h (1 + kGridPad) of it: per axis [corner - pad, corner + cell + pad].
-      g.pack_pad = float(s_.h * (1.0 + kGridPad));
-      g.pack_scale = (g.cell + 2.0f * g.pack_pad) / 65535.0f;
-      std::vector<glm::uvec2> items(grid.items.size());
-      for (int z = 0; z < g.dims.z; ++z)
-        for (int y = 0; y < g.dims.y; ++y)
-          for (int x = 0; x < g.dims.x; ++x) {
-            size_t c = (size_t(z) * g.dims.y + y) * g.dims.x + x;
-            glm::vec3 base = g.lo + glm::vec3(x, y, z) * g.cell - g.pack_pad;
-            for (uint32_t k = grid.offsets[c]; k < grid.offsets[c + 1]; ++k) {
-              glm::vec3 q = glm::clamp(glm::round((particles[grid.items[k]] - base) / g.pack_scale), 0.0f, 65535.0f);
-              items[k] = glm::uvec2(uint32_t(q.x) | (uint32_t(q.y) << 16), uint32_t(q.z));
-            }
-          }
-      g.items = upload(gl_, items.data(), items.size() * sizeof(glm::uvec2));
-    } else {
-      std::vector<glm::vec4> items(grid.items.size());
-      for (size_t i = 0; i < items.size(); ++i) items[i] = glm::vec4(particles[grid.items[i]], 0.0f);
-      g.items = upload(gl_, items.data(), items.size() * sizeof(glm::vec4));
-    }
-    if (tile_ > 0) {
-      ParticleBins bins = binParticles(particles, bin_cell_h_ * s_.h);
-      g.bin_lo = bins.lo;
-      g.bin_cell = bins.cell;
-      g.bin_dims = bins.dims;
-      g.bin_offsets = upload(gl_, bins.offsets.data(), bins.offsets.size() * 4);
-      g.bins = upload(gl_, bins.entries.data(), bins.entries.size() * sizeof(glm::vec4));
-    }
+    g.items = upload(gl_, items.data(), items.size() * sizeof(glm::vec4));
     gl_.check("metaball grid upload");
   }
   bricks_.push_back(g);
@@ -183,7 +126,7 @@ SurfaceBrick MetaballGridRenderer::render(int handle, const Camera& cam, double,
   Rect r = screenRectOf(cam, b.bound);
   if (r.empty()) return out;
 
-  const unsigned p = tile_ > 0 ? tile_program_ : program_;
+  const unsigned p = program_;
   gl_.UseProgram(p);
   auto v3 = [&](const char* name, const glm::dvec3& v) {
     gl_.Uniform3f(gl_.GetUniformLocation(p, name), float(v.x), float(v.y), float(v.z));
@@ -208,22 +151,6 @@ SurfaceBrick MetaballGridRenderer::render(int handle, const Camera& cam, double,
   gl_.Uniform4i(gl_.GetUniformLocation(p, "u_dims"), b.dims.x, b.dims.y, b.dims.z, 0);
   gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, b.offsets);
   gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, b.items);
-  if (packed_) {
-    f1("u_pack_scale", b.pack_scale);
-    f1("u_pack_pad", b.pack_pad);
-  }
-  if (tile_ > 0) {
-    v3("u_bin_lo", glm::dvec3(b.bin_lo));
-    f1("u_bin_cell", b.bin_cell);
-    gl_.Uniform4i(gl_.GetUniformLocation(p, "u_bin_dims"), b.bin_dims.x, b.bin_dims.y, b.bin_dims.z, 0);
-    gl_.Uniform4i(gl_.GetUniformLocation(p, "u_rect"), r.x, r.y, r.w, r.h);
-    gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, b.bin_offsets);
-    gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, b.bins);
-    gl_.BindImageTexture(0, colour_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    gl_.BindImageTexture(1, surface_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    gl_.DispatchCompute(unsigned((r.w + tile_ - 1) / tile_), unsigned((r.h + tile_ - 1) / tile_), 1);
-    gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
-  }
 
   gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
   gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, colour_, 0);
@@ -238,7 +165,7 @@ SurfaceBrick MetaballGridRenderer::render(int handle, const Camera& cam, double,
   gl_.Disable(GL_BLEND);
   gl_.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   gl_.BindVertexArray(empty_vao_);
-  if (tile_ == 0) gl_.DrawArrays(GL_TRIANGLES, 0, 3);
+  gl_.DrawArrays(GL_TRIANGLES, 0, 3);
 
   readback_.resize(size_t(r.area()) * 4);
   gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);

@@ -40,13 +40,7 @@ class MetaballGridRenderer : public ParticleRenderer {
     glm::vec3 lo{0.0f};
     float cell = 1.0f;
     glm::ivec3 dims{0};
-    float pack_scale = 0.0f, pack_pad = 0.0f;
     unsigned centres = 0, offsets = 0, items = 0;  // SSBOs
-    // The tile march's bins (worker/metaball_bins.h), when tile_ > 0.
-    glm::vec3 bin_lo{0.0f};
-    float bin_cell = 1.0f;
-    glm::ivec3 bin_dims{0};
-    unsigned bin_offsets = 0, bins = 0;
     int count = 0;
   };
   void allocateTargets(int width, int height);
@@ -57,12 +51,6 @@ class MetaballGridRenderer : public ParticleRenderer {
   MetaballSettings s_;
   long long max_block_bytes_ = 0;
   unsigned fbo_ = 0, empty_vao_ = 0, program_ = 0, colour_ = 0, surface_ = 0;
-  // The tile march (worker/metaball_grid_tile_shaders.h), an experiment: tile edge in pixels, 0
-  // for the fragment march; from the environment variable SORTLAST_GRID_TILE.
-  int tile_ = 0;
-  double bin_cell_h_ = 1.0;  // bin edge in h (SORTLAST_GRID_BIN)
-  unsigned tile_program_ = 0;
-  bool packed_ = false;  // 16-bit cell-relative centres (SORTLAST_GRID_PACKED), an experiment
   std::vector<GpuBrick> bricks_;
   std::vector<float> readback_;
 };

@@ -28,6 +28,23 @@
 // - 2 refinement passes of 8 probes (secant, +-2%, +-0.08%, quartiles) instead of 3 of 4:
 //   1.2x slower (each pass walks one list; 3 passes of 4 against 2 of 4 is only 5%).
 // - Buffer textures instead of storage buffers for the lists: no difference.
+// Measured later (CPU s a frame = (CPU of a 9-frame orbit - CPU of its first frame) / 8, min
+// over 2-4 runs interleaved with this shader, on the 65,536-particle layers at 512^2; this
+// shader measured 0.15-0.19 in the same runs; the code is commit 62d4268 on branch wip-tile):
+// - A compute workgroup per 8 x 8 tile, marching its rays together segment by segment (8
+//   lattice steps): it gathers the particles within reach of the segment once into shared
+//   memory (from a grid binning them by centre), ranks them into particle order (images
+//   identical to this shader's), and every ray sums its segment's samples over that one list.
+//   0.27-0.31 (1.6x slower); without the ranking (same particles, sums in gather order) 0.22-
+//   0.24; tiles of 4 x 4 0.23-0.33. Lists per group of 8 invocations (llvmpipe's SIMD width,
+//   4 x 2 pixels: about 2.5x fewer entries a ray than the cell walks here) 0.20-0.21 (dam break
+//   at 512^2: 0.40 against 0.41). The cause: the same compute shader walking this shader's cell
+//   lists per ray (no gather) costs 0.22-0.23, i.e. llvmpipe's compute path with workgroup
+//   barriers (3 a segment) is ~1.4x slower than this fragment pass for the same per-ray work,
+//   and the shared lists win back only part of that. Segments of 16 steps: no clear change.
+// - Centres as 3 x 16 bits relative to the cell (8 bytes an entry instead of 16): 0.168 against
+//   0.156 on the layers, 0.49 against 0.47 on the dam break (min of 4 and 3 runs): the unpacking
+//   costs what the smaller loads save; depth moves by up to 2.6e-3 h (rms 3e-5 h) off edges.
 namespace sortlast::shaders {
 
 // Samples per list walk: the fragment march's chunk (one cell, below); the tile scheme
@@ -41,14 +58,7 @@ inline constexpr const char* kGridChunkTile = "const int CHUNK = 10;\n";
 inline constexpr const char* kGridLists = R"(
 layout(std430, binding = 1) readonly buffer Offsets { uint offsets[]; };
 // The cells' lists as the particles' centres themselves (xyz, w unused): one load per entry.
-#ifdef PACKED
-// Experiment (issue 12): each entry as 3 x 16 bits, its centre relative to the cell's corner
-// less u_pack_pad, in steps of u_pack_scale.
-layout(std430, binding = 2) readonly buffer Items { uvec2 items[]; };
-uniform float u_pack_scale, u_pack_pad;
-#else
 layout(std430, binding = 2) readonly buffer Items { vec4 items[]; };
-#endif
 uniform vec3 u_grid_lo;
 uniform float u_cell;
 uniform ivec4 u_dims;     // cells per axis in xyz
@@ -63,17 +73,6 @@ float g_f[CHUNK];   // field at them
 
 vec3 safeDir(vec3 d) { return mix(d, vec3(1e-30), equal(d, vec3(0.0))); }
 ivec3 cellOf(vec3 x) { return clamp(ivec3(floor((x - u_grid_lo) / u_cell)), ivec3(0), u_dims.xyz - 1); }
-// Entry j of cell c's list: its centre less the eye. base: cellBase(c).
-#ifdef PACKED
-vec3 cellBase(ivec3 c) { return u_grid_lo + vec3(c) * u_cell - u_pack_pad - u_eye; }
-vec3 entryOC(uint j, vec3 base) {
-  uvec2 q = items[j];
-  return base + vec3(float(q.x & 0xffffu), float(q.x >> 16), float(q.y)) * u_pack_scale;
-}
-#else
-vec3 cellBase(ivec3 c) { return vec3(0.0); }
-vec3 entryOC(uint j, vec3 base) { return items[j].xyz - u_eye; }
-#endif
 uvec2 cellRange(ivec3 c) {
   int i = (c.z * u_dims.y + c.y) * u_dims.x + c.x;
   return uvec2(offsets[i], offsets[i + 1]);
@@ -110,25 +109,23 @@ void addParticle(vec3 oc, vec3 d, float first, float last, int m) {
 // margin) are skipped: they would add zeros. The test compares the squared distance from the
 // particle to that stretch of the ray with h^2: no square root, and the same particles pass
 // but for ones at distance h + O(ulp) beyond the 1e-3 h margin, which add exactly 0 anyway.
-void sumSamples(ivec3 c, vec3 d, int m) {
-  uvec2 r = cellRange(c);
-  vec3 base = cellBase(c);
+void sumSamples(uvec2 r, vec3 d, int m) {
   for (int k = 0; k < CHUNK; ++k) g_f[k] = 0.0;
   float first = g_s[0] - 1e-3 * u_h, last = g_s[m - 1] + 1e-3 * u_h;
-  for (uint j = r.x; j < r.y; ++j) addParticle(entryOC(j, base), d, first, last, m);
+  for (uint j = r.x; j < r.y; ++j) addParticle(items[j].xyz - u_eye, d, first, last, m);
 }
 // F at the 4 refinement probes q (ascending) into g_f[0..3].
 void sumProbes(float q[4], vec3 d) {
   ivec3 c0 = cellOf(u_eye + q[0] * d), c3 = cellOf(u_eye + q[3] * d);
   if (c0 == c3) {
     for (int k = 0; k < 4; ++k) g_s[k] = q[k];
-    sumSamples(c0, d, 4);
+    sumSamples(cellRange(c0), d, 4);
     return;
   }
   float f[4];
   for (int k = 0; k < 4; ++k) {
     g_s[0] = q[k];
-    sumSamples(cellOf(u_eye + q[k] * d), d, 1);
+    sumSamples(cellRange(cellOf(u_eye + q[k] * d)), d, 1);
     f[k] = g_f[0];
   }
   for (int k = 0; k < 4; ++k) g_f[k] = f[k];
@@ -190,7 +187,7 @@ void main() {
       if (nx >= t_exit) break;
       g_s[m++] = nx;
     }
-    sumSamples(c, d, m);
+    sumSamples(r, d, m);
     bool done = false;
     for (int k = 0; k < m; ++k) {
       if (n >= u_cap) { done = true; break; }  // out of samples: a hole, the paper's Fig. 12
@@ -240,12 +237,10 @@ void finishHit(vec3 d, vec4 b, out vec4 colour, out vec4 surface) {
   float t = secantEstimate(b);
 
   // Gradient of F at t (r = x - c; dP/dx = -2 (1 - |r|/h) / h * r / |r|), in list order.
-  ivec3 cg = cellOf(u_eye + t * d);
-  uvec2 r = cellRange(cg);
-  vec3 base = cellBase(cg);
+  uvec2 r = cellRange(cellOf(u_eye + t * d));
   vec3 grad = vec3(0.0);
   for (uint j = r.x; j < r.y; ++j) {
-    vec3 oc = entryOC(j, base);
+    vec3 oc = items[j].xyz - u_eye;
     float tb = dot(d, oc);
     vec3 perp = oc - tb * d;
     if (dot(perp, perp) >= u_h * u_h) continue;
