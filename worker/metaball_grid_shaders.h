@@ -28,6 +28,23 @@
 // - 2 refinement passes of 8 probes (secant, +-2%, +-0.08%, quartiles) instead of 3 of 4:
 //   1.2x slower (each pass walks one list; 3 passes of 4 against 2 of 4 is only 5%).
 // - Buffer textures instead of storage buffers for the lists: no difference.
+// Measured later (CPU s a frame = (CPU of a 9-frame orbit - CPU of its first frame) / 8, min
+// over 2-4 runs interleaved with this shader, on the 65,536-particle layers at 512^2; this
+// shader measured 0.15-0.19 in the same runs; the code is commit 62d4268, merged into main's history):
+// - A compute workgroup per 8 x 8 tile, marching its rays together segment by segment (8
+//   lattice steps): it gathers the particles within reach of the segment once into shared
+//   memory (from a grid binning them by centre), ranks them into particle order (images
+//   identical to this shader's), and every ray sums its segment's samples over that one list.
+//   0.27-0.31 (1.6x slower); without the ranking (same particles, sums in gather order) 0.22-
+//   0.24; tiles of 4 x 4 0.23-0.33. Lists per group of 8 invocations (llvmpipe's SIMD width,
+//   4 x 2 pixels: about 2.5x fewer entries a ray than the cell walks here) 0.20-0.21 (dam break
+//   at 512^2: 0.40 against 0.41). The cause: the same compute shader walking this shader's cell
+//   lists per ray (no gather) costs 0.22-0.23, i.e. llvmpipe's compute path with workgroup
+//   barriers (3 a segment) is ~1.4x slower than this fragment pass for the same per-ray work,
+//   and the shared lists win back only part of that. Segments of 16 steps: no clear change.
+// - Centres as 3 x 16 bits relative to the cell (8 bytes an entry instead of 16): 0.168 against
+//   0.156 on the layers, 0.49 against 0.47 on the dam break (min of 4 and 3 runs): the unpacking
+//   costs what the smaller loads save; depth moves by up to 2.6e-3 h (rms 3e-5 h) off edges.
 namespace sortlast::shaders {
 
 inline constexpr const char* kGridFragment = R"(
