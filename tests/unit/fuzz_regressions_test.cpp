@@ -9,6 +9,7 @@
 
 #include "common/image.h"
 #include "common/particle_readers.h"
+#include "common/scene.h"
 #include "compositing/blend.h"
 #include "compositing/brick_image.h"
 #include "compositing/rect_image.h"
@@ -61,6 +62,16 @@ TEST(FuzzRegressions, CsvCoordinateBeyondFloatIsAnErrorNamingTheLine) {
   msg = inputErrorOf([] { parseCsvParticles("-3.5e38,0,0\n", "p.csv", -1); });
   EXPECT_NE(msg.find("line 1"), std::string::npos) << msg;
   EXPECT_EQ(parseCsvParticles("x,y,z\n1,2,3\n", "p.csv", 1).size(), 1u);
+}
+
+// Found by tests/fuzz/scene (corpus entry regression_complex_key.yaml): a YAML key that is a list
+// or map ended in yaml-cpp's bare "bad conversion" instead of a message naming the place.
+TEST(FuzzRegressions, ComplexYamlKeyIsAnInputError) {
+  std::string msg = inputErrorOf([] { parseScene(SceneText{"s.yaml", "? [a, b]\n: 1\n"}, {}); });
+  EXPECT_NE(msg.find("list or map"), std::string::npos) << msg;
+  msg = inputErrorOf([] { parseScene(SceneText{"s.yaml", "camera:\n  ? {a: 1}\n  : 2\n"}, {}); });
+  EXPECT_NE(msg.find("under 'camera'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("line 2"), std::string::npos) << msg;
 }
 
 }  // namespace
