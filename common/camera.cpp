@@ -1,6 +1,7 @@
 #include "common/camera.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -78,9 +79,13 @@ Rect screenRectOf(const Camera& cam, const Box3& box) {
 }
 
 Rect unite(const Rect& a, const Rect& b) {
-  int x0 = std::min(a.x, b.x), y0 = std::min(a.y, b.y);
-  int x1 = std::max(a.x + a.w, b.x + b.w), y1 = std::max(a.y + a.h, b.y + b.h);
-  return {x0, y0, x1 - x0, y1 - y0};
+  // Ends in 64 bits: rectangles from a message may hold any int32, and x + w could overflow int.
+  // A union wider than int can hold (only from such rectangles) is cut to INT_MAX.
+  auto clampInt = [](long long v) { return int(std::min<long long>(v, INT_MAX)); };
+  long long x0 = std::min(a.x, b.x), y0 = std::min(a.y, b.y);
+  long long x1 = std::max(1LL * a.x + a.w, 1LL * b.x + b.w);
+  long long y1 = std::max(1LL * a.y + a.h, 1LL * b.y + b.h);
+  return {int(x0), int(y0), clampInt(x1 - x0), clampInt(y1 - y0)};
 }
 
 }  // namespace sortlast

@@ -2,6 +2,7 @@
 // shares (count, finite positions). VTK files are read in vtk_particles.cpp, procedural sets are
 // made in procedural_particles.cpp.
 #include "common/particles.h"
+#include "common/particle_readers.h"
 
 #include <bit>
 #include <cctype>
@@ -13,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <sstream>
 #include <string_view>
 
 #include "common/error.h"
@@ -37,12 +39,10 @@ std::string formatOf(const ParticleDesc& d) {
   return "raw";
 }
 
-// Little-endian float32 x,y,z triples, no header.
-std::vector<glm::vec3> readRaw(const std::string& file, long long declared,
-                               const std::string& hint) {
-  std::error_code ec;
-  auto size = static_cast<long long>(std::filesystem::file_size(file, ec));
-  if (ec) throw InputError("particles.file " + file + ": cannot read its size");
+// A raw file holds little-endian float32 x,y,z triples, no header: its size must be a multiple of
+// 12 and, when particles.count is given, 12 x count. Checked before reading the file.
+void checkRawSize(long long size, const std::string& file, long long declared,
+                  const std::string& hint) {
   if (size % 12 != 0)
     throw InputError("particles.file " + file + ": raw file has " + std::to_string(size) +
                      " bytes, not a multiple of 12 (x, y, z as float32)" + hint);
@@ -51,20 +51,15 @@ std::vector<glm::vec3> readRaw(const std::string& file, long long declared,
                      " bytes = " + std::to_string(size / 12) +
                      " particles, but particles.count is " + std::to_string(declared) + " (" +
                      std::to_string(declared * 12) + " bytes)");
-  std::ifstream in(file, std::ios::binary);
+}
+
+std::string readWholeFile(const std::string& file, std::ios::openmode mode) {
+  std::ifstream in(file, mode);
   if (!in) throw InputError("particles.file " + file + ": cannot open");
-  std::vector<unsigned char> bytes(static_cast<size_t>(size));
-  in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(size));
-  if (!in) throw InputError("particles.file " + file + ": read failed (truncated?)");
-  std::vector<glm::vec3> out(static_cast<size_t>(size / 12));
-  for (size_t i = 0; i < out.size(); ++i)
-    for (int a = 0; a < 3; ++a) {
-      unsigned char b[4];
-      for (int k = 0; k < 4; ++k)
-        b[k] = bytes[12 * i + 4 * a + (std::endian::native == std::endian::little ? k : 3 - k)];
-      std::memcpy(&out[i][a], b, 4);
-    }
-  return out;
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw InputError("particles.file " + file + ": read failed");
+  return text.str();
 }
 
 std::string trim(std::string_view s) {
@@ -82,14 +77,17 @@ bool parseNumber(const std::string& field, double& v) {
 
 // x,y,z per line; extra columns ignored; `#` starts a comment; blank lines skipped; the first
 // data line may be a header (its first field is not a number).
-std::vector<glm::vec3> readCsv(const std::string& file) {
-  std::ifstream in(file);
-  if (!in) throw InputError("particles.file " + file + ": cannot open");
+std::vector<glm::vec3> readCsv(std::string_view all, const std::string& file) {
   std::vector<glm::vec3> out;
-  std::string line;
   bool first_data_line = true;
-  for (long long n = 1; std::getline(in, line); ++n) {
-    std::string text = trim(std::string_view(line).substr(0, line.find('#')));
+  long long n = 0;
+  for (size_t pos = 0; pos < all.size();) {
+    ++n;
+    size_t end = all.find('\n', pos);
+    if (end == std::string_view::npos) end = all.size();
+    std::string_view line = all.substr(pos, end - pos);
+    pos = end + 1;
+    std::string text = trim(line.substr(0, line.find('#')));
     if (text.empty()) continue;
     std::vector<std::string> fields;
     for (size_t start = 0;;) {
@@ -110,12 +108,15 @@ std::vector<glm::vec3> readCsv(const std::string& file) {
     if (!ok)
       throw InputError("particles.file " + file + " line " + std::to_string(n) +
                        ": expected x,y,z numbers, got '" + text + "'");
-    glm::vec3 p{float(xyz[0]), float(xyz[1]), float(xyz[2])};
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+    // Checked in double: converting a double beyond float's range to float is undefined.
+    constexpr double kFloatMax = std::numeric_limits<float>::max();
+    bool fits = true;
+    for (double v : xyz) fits = fits && std::isfinite(v) && std::abs(v) <= kFloatMax;
+    if (!fits)
       throw InputError("particles.file " + file + " line " + std::to_string(n) +
                        ": NaN or infinite (as float32) position at particle " +
                        std::to_string(out.size()));
-    out.push_back(p);
+    out.push_back({float(xyz[0]), float(xyz[1]), float(xyz[2])});
   }
   return out;
 }
@@ -145,6 +146,16 @@ void checkMagnitude(const std::vector<glm::vec3>& ps, const std::string& what) {
       }
 }
 
+// What every format's positions must satisfy.
+void checkLoaded(const std::vector<glm::vec3>& ps, const std::string& file, long long declared) {
+  if (declared >= 0 && static_cast<long long>(ps.size()) != declared)
+    throw InputError("particles.file " + file + ": holds " + std::to_string(ps.size()) +
+                     (ps.size() == 1 ? " particle" : " particles") +
+                     ", but particles.count is " + std::to_string(declared));
+  checkFinite(ps, file);
+  checkMagnitude(ps, "particles.file " + file);
+}
+
 }  // namespace
 
 Box3 ParticleSet::bounds() const {
@@ -170,21 +181,45 @@ ParticleSet loadParticles(const ParticleDesc& d) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(d.file, ec))
     throw InputError("particles.file " + d.file + ": no such file");
+  const std::string hint = d.format == "auto" ? "; read as raw because of its extension (set "
+                                                "particles.format for csv or vtk)"
+                                              : "";
   ParticleSet s;
-  if (format == "raw")
-    s.positions = readRaw(d.file, d.count,
-                          d.format == "auto" ? "; read as raw because of its extension (set "
-                                               "particles.format for csv or vtk)"
-                                             : "");
-  if (format == "csv") s.positions = readCsv(d.file);
-  if (format == "vtk") s.positions = readVtkParticles(d.file);
-  if (d.count >= 0 && static_cast<long long>(s.positions.size()) != d.count)
-    throw InputError("particles.file " + d.file + ": holds " + std::to_string(s.positions.size()) +
-                     (s.positions.size() == 1 ? " particle" : " particles") +
-                     ", but particles.count is " + std::to_string(d.count));
-  checkFinite(s.positions, d.file);
-  checkMagnitude(s.positions, "particles.file " + d.file);
+  if (format == "raw") {
+    auto size = static_cast<long long>(std::filesystem::file_size(d.file, ec));
+    if (ec) throw InputError("particles.file " + d.file + ": cannot read its size");
+    checkRawSize(size, d.file, d.count, hint);  // before reading a file of the wrong size
+    s.positions = parseRawParticles(readWholeFile(d.file, std::ios::binary), d.file, d.count, hint);
+  }
+  if (format == "csv") s.positions = parseCsvParticles(readWholeFile(d.file, std::ios::in), d.file, d.count);
+  if (format == "vtk") {
+    s.positions = readVtkParticles(d.file);
+    checkLoaded(s.positions, d.file, d.count);
+  }
   return s;
+}
+
+std::vector<glm::vec3> parseRawParticles(std::string_view bytes, const std::string& file,
+                                         long long declared, const std::string& hint) {
+  checkRawSize(static_cast<long long>(bytes.size()), file, declared, hint);
+  std::vector<glm::vec3> out(bytes.size() / 12);
+  for (size_t i = 0; i < out.size(); ++i)
+    for (int a = 0; a < 3; ++a) {
+      unsigned char b[4];
+      for (int k = 0; k < 4; ++k)
+        b[k] = static_cast<unsigned char>(
+            bytes[12 * i + 4 * a + (std::endian::native == std::endian::little ? k : 3 - k)]);
+      std::memcpy(&out[i][a], b, 4);
+    }
+  checkLoaded(out, file, declared);
+  return out;
+}
+
+std::vector<glm::vec3> parseCsvParticles(std::string_view text, const std::string& file,
+                                         long long declared) {
+  std::vector<glm::vec3> out = readCsv(text, file);
+  checkLoaded(out, file, declared);
+  return out;
 }
 
 Box3 fieldBoundInside(const Box3& clip, const std::vector<glm::vec3>& particles, double h) {

@@ -51,6 +51,11 @@ std::string where(const YAML::Node& n) {
 // Every key in the file must be one we know: a typo must not silently fall back to a default.
 void checkKeys(const YAML::Node& map, const std::string& prefix) {
   for (auto it = map.begin(); it != map.end(); ++it) {
+    // A complex key (`? [a, b]`, `{a: 1}: x`) has no name: as<std::string>() would throw yaml-cpp's
+    // bare "bad conversion" (found by tests/fuzz/scene).
+    if (!it->first.IsScalar())
+      throw InputError("scene file: a key " + std::string(prefix.empty() ? "" : "under '" + prefix + "' ") +
+                       "is a list or map, not a name" + where(it->first));
     std::string name = it->first.as<std::string>();
     std::string full = prefix.empty() ? name : prefix + "." + name;
     if (findKey(full)) continue;

@@ -49,8 +49,7 @@ void blendBricks(const std::vector<const BrickImage*>& images, Pixel* dst, const
   for (const BrickImage* b : images) {
     const Rect& r = b->rect;
     if (r.empty()) continue;
-    if (r.x < dst_rect.x || r.y < dst_rect.y || r.x + r.w > dst_rect.x + dst_rect.w ||
-        r.y + r.h > dst_rect.y + dst_rect.h)
+    if (!contains(dst_rect, r))
       throw RleError("brick " + std::to_string(b->brick_id) + ": rectangle outside the frame");
     pixels.resize(size_t(r.area()) * 4);
     rleDecode(b->rle, size_t(r.area()), pixels);

@@ -72,8 +72,8 @@ class Exchange {
     watch_.lapTransfer();
     return unpackBrickImage(bytes);
   }
-  RectImage receive(int from, int tag, WireFormat format) {
-    return decodePart(receiveEncoded(from, tag), format);
+  RectImage receive(int from, int tag, WireFormat format, const Rect& within) {
+    return decodePart(receiveEncoded(from, tag), format, within);
   }
   void finish() {
     watch_.lapComposite();
@@ -164,7 +164,8 @@ ImageRGBA8 radixKComposite(std::vector<BrickImage> mine, const VisibilityOrder& 
               encodePart(image, image.rect, pos, partials, options.rle));
       image = {};
     } else {
-      RectImage front = ex.receive(plan.rank_at[size_t(pos + 1)], kFoldTag, partials);
+      RectImage front = ex.receive(plan.rank_at[size_t(pos + 1)], kFoldTag, partials,
+                                    plan.content[size_t(pos + 1)]);
       image = blendBackToFront(std::vector<const RectImage*>{&image, &front});
       unit = pos / 2;
     }
@@ -188,7 +189,8 @@ ImageRGBA8 radixKComposite(std::vector<BrickImage> mine, const VisibilityOrder& 
       if (int(m) == me) {
         received[m] = crop(image, parts[size_t(me)]);
       } else if (!intersect(plan.bound(t, group[m]), parts[size_t(me)]).empty()) {
-        received[m] = ex.receive(plan.carrier(group[m]), kRoundTag + t, partials);
+        received[m] = ex.receive(plan.carrier(group[m]), kRoundTag + t, partials,
+                                 parts[size_t(me)]);
       }
       layers.push_back(&received[m]);
     }
@@ -213,7 +215,7 @@ ImageRGBA8 radixKComposite(std::vector<BrickImage> mine, const VisibilityOrder& 
       const BrickImage part =
           plan.carrier(u) == 0 ? std::move(last) : ex.receiveEncoded(plan.carrier(u), kGatherTag);
       if (options.float_frame)
-        pastePart(decodePart(part, finals), exact);
+        pastePart(decodePart(part, finals, Rect{0, 0, width, height}), exact);
       else
         pastePart(part, frame);
     }

@@ -30,10 +30,20 @@ float fromRGBA16(const uint8_t* in) {
 }  // namespace
 
 Rect intersect(const Rect& a, const Rect& b) {
-  int x0 = std::max(a.x, b.x), y0 = std::max(a.y, b.y);
-  int x1 = std::min(a.x + a.w, b.x + b.w), y1 = std::min(a.y + a.h, b.y + b.h);
-  if (a.empty() || b.empty() || x1 <= x0 || y1 <= y0) return {};
-  return {x0, y0, x1 - x0, y1 - y0};
+  if (a.empty() || b.empty()) return {};
+  // Ends in 64 bits (x + w of a rectangle near INT_MAX overflows int); the result's corner and
+  // size are no larger than the operands', so they fit in int again.
+  long long x0 = std::max(a.x, b.x), y0 = std::max(a.y, b.y);
+  long long x1 = std::min(1LL * a.x + a.w, 1LL * b.x + b.w);
+  long long y1 = std::min(1LL * a.y + a.h, 1LL * b.y + b.h);
+  if (x1 <= x0 || y1 <= y0) return {};
+  return {int(x0), int(y0), int(x1 - x0), int(y1 - y0)};
+}
+
+bool contains(const Rect& outer, const Rect& inner) {
+  return !outer.empty() && !inner.empty() && inner.x >= outer.x && inner.y >= outer.y &&
+         1LL * inner.x + inner.w <= 1LL * outer.x + outer.w &&
+         1LL * inner.y + inner.h <= 1LL * outer.y + outer.h;
 }
 
 Rect unionOf(const Rect& a, const Rect& b) {
@@ -91,11 +101,13 @@ BrickImage encodePart(const RectImage& img, const Rect& part, int id, WireFormat
   return b;
 }
 
-RectImage decodePart(const BrickImage& b, WireFormat format) {
+RectImage decodePart(const BrickImage& b, WireFormat format, const Rect& within) {
   if (b.rect.empty()) {
     if (!b.rle.empty()) throw RleError("image part: empty rectangle with a non-empty stream");
     return {};
   }
+  if (!contains(within, b.rect))
+    throw RleError("image part: rectangle outside the region it belongs to");
   const int bytes = int(format);
   std::vector<uint8_t> px(size_t(b.rect.area()) * size_t(bytes));
   rleDecode(b.rle, size_t(b.rect.area()), px, bytes);
@@ -110,7 +122,7 @@ RectImage decodePart(const BrickImage& b, WireFormat format) {
 void pastePart(const RectImage& part, ImageF& frame) {
   const Rect& r = part.rect;
   if (r.empty()) return;
-  if (r.x < 0 || r.y < 0 || r.x + r.w > frame.width || r.y + r.h > frame.height)
+  if (!contains(Rect{0, 0, frame.width, frame.height}, r))
     throw RleError("image part: rectangle outside the frame");
   for (int y = 0; y < r.h; ++y)
     std::memcpy(&frame.px[(size_t(r.y + y) * frame.width + size_t(r.x)) * 4], part.at(r.x, r.y + y),
@@ -123,7 +135,7 @@ void pastePart(const BrickImage& b, ImageRGBA8& frame) {
     if (!b.rle.empty()) throw RleError("image part: empty rectangle with a non-empty stream");
     return;
   }
-  if (r.x < 0 || r.y < 0 || r.x + r.w > frame.width || r.y + r.h > frame.height)
+  if (!contains(Rect{0, 0, frame.width, frame.height}, r))
     throw RleError("image part: rectangle outside the frame");
   std::vector<uint8_t> px(size_t(r.area()) * 4);
   rleDecode(b.rle, size_t(r.area()), px);

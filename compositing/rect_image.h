@@ -30,6 +30,9 @@ struct RectImage {
 };
 
 Rect intersect(const Rect& a, const Rect& b);  // an empty rectangle if they do not overlap
+// Whether non-empty `inner` lies inside `outer`. In 64 bits: a rectangle from a message may hold
+// any int32, and x + w could overflow int.
+bool contains(const Rect& outer, const Rect& inner);
 Rect unionOf(const Rect& a, const Rect& b);    // bounding rectangle; empty operands are ignored
 
 // Bounding rectangle of the pixels with A > 0 inside `within` (empty if there are none).
@@ -44,8 +47,10 @@ enum class WireFormat { RGBA8 = 4, RGBA16 = 8 };  // bytes per pixel
 // id field. A transparent part gives an empty rectangle and no bytes.
 BrickImage encodePart(const RectImage& img, const Rect& part, int id, WireFormat format,
                       bool rle = true);
-// Decodes a part sent in `format`. Throws RleError if malformed.
-RectImage decodePart(const BrickImage& b, WireFormat format = WireFormat::RGBA16);
+// Decodes a part sent in `format`, which must lie inside `within` (what the receiver expects:
+// checked before allocating, so a corrupt rectangle cannot ask for gigabytes). Throws RleError if
+// malformed or outside `within`.
+RectImage decodePart(const BrickImage& b, WireFormat format, const Rect& within);
 // Decodes an RGBA8 part into `frame` (a plain copy: parts do not overlap). Throws RleError if
 // malformed or outside the frame.
 void pastePart(const BrickImage& b, ImageRGBA8& frame);

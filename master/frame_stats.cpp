@@ -2,6 +2,8 @@
 
 #include <sys/resource.h>
 
+#include <cstdio>
+
 namespace sortlast {
 
 static_assert(sizeof(RankFrameStats) % sizeof(double) == 0, "RankFrameStats must be all doubles");
@@ -22,12 +24,23 @@ double peakRssMiB() {
   return u.ru_maxrss / 1024.0;  // Linux reports KiB
 }
 
+double currentRssMiB() {
+  std::FILE* f = std::fopen("/proc/self/status", "r");
+  if (!f) return 0.0;
+  char line[256];
+  long long kib = 0;
+  while (std::fgets(line, sizeof line, f))
+    if (std::sscanf(line, "VmRSS: %lld kB", &kib) == 1) break;
+  std::fclose(f);
+  return kib / 1024.0;
+}
+
 nlohmann::json frameJson(int frame, const std::vector<RankFrameStats>& ranks, double composite_s,
                          double total_s) {
   nlohmann::json j;
   j["frame"] = frame;
   double raw = 0, rle = 0;
-  for (const char* key : {"render_s", "encode_s", "transfer_s", "peak_rss_mb", "bricks_rendered",
+  for (const char* key : {"render_s", "encode_s", "transfer_s", "peak_rss_mb", "rss_mb", "bricks_rendered",
                           "bricks_skipped", "particles_held", "particle_rounds", "bytes_sent"})
     j[key] = nlohmann::json::array();
   for (const RankFrameStats& r : ranks) {
@@ -35,6 +48,7 @@ nlohmann::json frameJson(int frame, const std::vector<RankFrameStats>& ranks, do
     j["encode_s"].push_back(r.encode_s);
     j["transfer_s"].push_back(r.transfer_s);
     j["peak_rss_mb"].push_back(r.peak_rss_mb);
+    j["rss_mb"].push_back(r.rss_mb);
     j["bricks_rendered"].push_back(int(r.bricks_rendered));
     j["bricks_skipped"].push_back(int(r.bricks_skipped));
     j["particles_held"].push_back((long long)r.particles_held);

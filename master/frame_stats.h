@@ -15,6 +15,7 @@ struct RankFrameStats {
   double bytes_raw = 0, bytes_rle = 0;  // RGBA8 bytes of the rectangles sent, before and after RLE
   double bricks_rendered = 0, bricks_skipped = 0;
   double peak_rss_mb = 0;
+  double rss_mb = 0;  // resident memory now (VmRSS), at the end of the frame: the soak tests' slope
   double particles_held = 0;   // particles this rank's bricks hold, ghosts included
   double particle_rounds = 0;  // most sample windows (rounds of passes) any of its bricks needed
   double bytes_sent = 0;       // compositing: bytes this rank sent, message headers included
@@ -25,6 +26,8 @@ std::vector<RankFrameStats> gatherStats(const RankFrameStats& mine, MPI_Comm com
 
 // Peak resident memory of this process so far, in MiB.
 double peakRssMiB();
+// Resident memory of this process now (VmRSS of /proc/self/status), in MiB; 0 if unreadable.
+double currentRssMiB();
 
 nlohmann::json frameJson(int frame, const std::vector<RankFrameStats>& ranks, double composite_s,
                          double total_s);

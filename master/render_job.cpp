@@ -78,7 +78,16 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
     std::unique_ptr<FrameReference> reference;
     if (opts.psnr)
       collectively(comm, [&] { if (rank == 0) reference = std::make_unique<FrameReference>(scene, 0); });
-    nlohmann::json stats_json = nlohmann::json::array();
+    // --stats: each frame's object goes to the file as the frame ends, so rank 0 holds none of
+    // them (a long orbit's stats would otherwise grow its memory by ~3 KiB a frame, which the soak
+    // test would read as a leak). Written to FILE.partial, renamed when the job ends well.
+    std::ofstream stats_out;
+    const std::string stats_partial = opts.stats + ".partial";
+    bool first_frame_stats = true;
+    if (rank == 0 && !opts.stats.empty()) {
+      stats_out.open(stats_partial);
+      stats_out << "{\"frames\": [\n";
+    }
     Progress progress(frames, opts.quiet);
     for (int f = 0; f < frames; ++f) {
       FrameRequest request;
@@ -102,12 +111,14 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
         if (reference)
           addAccuracy(result.stats, result.image, *reference, cameraOf(result.stats, scene.camera),
                       scene.background);
-        stats_json.push_back(std::move(result.stats));
+        if (stats_out.is_open()) {
+          stats_out << (first_frame_stats ? "" : ",\n") << result.stats.dump(1);
+          first_frame_stats = false;
+        }
         progress.frameDone(f);
       }
     }
-    if (rank == 0 && !opts.stats.empty()) {
-      std::ofstream out(opts.stats);
+    if (stats_out.is_open()) {
       nlohmann::json top{{"ranks", size},
                          {"bricks_per_axis", scene.bricks_per_axis},
                          {"width", scene.camera.width},
@@ -115,11 +126,15 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
                          {"renderer", session.rendererDescription()},
                          {"volume_method", scene.hasVolume() ? scene.volume_method : ""},
                          {"compositing", scene.strategy},
-                         {"particles", session.particleCount()},
-                         {"frames", stats_json}};
+                         {"particles", session.particleCount()}};
       top.update(session.jobStats());
-      out << top.dump(1) << "\n";
-      if (!out) std::fprintf(stderr, "sortlast: warning: could not write stats to %s\n", opts.stats.c_str());
+      // The rest of the top-level object after the frames: top's members without its '{'.
+      stats_out << "\n],\n" << top.dump(1).substr(1) << "\n";
+      stats_out.close();
+      std::error_code ec;
+      if (stats_out) std::filesystem::rename(stats_partial, opts.stats, ec);
+      if (!stats_out || ec)
+        std::fprintf(stderr, "sortlast: warning: could not write stats to %s\n", opts.stats.c_str());
     }
   } catch (const JobFailed&) {
     return 1;

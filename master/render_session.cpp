@@ -452,6 +452,7 @@ FrameResult RenderSession::render(const FrameRequest& request) {
   st.transfer_s = cs.transfer_s;
   st.bytes_sent = cs.bytes_sent;
   st.peak_rss_mb = peakRssMiB();
+  st.rss_mb = currentRssMiB();
   auto all = gatherStats(st, S.comm);
   if (rank == 0) {
     out.stats = frameJson(request.orbit_frame >= 0 ? request.orbit_frame : S.frames_rendered, all,

@@ -218,7 +218,7 @@ TEST(RectImage, PartsRoundTripThroughTheWire) {
   BrickImage part = encodePart(img, Rect{0, 0, 14, 100}, 42, WireFormat::RGBA16);
   EXPECT_EQ(part.brick_id, 42);
   EXPECT_EQ(part.rect, (Rect{12, 21, 2, 2}));  // only the active rectangle travels
-  RectImage back = decodePart(unpackBrickImage(packBrickImage(part)));
+  RectImage back = decodePart(unpackBrickImage(packBrickImage(part)), WireFormat::RGBA16, img.rect);
   ASSERT_EQ(back.rect, part.rect);
   for (int y = 21; y <= 22; ++y)
     for (int x = 12; x <= 13; ++x)
@@ -228,7 +228,7 @@ TEST(RectImage, PartsRoundTripThroughTheWire) {
   BrickImage none = encodePart(img, Rect{0, 0, 12, 100}, 1, WireFormat::RGBA16);  // transparent
   EXPECT_TRUE(none.rect.empty());
   EXPECT_TRUE(none.rle.empty());
-  EXPECT_TRUE(decodePart(none).rect.empty());
+  EXPECT_TRUE(decodePart(none, WireFormat::RGBA16, img.rect).rect.empty());
 
   ImageRGBA8 frame(30, 30);
   pastePart(encodePart(img, img.rect, 0, WireFormat::RGBA8), frame);

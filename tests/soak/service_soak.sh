@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Soak test of the service (issue 15): `sortlast serve` on 2 ranks answers REQUESTS mixed requests
+# (small frames with new cameras and transfer functions, bad requests, clients that disconnect;
+# service_soak.py) and the resident memory of every rank, sampled at each good frame, must not grow
+# after the warm-up: least-squares slope over requests WARMUP.. below BOUND_KIB per request.
+# Usage: service_soak.sh SORTLAST [REQUESTS] [WARMUP] [BOUND_KIB]
+source "$(dirname "$0")/../service/service_lib.sh" "$1"
+requests=${2:-2000} warmup=${3:-200} bound=${4:-2}
+here=$(cd "$(dirname "$0")" && pwd)
+start_server 2 --set "volume.dims=[32,32,32]" --set bricks.per_axis=2
+start=$(date +%s.%N)
+python3 "$here/service_soak.py" "$BASE" "$requests" "$WORK/samples.json" ||
+  { tail -20 "$SERVER_LOG"; fail "the service stopped answering as expected"; }
+[ -z "${SOAK_KEEP:-}" ] || cp "$WORK/samples.json" "$SOAK_KEEP"
+python3 "$here/rss_slope.py" "$WORK/samples.json" "$warmup" "$bound" "service soak" ||
+  fail "the service's resident memory grows with requests"
+echo "service soak: $requests requests in $(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN{printf "%.1f", b-a}') s"
+stop_server || fail "the service did not stop on SIGTERM"
