@@ -1,5 +1,7 @@
 #include "master/http_common.h"
 
+#include <algorithm>
+
 #include <vector>
 
 namespace sortlast::front {
@@ -28,12 +30,46 @@ void ServerState::closeAll() {
   for (auto& c : open) c->close();
 }
 
+ReplySlot::ReplySlot(std::shared_ptr<ReplyGate> g, net::any_io_executor e) : gate(std::move(g)), exec(std::move(e)) {}
+
+ReplySlot::~ReplySlot() {
+  std::lock_guard lock(gate->mu);
+  exec.reset();
+}
+
+void ReplyGate::shut() {
+  std::vector<std::shared_ptr<ReplySlot>> live;  // released after the lock: their destructors lock it
+  {
+    std::lock_guard lock(mu);
+    open = false;
+    for (auto& w : slots)
+      if (auto slot = w.lock()) {
+        slot->exec.reset();
+        live.push_back(std::move(slot));
+      }
+    slots.clear();
+  }
+}
+
 std::function<void(ServiceReply)> ServerState::replyOn(
     net::any_io_executor exec, std::function<void(ServiceReply)> deliver) const {
-  return [gate = gate, exec = std::move(exec), deliver = std::move(deliver)](ServiceReply r) {
+  auto slot = std::make_shared<ReplySlot>(gate, std::move(exec));
+  {
     std::lock_guard lock(gate->mu);
-    if (!gate->open) return;
-    net::post(exec, [deliver, r = std::move(r)]() mutable { deliver(std::move(r)); });
+    if (!gate->open) {
+      slot->exec.reset();
+    } else {
+      gate->slots.push_back(slot);
+      if (gate->slots.size() >= gate->prune_at) {  // one slot per request: drop the finished ones
+        std::erase_if(gate->slots, [](const std::weak_ptr<ReplySlot>& w) { return w.expired(); });
+        gate->prune_at = std::max<size_t>(64, 2 * gate->slots.size());
+      }
+    }
+  }
+  return [slot = std::move(slot), deliver = std::move(deliver)](ServiceReply r) {
+    std::lock_guard lock(slot->gate->mu);
+    if (!slot->gate->open || !slot->exec) return;
+    net::post(*slot->exec, [deliver, r = std::move(r)]() mutable { deliver(std::move(r)); });
   };
 }
 

@@ -11,6 +11,7 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <vector>
 // Boost 1.74's asio/awaitable.hpp uses std::exchange without including <utility> (C++20 builds).
 #include <utility>
 
@@ -37,11 +38,26 @@ class Connection {
   virtual void close() = 0;  // any thread: posts the close to the connection's strand
 };
 
-// Reply callbacks live in the queue and may run after the server (and its io_context) is gone.
-// They post only while the gate is open; stop() shuts it after the threads are joined.
+// Reply callbacks live in the queue and may run, or be destroyed, after the server (and its
+// io_context) is gone. They post only while the gate is open; stop() shuts it after the threads
+// are joined. A callback must not hold its connection's executor itself: a strand's executor
+// refers to the io_context's strand service, so destroying it after the io_context is a use
+// after free (ASan found it in Server.StopReturnsQuicklyWithConnectionsOpen). The executor
+// lives in a slot the gate knows, and shut() empties every live slot while the io_context is
+// still there.
+struct ReplyGate;
+struct ReplySlot {
+  explicit ReplySlot(std::shared_ptr<ReplyGate> g, net::any_io_executor e);
+  ~ReplySlot();  // empties `exec` under the gate's lock (never alongside shut())
+  const std::shared_ptr<ReplyGate> gate;
+  std::optional<net::any_io_executor> exec;  // guarded by gate->mu
+};
 struct ReplyGate {
   std::mutex mu;
   bool open = true;
+  std::vector<std::weak_ptr<ReplySlot>> slots;  // the live callbacks' slots (pruned as it grows)
+  size_t prune_at = 64;
+  void shut();  // closes the gate and drops every live slot's executor
 };
 
 struct ServerState {

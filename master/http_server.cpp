@@ -129,8 +129,7 @@ void HttpServer::stop() {
   m.ioc.stop();
   for (auto& t : m.threads) t.join();
   m.threads.clear();
-  std::lock_guard lock(m.state->gate->mu);
-  m.state->gate->open = false;
+  m.state->gate->shut();  // before the io_context goes: no reply callback holds its strands after this
 }
 
 }  // namespace sortlast
