@@ -488,11 +488,12 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
   if (!s.volume_files.empty()) vol.file = s.volume_files[size_t(s.time_step)];
   if (!s.particle_files.empty()) s.particles.file = s.particle_files[size_t(s.time_step)];
   s.glow = readGlow(r);
-  if (!s.hasVolume() && !s.particles.enabled() && !s.glow.enabled())
+  s.surfaces = parseSurfaces(r.get("surfaces"), base_dir);
+  if (!s.hasVolume() && !s.particles.enabled() && !s.glow.enabled() && s.surfaces.empty())
     throw InputError("the scene has nothing to render: volume.procedural is none with no "
                      "volume.file, neither particles.file nor particles.procedural is set, and "
-                     "glow.emitters is empty");
-  if (!s.hasVolume() && !s.particles.enabled() && !s.glow.box)
+                     "glow.emitters and surfaces are empty");
+  if (!s.hasVolume() && !s.particles.enabled() && s.surfaces.empty() && !s.glow.box)
     throw InputError("scene key 'glow.box': a scene of glow emitters alone must set the box the "
                      "glow is integrated in (auto takes the volume's and particles' bounds, and "
                      "there are none)");

@@ -10,6 +10,7 @@
 #include "common/glow_scene.h"
 #include "common/particles.h"
 #include "common/shading.h"
+#include "common/surface_scene.h"
 #include "common/transfer_function.h"
 #include "common/volume_source.h"
 
@@ -48,6 +49,7 @@ struct Scene {
   VolumeDesc volume;           // none when volume.procedural is `none` and there is no file
   ParticleDesc particles;
   GlowSpec glow;               // glow.* (emitters: none unless given)
+  std::vector<SurfaceSpec> surfaces;  // surfaces (subdivision surfaces; none unless given)
   TransferSpec transfer;
   Camera camera;               // with image width and height
   bool camera_auto = true;     // position derived from the bounds (camera.position: auto)

@@ -314,6 +314,21 @@ const std::vector<SceneKey>& sceneKeys() {
        "`[[x0, y0, z0], [x1, y1, z1]]`: the box the glow is integrated in (the field's integral "
        "along an unbounded ray diverges like log length). `auto`: the scene's bounds (volume and "
        "particles); a scene of emitters alone must set it."},
+      {"surfaces", "[]",
+       "Catmull-Clark subdivision surfaces drawn exactly (docs/subdivision.md), opaque, composited "
+       "with the volume and particles: a list of maps. Each has exactly one of `file` (an OBJ "
+       "file, relative to the scene file; faces of any size; closed manifold meshes only: "
+       "boundaries, creases and corner tags are refused) and `procedural` (`cube`, `torus`, "
+       "`pole<N>` for N = 3 ... 32, `prism<N>`, `octahedron`), and optionally: `color` [r, g, b] in "
+       "[0, 1] (default [0.8, 0.8, 0.85]); `transform`, either `{scale: s | [sx, sy, sz], rotate: "
+       "[x, y, z] (degrees, about x then y then z), translate: [x, y, z]}` applied scale, rotate, "
+       "translate, or a 4 x 4 matrix (4 rows, last 0 0 0 1); `level` 1 ... 3 (default 2): how often "
+       "the control mesh is subdivided for the rasterised coarse mesh, which decides coverage at "
+       "silhouettes; `shading` `headlight` (default) or `reflection_lines` with `stripes` (default "
+       "12), `stripe_width` in (0, 1) (default 0.3) and `stripe_direction` [x, y, z] (the striped "
+       "light's normal, default [0, 1, 0]); `newton_steps` 0 ... 8 (default 3) per fragment onto "
+       "its pixel's ray. Every mesh is read and checked when the scene is read: a bad one is an "
+       "error naming `surfaces[i]`."},
       {"reference.step", "0.0625",
        "Step of the CPU reference integrator, in units of the smallest voxel spacing."},
       {"reference.field", "original",

@@ -68,9 +68,26 @@ void BrickRenderer::enableParticles(const MetaballSettings& settings) {
     metaballs_ = std::make_unique<MetaballRenderer>(*ctx_, width_, height_, settings);
 }
 
+void BrickRenderer::enableSurfaces(const std::vector<SurfaceSpec>& surfaces) {
+  if (surfaces.empty() || (subdiv_ && surface_count_ == surfaces.size())) return;
+  subdiv_ = std::make_unique<SubdivRenderer>(*ctx_, width_, height_);
+  for (const SurfaceSpec& s : surfaces) subdiv_->addSurface(SubdivSurface(*s.mesh), s.level, s.shading);
+  surface_count_ = surfaces.size();
+  surface_bounds_ = surfacesBounds(surfaces);
+}
+
+int BrickRenderer::addHandles(Handles h, const Box3& clip) {
+  h.clip = clip;
+  h.surfaces = subdiv_ && glm::all(glm::lessThanEqual(glm::max(clip.lo, surface_bounds_.lo),
+                                                        glm::min(clip.hi, surface_bounds_.hi)));
+  bricks_.push_back(h);
+  return int(bricks_.size()) - 1;
+}
+
 void BrickRenderer::setImageSize(int width, int height) {
   width_ = width;
   height_ = height;
+  if (subdiv_) subdiv_->resize(width, height);
   std::visit([&](auto& r) { if (r) r->resize(width, height); }, volume_);
   if (metaballs_) metaballs_->resize(width, height);
 }
@@ -117,8 +134,7 @@ int BrickRenderer::addBrick(const Brick* volume_brick, const GridGeometry* grid,
     std::visit([&](auto& r) { if (r) h.volume = r->addBrick(*volume_brick, *grid, *samples); }, volume_);
   }
   if (particles && metaballs_) h.particles = metaballs_->addBrick(particle_clip, *particles);
-  bricks_.push_back(h);
-  return int(bricks_.size()) - 1;
+  return addHandles(h, particle_clip);
 }
 
 int BrickRenderer::addBrick(const Brick& volume_brick, const GridGeometry& grid,
@@ -127,15 +143,30 @@ int BrickRenderer::addBrick(const Brick& volume_brick, const GridGeometry& grid,
   Handles h;
   std::visit([&](auto& r) { if (r) h.volume = r->addBrick(volume_brick, grid, samples); }, volume_);
   if (particles && metaballs_) h.particles = metaballs_->addBrick(particle_clip, *particles);
-  bricks_.push_back(h);
-  return int(bricks_.size()) - 1;
+  return addHandles(h, particle_clip);
 }
 
 int BrickRenderer::addParticleBrick(const Box3& particle_clip, const std::vector<glm::vec3>& particles) {
   Handles h;
   if (metaballs_) h.particles = metaballs_->addBrick(particle_clip, particles);
-  bricks_.push_back(h);
-  return int(bricks_.size()) - 1;
+  return addHandles(h, particle_clip);
+}
+
+SurfaceLayer BrickRenderer::mergeSurfaceLayers(const Handles& h, const Camera& cam, double near_plane,
+                                               double far_plane, const Rect& particles) {
+  SurfaceLayer under;
+  if (!particles.empty()) under = {metaballs_->colourTexture(), metaballs_->surfaceTexture(), particles};
+  if (!h.surfaces) return under;
+  // Where this brick's part of the surfaces can show: the limit surface lies in the control
+  // points' bounds. A pixel whose Newton steps stop short of its ray (within the coarse mesh's
+  // deviation of a silhouette) may show a limit point just outside that projection: 2 pixels more.
+  const Box3 part{glm::max(h.clip.lo, surface_bounds_.lo), glm::min(h.clip.hi, surface_bounds_.hi)};
+  Rect r = screenRectOf(cam, part);
+  if (r.empty()) return under;
+  const int x0 = std::max(0, r.x - 2), y0 = std::max(0, r.y - 2);
+  r = {x0, y0, std::min(cam.width, r.x + r.w + 2) - x0, std::min(cam.height, r.y + r.h + 2) - y0};
+  subdiv_->draw(cam, h.clip, near_plane, far_plane, particles.empty() ? nullptr : &under);
+  return {subdiv_->colourTexture(), subdiv_->surfaceTexture(), particles.empty() ? r : unite(r, particles)};
 }
 
 BrickFrame BrickRenderer::render(int handle, const Camera& cam, double slice_spacing,
@@ -148,21 +179,27 @@ BrickFrame BrickRenderer::render(int handle, const Camera& cam, double slice_spa
     out.particle_rounds = surface.rounds;
     out.surface = std::move(surface.surface);
   }
+  // The opaque layer: the particles' alone, or merged with the subdivision surfaces'.
+  const SurfaceLayer layer = mergeSurfaceLayers(h, cam, near_plane, far_plane, surface.rect);
+  const bool merged = h.surfaces && !layer.rect.empty();
+  if (merged) {
+    // What the particle renderer read back is superseded by the merged targets.
+    surface.rect = layer.rect;
+    out.surface.clear();
+    subdiv_->read(layer.rect, h.volume < 0 ? &surface.pixels : nullptr, want_surface ? &out.surface : nullptr);
+  }
   if (h.volume < 0) {
     out.rect = surface.rect;
     out.pixels = std::move(surface.pixels);
     return out;
   }
-  SurfaceLayer layer;
-  if (!surface.rect.empty())
-    layer = {metaballs_->colourTexture(), metaballs_->surfaceTexture(), surface.rect};
   RenderedBrick rb = std::visit(
       [&](auto& r) {
         return r->render(h.volume, cam, slice_spacing, near_plane, far_plane,
                          surface.rect.empty() ? nullptr : &layer);
       },
       volume_);
-  // The surface floats cover the particle rectangle; re-cut them to the brick image's rectangle.
+  // The surface floats cover the layer's rectangle; re-cut them to the brick image's rectangle.
   if (!out.surface.empty() && !(rb.rect == surface.rect)) {
     std::vector<float> cut(size_t(rb.rect.area()) * 4, 0.0f);
     for (size_t i = 0; i < cut.size(); i += 4) cut[i] = 1e30f;

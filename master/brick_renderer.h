@@ -3,6 +3,9 @@
 // casting, as the scene chooses) and the particle part (metaball ray caster, either method) of a brick become one premultiplied brick image. In a brick
 // holding both, the particle surface is drawn first and ends the volume's rays, so the image is
 // correctly ordered inside the brick; between bricks the compositor's visibility order does it.
+// Subdivision surfaces (worker/subdiv_renderer.h) are a third part: each brick draws the
+// fragments whose exact limit points it holds, merged by depth with the particle surface into one
+// opaque layer (mergeSurfaceLayers) that ends the volume's rays.
 #include <mpi.h>
 
 #include <memory>
@@ -13,6 +16,7 @@
 #include "common/adaptive_brick.h"
 #include "common/brick.h"
 #include "common/particles.h"
+#include "common/surface_scene.h"
 #include "common/transfer_function.h"
 #include "worker/gl_context.h"
 #include "worker/metaball_grid_renderer.h"
@@ -20,6 +24,7 @@
 #include "worker/metaball_slices_renderer.h"
 #include "worker/raycast_renderer.h"
 #include "worker/slicing_renderer.h"
+#include "worker/subdiv_renderer.h"
 
 namespace sortlast {
 
@@ -37,7 +42,7 @@ VolumeMethod volumeMethod(const Scene& scene);
 struct BrickFrame {
   Rect rect;
   ImageRGBA8 pixels;
-  std::vector<float> surface;  // (t, nx, ny, nz) per pixel of rect, when asked for and there are particles
+  std::vector<float> surface;  // (t, nx, ny, nz) per pixel of rect, when asked for and there are particles or surfaces
   int particle_rounds = 0;
 };
 
@@ -49,6 +54,10 @@ class BrickRenderer {
   void enableVolume(const TransferFunction& tf, int table_size, int block_cells,
                     const VolumeMethod& method = {}, bool preintegrated = false);
   void enableParticles(const MetaballSettings& settings);
+  // The scene's subdivision surfaces, drawn in every brick added after this call (each brick
+  // clips them to its box). Kept by reset(): a session's surfaces do not change (`surfaces` is
+  // not a frame key), so a second call with the same list does nothing.
+  void enableSurfaces(const std::vector<SurfaceSpec>& surfaces);
 
   // A brick: its volume samples (stored box; null: no volume) and its particles with ghosts
   // (null: no particles), clipped to `particle_clip`. With `adaptive` (ray casting only) the
@@ -68,7 +77,7 @@ class BrickRenderer {
   void shareBlockRanges(const GridGeometry& grid, MPI_Comm comm);
   // Drops the renderers and every brick (their GL objects), keeping the GL context: the session
   // then enables and adds bricks anew (a new time step, another volume renderer, another h).
-  void reset();
+  void reset();  // (the surfaces stay)
 
   // The same with the volume's samples from any source (in situ: the simulation's arrays).
   int addBrick(const Brick& volume_brick, const GridGeometry& grid, const BrickSamples& samples,
@@ -82,12 +91,23 @@ class BrickRenderer {
  private:
   struct Handles {
     int volume = -1, particles = -1;
+    bool surfaces = false;  // the subdivision surfaces' bounds meet the brick's box
+    Box3 clip;              // the brick's box
   };
+  int addHandles(Handles h, const Box3& clip);
+  // This brick's subdivision surfaces, merged by depth with the particle layer `particles` (empty
+  // rect: none), into the subdivision renderer's targets; returns the merged layer (empty rect:
+  // neither shows in this brick).
+  SurfaceLayer mergeSurfaceLayers(const Handles& h, const Camera& cam, double near_plane, double far_plane,
+                                  const Rect& particles);
   std::unique_ptr<GlContext> ctx_;
   int width_, height_;
   // The volume renderer; a null slicing renderer until enableVolume().
   std::variant<std::unique_ptr<SlicingRenderer>, std::unique_ptr<RaycastRenderer>> volume_;
   std::unique_ptr<ParticleRenderer> metaballs_;  // particles.method: billboards or grid
+  std::unique_ptr<SubdivRenderer> subdiv_;       // the scene's surfaces; null: none
+  size_t surface_count_ = 0;
+  Box3 surface_bounds_;
   std::vector<Handles> bricks_;
 };
 

@@ -44,6 +44,45 @@ long long countPixelsOver(const ImageRGBA8& a, const ImageRGBA8& b, int toleranc
   return n;
 }
 
+std::vector<uint8_t> silhouetteBand(const SurfaceImage& s, int radius, double depth_jump) {
+  const int W = s.width, H = s.height;
+  std::vector<uint8_t> edge(size_t(W) * H, 0), band(size_t(W) * H, 0);
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      const size_t i = size_t(y) * W + x;
+      const int nx[4] = {x - 1, x + 1, x, x}, ny[4] = {y, y, y - 1, y + 1};
+      for (int k = 0; k < 4; ++k) {
+        if (nx[k] < 0 || ny[k] < 0 || nx[k] >= W || ny[k] >= H) continue;
+        const size_t j = size_t(ny[k]) * W + nx[k];
+        if (s.hit(i) != s.hit(j) ||
+            (s.hit(i) && std::abs(double(s.t[i]) - s.t[j]) > depth_jump * std::min(s.t[i], s.t[j])))
+          edge[i] = 1;
+      }
+    }
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      if (!edge[size_t(y) * W + x]) continue;
+      for (int dy = -radius; dy <= radius; ++dy)
+        for (int dx = -radius; dx <= radius; ++dx) {
+          const int u = x + dx, v = y + dy;
+          if (u >= 0 && v >= 0 && u < W && v < H) band[size_t(v) * W + u] = 1;
+        }
+    }
+  return band;
+}
+
+long long maskPixels(ImageRGBA8& a, const ImageRGBA8& b, const std::vector<uint8_t>& mask) {
+  if (a.px.size() != b.px.size() || mask.size() * 4 != a.px.size())
+    throw InputError("compare: the mask's surface image is not the images' size");
+  long long n = 0;
+  for (size_t i = 0; i < mask.size(); ++i)
+    if (mask[i]) {
+      std::copy_n(&b.px[4 * i], 4, &a.px[4 * i]);
+      ++n;
+    }
+  return n;
+}
+
 ImageRGBA8 differenceImage(const ImageRGBA8& a, const ImageRGBA8& b, int gain) {
   ImageRGBA8 out(a.width, a.height);
   for (size_t i = 0; i < out.px.size(); i += 4) {

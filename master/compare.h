@@ -5,6 +5,7 @@
 #include <string>
 
 #include "common/image.h"
+#include "common/surface_image.h"
 
 namespace sortlast {
 
@@ -18,6 +19,14 @@ struct ImageDifference {
 ImageDifference compareImages(const ImageRGBA8& a, const ImageRGBA8& b);  // throws on size mismatch
 // Pixels where some channel differs by more than `tolerance`.
 long long countPixelsOver(const ImageRGBA8& a, const ImageRGBA8& b, int tolerance);
+// Per pixel 1 within `radius` pixels (Chebyshev) of a silhouette of `s`: a pixel whose hit or miss
+// differs from a 4-neighbour's, or whose depth differs from a hit 4-neighbour's by more than
+// `depth_jump` of the nearer (one surface in front of another). Colour comparisons of surfaces
+// leave these out where the two renderers' coverage is known to differ (docs/subdivision.md).
+std::vector<uint8_t> silhouetteBand(const SurfaceImage& s, int radius, double depth_jump = 0.05);
+// `a` takes `b`'s values where `mask` is set, so compareImages and countPixelsOver see no
+// difference there (PSNR then counts those pixels as equal). Returns the pixels masked.
+long long maskPixels(ImageRGBA8& a, const ImageRGBA8& b, const std::vector<uint8_t>& mask);
 ImageRGBA8 differenceImage(const ImageRGBA8& a, const ImageRGBA8& b, int gain);
 // A premultiplied image composited over `background` and rounded, opaque: what a PNG written by
 // writeImage holds, so in-process comparisons agree with comparing the written files.

@@ -83,6 +83,11 @@ FrameReference::FrameReference(Scene scene, int threads)
     bounds_ = {glm::min(bounds_.lo, v.lo), glm::max(bounds_.hi, v.hi)};
     volume_ = std::move(in);
   }
+  if (!scene.surfaces.empty()) {
+    subdiv_.emplace(scene.surfaces);
+    const Box3 s = surfacesDomain(scene.surfaces);  // as the render session's layout takes it
+    bounds_ = {glm::min(bounds_.lo, s.lo), glm::max(bounds_.hi, s.hi)};
+  }
   glow_ = scene.glow;
   if (glow_.enabled()) {
     // The scene refuses emitters alone without a box, so one of the two exists.
@@ -91,29 +96,44 @@ FrameReference::FrameReference(Scene scene, int threads)
   }
 }
 
-ImageF FrameReference::render(const Camera& cam, SurfaceImage* surface_out, int frame) const {
+ImageF FrameReference::render(const Camera& cam, SurfaceImage* surface_out, int frame,
+                              SurfaceReferenceStats* surface_stats) const {
   if (volume_ && volume_->vol.grid.worldBox().contains(cam.position))
     throw InputError("camera.position is inside the volume; move the camera outside it");
   std::optional<GlowRays> glow;
   if (glow_.enabled()) glow.emplace(glow_, glow_box_, frame);
   const GlowRays* g = glow ? &*glow : nullptr;
   ImageF out(cam.width, cam.height);
-  if (!balls_) {
+  // The opaque layer: metaballs and subdivision surfaces, the nearer per pixel.
+  std::optional<SurfaceImage> surface;
+  ImageF colour;
+  if (balls_) {
+    surface = referenceSurface(*balls_, cam, bounds_, threads_);
+    colour = shadeSurfaceFloat(*surface, cam, colour_);
+  }
+  if (subdiv_) {
+    SurfaceImage s;
+    ImageF c;
+    subdiv_->render(cam, threads_, s, c, surface_stats);
+    if (surface)
+      mergeNearest(*surface, colour, s, c);
+    else
+      surface = std::move(s), colour = std::move(c);
+  }
+  if (!surface) {
     if (volume_)
       out = renderReference(volume_->vol, volume_->tf, cam, volume_->step, threads_, volume_->shading, g);
     else if (g)
       addGlowOnly(out, cam, *g, nullptr);
   } else {
-    SurfaceImage surface = referenceSurface(*balls_, cam, bounds_, threads_);
-    ImageF colour = shadeSurfaceFloat(surface, cam, colour_);
     if (volume_) {
-      out = renderReference(volume_->vol, volume_->tf, cam, volume_->step, threads_, surface, colour,
+      out = renderReference(volume_->vol, volume_->tf, cam, volume_->step, threads_, *surface, colour,
                             volume_->shading, g);
     } else {
       out = std::move(colour);
-      if (g) addGlowOnly(out, cam, *g, &surface);
+      if (g) addGlowOnly(out, cam, *g, &*surface);
     }
-    if (surface_out) *surface_out = std::move(surface);
+    if (surface_out) *surface_out = std::move(*surface);
   }
   if (g) applyToneMap(out, glow_);
   return out;

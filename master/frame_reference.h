@@ -8,6 +8,8 @@
 // clipped to the particles' bounds grown by h. Both: the volume integrated up to the surface, the
 // surface composited behind it. Glow emitters: their light along each ray inside the glow box, in
 // front of the volume, inside it (dimmed step by step) and behind it, up to the surface.
+// Subdivision surfaces (master/surface_reference.h): an opaque layer merged by depth with the
+// metaball surface; the volume and glow end at the nearer of the two.
 #include <optional>
 
 #include "common/box.h"
@@ -17,6 +19,7 @@
 #include "common/surface_image.h"
 #include "master/metaball_reference.h"
 #include "master/reference.h"
+#include "master/surface_reference.h"
 
 namespace sortlast {
 
@@ -32,11 +35,14 @@ class FrameReference {
   bool hasParticles() const { return balls_.has_value(); }
 
   bool hasGlow() const { return glow_.enabled(); }
+  bool hasSurfaces() const { return subdiv_.has_value(); }
 
-  // One view, premultiplied. `surface` (scenes with particles): also the surface image. `frame`:
+  // One view, premultiplied. `surface` (scenes with particles or surfaces): also the surface image.
+  // `surface_stats`: the subdivision reference's error figures of this view. `frame`:
   // the orbit frame, for the emitters' animation. With emitters, their glow is added
   // (master/reference.h) and the result tone-mapped (glow.tone_map): the final frame.
-  ImageF render(const Camera& cam, SurfaceImage* surface = nullptr, int frame = 0) const;
+  ImageF render(const Camera& cam, SurfaceImage* surface = nullptr, int frame = 0,
+               SurfaceReferenceStats* surface_stats = nullptr) const;
 
  private:
   struct VolumeInput {
@@ -47,6 +53,7 @@ class FrameReference {
   };
   std::optional<VolumeInput> volume_;
   std::optional<MetaballModel> balls_;
+  std::optional<SurfaceReference> subdiv_;
   glm::dvec3 colour_{1.0};
   GlowSpec glow_;
   Box3 glow_box_;  // glow.box, or the volume's and particles' bounds

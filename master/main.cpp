@@ -33,9 +33,21 @@ void addSceneOptions(CLI::App* cmd, RenderOptions& o) {
 }
 
 int runCompare(const std::string& a, const std::string& b, int max_diff, long long allow_pixels,
-               double min_psnr, const std::string& diff_out) {
+               double min_psnr, const std::string& diff_out, const std::vector<std::string>& masks,
+               int mask_radius) {
   try {
     ImageRGBA8 ia = readImageRGBA8(a), ib = readImageRGBA8(b);
+    if (!masks.empty()) {
+      long long masked = 0;
+      std::vector<uint8_t> band(size_t(ia.width) * ia.height, 0);
+      for (const std::string& m : masks) {
+        std::vector<uint8_t> one = silhouetteBand(readSurfaceImage(m), mask_radius);
+        if (one.size() != band.size()) throw InputError("compare: " + m + " is not the images' size");
+        for (size_t i = 0; i < band.size(); ++i) band[i] |= one[i];
+      }
+      masked = maskPixels(ia, ib, band);
+      std::printf("silhouette_pixels_left_out=%lld\n", masked);
+    }
     ImageDifference d = compareImages(ia, ib);
     std::printf("psnr_db=%.3f max_diff=%d worst_pixel=(%d,%d) mean_abs=%.4f\n", d.psnr_db,
                 d.max_diff, d.worst_x, d.worst_y, d.mean_abs);
@@ -194,6 +206,12 @@ int main(int argc, char** argv) {
   compare->add_option("--allow-pixels", allow_pixels, "How many pixels may exceed --max-diff (default 0)");
   compare->add_option("--min-psnr", min_psnr, "Fail if PSNR is lower (dB)");
   compare->add_option("--diff", diff_out, "Write a difference image (x16)");
+  std::vector<std::string> compare_masks;
+  int mask_radius = 2;
+  compare->add_option("--mask-silhouettes", compare_masks,
+                      "Leave out pixels near the silhouettes of this surface image (.exr; may be given "
+                      "more than once)");
+  compare->add_option("--mask-radius", mask_radius, "Pixels around a silhouette left out (default 2)");
 
   std::string surf_ref, surf_test;
   SurfaceBounds surf_bounds;
@@ -252,7 +270,7 @@ int main(int argc, char** argv) {
     std::fputs(sceneKeysMarkdown().c_str(), stdout);
     return 0;
   }
-  if (*compare) return runCompare(img_a, img_b, max_diff, allow_pixels, min_psnr, diff_out);
+  if (*compare) return runCompare(img_a, img_b, max_diff, allow_pixels, min_psnr, diff_out, compare_masks, mask_radius);
   if (*compare_surface) return runCompareSurface(surf_ref, surf_test, surf_bounds);
   if (*roughness) {
     if (rough_region.size() == 4)

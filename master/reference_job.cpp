@@ -31,15 +31,22 @@ int runReferenceJob(const RenderOptions& opts, int threads, const std::string& s
   try {
     Scene scene = loadScene(opts.scene, opts.overrides);
     FrameReference reference(scene, threads);
-    if (!surface_out.empty() && !reference.hasParticles())
+    if (!surface_out.empty() && !reference.hasParticles() && !reference.hasSurfaces())
       throw InputError(
-          "--surface-out: the scene has no particles, so there is no surface to write");
+          "--surface-out: the scene has neither particles nor surfaces, so there is no surface to write");
     auto cams = firstFrames(scene.frameCameras(reference.bounds()), opts.max_frames);
     int n = int(cams.size());
     Progress progress(n, opts.quiet);
     for (int f = 0; f < n; ++f) {
       SurfaceImage surface;
-      ImageF frame = reference.render(cams[f], &surface, f);
+      SurfaceReferenceStats stats;
+      ImageF frame = reference.render(cams[f], &surface, f, &stats);
+      // The subdivision reference's own error: how far its limit points lie from their rays.
+      if (reference.hasSurfaces() && !opts.quiet)
+        std::fprintf(stderr,
+                     "sortlast reference: frame %d: %lld surface pixels, limit points within %.3g of "
+                     "their rays (world units), %lld stopped at a face edge\n",
+                     f, stats.hits, stats.worst_residual, stats.stopped_at_edge);
       if (!surface_out.empty()) writeSurfaceImage(frameFileName(surface_out, f, n), surface);
       std::string out = frameFileName(opts.output, f, n);
       // Particles alone are rounded like the GL frame before they are written.

@@ -103,7 +103,7 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
           writeImage(file, result.image_f, scene.background);
         else
           writeImage(file, result.image, scene.background);
-        if (request.surface && scene.particles.enabled())
+        if (request.surface && (scene.particles.enabled() || !scene.surfaces.empty()))
           writeSurfaceImage(frameFileName(opts.surface_out, f, frames), result.surface);
       });
       if (rank == 0) {

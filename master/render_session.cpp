@@ -318,6 +318,7 @@ void RenderSession::State::uploadBricks(const Scene& scene, StepData& d) {
     renderer->enableVolume(scene.transfer.build(d.data_min, d.data_max, layout.grid.minSpacing()),
                            scene.transfer.table_size, scene.block_cells, volumeMethod(scene));
   if (has_particles) renderer->enableParticles(metaballSettings(scene.particles));
+  renderer->enableSurfaces(scene.surfaces);
   for (size_t i = 0; i < layout.mine.size(); ++i) {
     const int id = layout.mine[i];
     Box3 clip = brickBox(layout.planes, cellOf(id));
@@ -345,6 +346,7 @@ void RenderSession::State::bringGpuTo(const Scene& scene) {
         renderer->enableVolume(scene.transfer.build(lo, hi, layout.grid.minSpacing()), scene.transfer.table_size,
                                scene.block_cells, volumeMethod(scene));
       if (has_particles) renderer->enableParticles(metaballSettings(scene.particles));
+      renderer->enableSurfaces(scene.surfaces);
       ext->add_bricks(*renderer, scene, handles, particles_held);
     });
     if (scene.hasVolume()) renderer->shareBlockRanges(layout.grid, comm);
@@ -381,7 +383,7 @@ FrameResult RenderSession::render(const FrameRequest& request) {
   const auto [data_min, data_max] = S.dataRange();
   const Camera cam = sc.frameCameras(S.layout.bounds)[size_t(std::max(0, request.orbit_frame))];
   const bool has_particles = sc.particles.enabled();
-  const bool want_surface = has_particles && request.surface;
+  const bool want_surface = (has_particles || !sc.surfaces.empty()) && request.surface;
   // What changes in place: image size, transfer function, renderer settings, compositor.
   collectively(S.comm, [&] {
     S.renderer->setImageSize(cam.width, cam.height);

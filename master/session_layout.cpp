@@ -19,6 +19,10 @@ SessionLayout makeLayout(const Scene& scene, const Box3& particle_centres, int r
   L.particle_h = scene.particles.enabled() ? scene.particles.reach() : 0.0;
   L.particle_domain = isEmpty(particle_centres) ? Box3{glm::dvec3(1), glm::dvec3(-1)}
                                                 : grow(particle_centres, L.particle_h);
+  // Subdivision surfaces join the particles' domain (common/surface_scene.h: surfacesDomain).
+  const Box3 surfaces = surfacesDomain(scene.surfaces);
+  if (!isEmpty(surfaces))
+    L.particle_domain = isEmpty(L.particle_domain) ? surfaces : unite(L.particle_domain, surfaces);
   if (scene.hasVolume()) {
     L.planes = volumeBrickPlanes(L.volume_bricks, d);
     L.bounds = scene.volume.grid.worldBox();

@@ -30,6 +30,7 @@ using PfnDrawArrays = void(APIENTRYP)(GLenum, GLint, GLsizei);
   X(ClearColor, PFNGLCLEARCOLORPROC)                            \
   X(Clear, PFNGLCLEARPROC)                                      \
   X(Finish, PFNGLFINISHPROC)                                    \
+  X(FrontFace, PFNGLFRONTFACEPROC)                              \
   X(PixelStorei, PFNGLPIXELSTOREIPROC)                          \
   X(ReadPixels, PFNGLREADPIXELSPROC)                            \
   X(GenTextures, PfnGenTextures)                          \

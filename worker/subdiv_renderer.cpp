@@ -37,6 +37,10 @@ uniform mat4 view_projection;
 uniform vec3 eye, clip_lo, clip_hi, colour, centre, light_dir, stripe_axis;
 uniform float size, stripe_width;
 uniform int stripes, reflection_lines, newton_steps;
+// Another opaque layer already drawn in this brick (metaballs): nearer fragments of it win.
+uniform sampler2D under_surface;
+uniform int has_under;
+uniform ivec4 under_rect;  // x, y, w, h where under_surface is valid
 in vec3 v_param;
 in vec3 v_world;
 layout(location = 0) out vec4 out_colour;
@@ -134,6 +138,10 @@ void main() {
   evaluate(face, u, v, p, ds, dt, su, sv);
   // The brick owns the fragment whose exact limit point it holds (half-open box).
   if (any(lessThan(p, clip_lo)) || any(greaterThanEqual(p, clip_hi))) discard;
+  ivec2 px = ivec2(gl_FragCoord.xy);
+  if (has_under != 0 && all(greaterThanEqual(px, under_rect.xy)) && all(lessThan(px, under_rect.xy + under_rect.zw)) &&
+      texelFetch(under_surface, px, 0).x <= length(p - eye))
+    discard;
   vec3 n = normalize(cross(ds, dt));
   vec4 clip = view_projection * vec4(p, 1.0);
   gl_FragDepth = clamp(0.5 * clip.z / clip.w + 0.5, 0.0, 1.0);
@@ -174,47 +182,73 @@ SubdivRenderer::SubdivRenderer(const GlContext& ctx, int width, int height)
     : gl_(ctx.gl()), width_(width), height_(height) {
   program_ = linkProgram(gl_, kVertex, kFragment);
   gl_.GenFramebuffers(1, &fbo_);
+  makeTargets();
+}
+
+void SubdivRenderer::makeTargets() {
   gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
   unsigned* targets[3] = {&colour_, &surface_, &params_};
   for (int i = 0; i < 3; ++i) {
     gl_.GenTextures(1, targets[i]);
     gl_.BindTexture(GL_TEXTURE_2D, *targets[i]);
-    gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, height, 0, GL_RGBA, GL_FLOAT, nullptr);
+    gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width_, height_, 0, GL_RGBA, GL_FLOAT, nullptr);
     gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_TEXTURE_2D, *targets[i], 0);
   }
   gl_.GenTextures(1, &depth_);
   gl_.BindTexture(GL_TEXTURE_2D, depth_);
-  gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, width, height, 0, GL_DEPTH_COMPONENT, GL_FLOAT, nullptr);
+  gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, width_, height_, 0, GL_DEPTH_COMPONENT, GL_FLOAT, nullptr);
   gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth_, 0);
   if (gl_.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     throw std::runtime_error("SubdivRenderer: framebuffer incomplete");
   gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
-  gl_.GenVertexArrays(1, &vao_);
-  gl_.GenBuffers(1, &vbo_);
-  gl_.GenBuffers(4, ssbo_);
+}
+
+void SubdivRenderer::dropTargets() {
+  unsigned textures[4] = {colour_, surface_, params_, depth_};
+  gl_.DeleteTextures(4, textures);
+}
+
+void SubdivRenderer::resize(int width, int height) {
+  if (width == width_ && height == height_) return;
+  dropTargets();
+  width_ = width;
+  height_ = height;
+  makeTargets();
 }
 
 SubdivRenderer::~SubdivRenderer() {
-  gl_.DeleteBuffers(4, ssbo_);
-  gl_.DeleteBuffers(1, &vbo_);
-  gl_.DeleteVertexArrays(1, &vao_);
-  unsigned textures[4] = {colour_, surface_, params_, depth_};
-  gl_.DeleteTextures(4, textures);
+  clearSurfaces();
+  dropTargets();
   gl_.DeleteFramebuffers(1, &fbo_);
   gl_.DeleteProgram(program_);
 }
 
+void SubdivRenderer::clearSurfaces() {
+  for (GpuSurface& g : surfaces_) {
+    gl_.DeleteBuffers(4, g.ssbo);
+    gl_.DeleteBuffers(1, &g.vbo);
+    gl_.DeleteVertexArrays(1, &g.vao);
+  }
+  surfaces_.clear();
+}
+
 void SubdivRenderer::setSurface(const SubdivSurface& surface, int level, const SubdivShading& shading) {
+  clearSurfaces();
+  addSurface(surface, level, shading);
+}
+
+void SubdivRenderer::addSurface(const SubdivSurface& surface, int level, const SubdivShading& shading) {
   const SubdivTables tables = buildTables(surface);
   const CoarseMesh coarse = buildCoarseMesh(surface, level);
-  shading_ = shading;
-  size_ = surface.control().mesh.size();
+  GpuSurface g;
+  g.shading = shading;
+  g.size = surface.control().mesh.size();
   glm::dvec3 lo(1e300), hi(-1e300);
   for (const auto& p : surface.control().mesh.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
-  centre_ = 0.5 * (lo + hi);
+  g.centre = 0.5 * (lo + hi);
   // Triangles unrolled (no index buffer): position, then (u, v, face); face ids are exact floats
   // below 2^24.
   std::vector<float> vertices;
@@ -223,9 +257,12 @@ void SubdivRenderer::setSurface(const SubdivSurface& surface, int level, const S
     const CoarseVertex& c = coarse.vertices[i];
     vertices.insert(vertices.end(), {c.position.x, c.position.y, c.position.z, c.u, c.v, float(c.face)});
   }
-  vertex_count_ = int(coarse.triangles.size());
-  gl_.BindVertexArray(vao_);
-  gl_.BindBuffer(GL_ARRAY_BUFFER, vbo_);
+  g.vertex_count = int(coarse.triangles.size());
+  gl_.GenVertexArrays(1, &g.vao);
+  gl_.GenBuffers(1, &g.vbo);
+  gl_.GenBuffers(4, g.ssbo);
+  gl_.BindVertexArray(g.vao);
+  gl_.BindBuffer(GL_ARRAY_BUFFER, g.vbo);
   gl_.BufferData(GL_ARRAY_BUFFER, vertices.size() * sizeof(float), vertices.data(), GL_STATIC_DRAW);
   gl_.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
   gl_.VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), reinterpret_cast<void*>(3 * sizeof(float)));
@@ -236,9 +273,9 @@ void SubdivRenderer::setSurface(const SubdivSurface& surface, int level, const S
     gl_.BindBuffer(GL_SHADER_STORAGE_BUFFER, buffer);
     gl_.BufferData(GL_SHADER_STORAGE_BUFFER, bytes, data, GL_STATIC_DRAW);
   };
-  upload(ssbo_[0], tables.faces.data(), tables.faces.size() * sizeof(SubdivTables::FaceEntry));
-  upload(ssbo_[1], tables.positions.data(), tables.positions.size() * sizeof(glm::vec4));
-  upload(ssbo_[2], tables.tangents.data(), tables.tangents.size() * sizeof(glm::vec4));
+  upload(g.ssbo[0], tables.faces.data(), tables.faces.size() * sizeof(SubdivTables::FaceEntry));
+  upload(g.ssbo[1], tables.positions.data(), tables.positions.size() * sizeof(glm::vec4));
+  upload(g.ssbo[2], tables.tangents.data(), tables.tangents.size() * sizeof(glm::vec4));
   // Per face and edge c (corner c -> c+1): the face across it and that face's edge, as face * 4 + edge.
   const ControlMesh& cm = surface.control();
   std::vector<int> neighbours(size_t(cm.mesh.faceCount()) * 4);
@@ -247,14 +284,14 @@ void SubdivRenderer::setSurface(const SubdivSurface& surface, int level, const S
       const auto& t = cm.topology.twin[cm.mesh.faceOffsets[f] + c];
       neighbours[size_t(f) * 4 + c] = t.face * 4 + t.corner;
     }
-  upload(ssbo_[3], neighbours.data(), neighbours.size() * sizeof(int));
+  upload(g.ssbo[3], neighbours.data(), neighbours.size() * sizeof(int));
+  surfaces_.push_back(g);
 }
 
-SubdivFrame SubdivRenderer::render(const Camera& cam, const Box3& clip, double near_plane, double far_plane,
-                                   bool want_parameters) {
+void SubdivRenderer::draw(const Camera& cam, const Box3& clip, double near_plane, double far_plane,
+                          const SurfaceLayer* under) {
   gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
   const unsigned buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-  gl_.DrawBuffers(3, buffers);
   gl_.Viewport(0, 0, width_, height_);
   gl_.Disable(GL_BLEND);
   gl_.Disable(GL_SCISSOR_TEST);
@@ -268,11 +305,24 @@ SubdivFrame SubdivRenderer::render(const Camera& cam, const Box3& clip, double n
   }
   gl_.DrawBuffers(3, buffers);
   gl_.Clear(GL_DEPTH_BUFFER_BIT);
+  // The layer underneath starts in the targets; fragments nearer than it replace it (the shader
+  // discards the others), so the targets end holding the nearer of the two per pixel.
+  const bool has_under = under && !under->rect.empty();
+  if (has_under) {
+    const Rect& r = under->rect;
+    gl_.CopyImageSubData(under->colour_texture, GL_TEXTURE_2D, 0, r.x, r.y, 0, colour_, GL_TEXTURE_2D, 0, r.x, r.y, 0,
+                         r.w, r.h, 1);
+    gl_.CopyImageSubData(under->surface_texture, GL_TEXTURE_2D, 0, r.x, r.y, 0, surface_, GL_TEXTURE_2D, 0, r.x, r.y,
+                         0, r.w, r.h, 1);
+  }
   gl_.Enable(GL_DEPTH_TEST);
   // The coarse mesh is closed and counter-clockwise from outside: its back faces are hidden except
   // within the coarse mesh's deviation of a silhouette, and would double the per-fragment
   // evaluations (the shader writes its depth, so no early depth test saves them).
+  // Camera::viewProjection mirrors y (window row 0 = image row 0), which turns counter-clockwise
+  // into clockwise on screen: the outside faces are the clockwise ones there.
   gl_.Enable(GL_CULL_FACE);
+  gl_.FrontFace(GL_CW);
   gl_.UseProgram(program_);
   const glm::mat4 vp = cam.viewProjection(near_plane, far_plane);
   auto loc = [&](const char* name) { return gl_.GetUniformLocation(program_, name); };
@@ -281,47 +331,63 @@ SubdivFrame SubdivRenderer::render(const Camera& cam, const Box3& clip, double n
   vec3("eye", cam.position);
   vec3("clip_lo", clip.lo);
   vec3("clip_hi", clip.hi);
-  vec3("colour", shading_.colour);
-  vec3("centre", centre_);
-  const glm::dvec3 light = glm::normalize(shading_.light_direction);
-  const glm::dvec3 other = std::abs(light.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
-  vec3("light_dir", light);
-  vec3("stripe_axis", glm::normalize(glm::cross(light, other)));
-  gl_.Uniform1f(loc("size"), float(size_));
-  gl_.Uniform1f(loc("stripe_width"), float(shading_.stripe_width));
-  gl_.Uniform1i(loc("stripes"), shading_.stripes);
-  gl_.Uniform1i(loc("reflection_lines"), shading_.mode == "reflection_lines" ? 1 : 0);
-  gl_.Uniform1i(loc("newton_steps"), shading_.newton_steps);
-  for (int i = 0; i < 4; ++i) gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, i, ssbo_[i]);
-  gl_.BindVertexArray(vao_);
-  gl_.DrawArrays(GL_TRIANGLES, 0, vertex_count_);
+  gl_.Uniform1i(loc("has_under"), has_under ? 1 : 0);
+  gl_.Uniform1i(loc("under_surface"), 0);
+  gl_.ActiveTexture(GL_TEXTURE0);
+  if (has_under) {
+    const Rect& r = under->rect;
+    gl_.Uniform4i(loc("under_rect"), r.x, r.y, r.w, r.h);
+    gl_.BindTexture(GL_TEXTURE_2D, under->surface_texture);
+  }
+  for (const GpuSurface& g : surfaces_) {
+    const SubdivShading& sh = g.shading;
+    vec3("colour", sh.colour);
+    vec3("centre", g.centre);
+    vec3("light_dir", glm::normalize(sh.light_direction));
+    vec3("stripe_axis", stripeAxis(sh.light_direction));
+    gl_.Uniform1f(loc("size"), float(g.size));
+    gl_.Uniform1f(loc("stripe_width"), float(sh.stripe_width));
+    gl_.Uniform1i(loc("stripes"), sh.stripes);
+    gl_.Uniform1i(loc("reflection_lines"), sh.mode == "reflection_lines" ? 1 : 0);
+    gl_.Uniform1i(loc("newton_steps"), sh.newton_steps);
+    for (int i = 0; i < 4; ++i) gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, i, g.ssbo[i]);
+    gl_.BindVertexArray(g.vao);
+    gl_.DrawArrays(GL_TRIANGLES, 0, g.vertex_count);
+  }
   gl_.BindVertexArray(0);
   gl_.Disable(GL_DEPTH_TEST);
   gl_.Disable(GL_CULL_FACE);
+  gl_.FrontFace(GL_CCW);
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
+}
 
-  SubdivFrame out;
-  const size_t n = size_t(width_) * height_;
-  std::vector<float> rgba(n * 4);
-  auto read = [&](int attachment, std::vector<float>& into) {
+void SubdivRenderer::read(const Rect& r, ImageRGBA8* pixels, std::vector<float>* surface,
+                          std::vector<float>* parameters) {
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
+  const size_t n = size_t(r.area());
+  auto readTarget = [&](int attachment, std::vector<float>& into) {
     into.resize(n * 4);
     gl_.ReadBuffer(GL_COLOR_ATTACHMENT0 + attachment);
-    gl_.ReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, into.data());
+    // Window row y is image row y (Camera::viewProjection flips y), so rows come back top first.
+    gl_.ReadPixels(r.x, r.y, r.w, r.h, GL_RGBA, GL_FLOAT, into.data());
   };
-  read(0, rgba);
-  read(1, out.surface);
-  if (want_parameters) read(2, out.parameters);
+  if (pixels) {
+    std::vector<float> rgba;
+    readTarget(0, rgba);
+    *pixels = ImageRGBA8(r.w, r.h);
+    for (size_t i = 0; i < n * 4; ++i) pixels->px[i] = uint8_t(std::lround(std::clamp(rgba[i], 0.0f, 1.0f) * 255.0f));
+  }
+  if (surface) readTarget(1, *surface);
+  if (parameters) readTarget(2, *parameters);
   gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
-  // GL rows run bottom up; images here top down.
-  auto flip = [&](std::vector<float>& v) {
-    for (int y = 0; y < height_ / 2; ++y)
-      std::swap_ranges(v.begin() + size_t(y) * width_ * 4, v.begin() + size_t(y + 1) * width_ * 4,
-                       v.begin() + size_t(height_ - 1 - y) * width_ * 4);
-  };
-  flip(rgba);
-  flip(out.surface);
-  if (want_parameters) flip(out.parameters);
-  out.pixels = ImageRGBA8(width_, height_);
-  for (size_t i = 0; i < n * 4; ++i) out.pixels.px[i] = uint8_t(std::lround(std::clamp(rgba[i], 0.0f, 1.0f) * 255.0f));
+}
+
+SubdivFrame SubdivRenderer::render(const Camera& cam, const Box3& clip, double near_plane, double far_plane,
+                                   bool want_parameters) {
+  draw(cam, clip, near_plane, far_plane, nullptr);
+  SubdivFrame out;
+  read({0, 0, width_, height_}, &out.pixels, &out.surface, want_parameters ? &out.parameters : nullptr);
   return out;
 }
 

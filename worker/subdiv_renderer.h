@@ -21,24 +21,12 @@
 #include "common/camera.h"
 #include "common/image.h"
 #include "common/subdiv_coarse.h"
+#include "common/subdiv_shading.h"
 #include "common/subdiv_tables.h"
+#include "worker/brick_output.h"
 #include "worker/gl_context.h"
 
 namespace sortlast {
-
-struct SubdivShading {
-  std::string mode = "headlight";  // headlight | reflection_lines
-  glm::dvec3 colour{0.8, 0.8, 0.85};
-  // reflection_lines: a planar light perpendicular to `light_direction` (from the surface's centre,
-  // at 2 sizes), striped `stripes` times across its size with bright bands of `stripe_width` (0..1)
-  int stripes = 12;
-  double stripe_width = 0.3;
-  glm::dvec3 light_direction{0.0, 1.0, 0.0};
-  // Newton steps per fragment moving its (u, v) onto the pixel's ray (0: the coarse fragment's
-  // interpolated (u, v), as the paper does); a step that leaves the control face continues on
-  // the face across that edge.
-  int newton_steps = 2;
-};
 
 struct SubdivFrame {
   ImageRGBA8 pixels;             // whole image, premultiplied, alpha 1 on the surface
@@ -53,22 +41,47 @@ class SubdivRenderer {
   SubdivRenderer(const SubdivRenderer&) = delete;
   SubdivRenderer& operator=(const SubdivRenderer&) = delete;
 
-  // Uploads the surface's tables and its coarse mesh at `level` (see buildCoarseMesh).
+  // Uploads a surface's tables and its coarse mesh at `level` (see buildCoarseMesh); every surface
+  // added is drawn by each draw(), all into one depth buffer.
+  void addSurface(const SubdivSurface& surface, int level, const SubdivShading& shading);
+  void clearSurfaces();
+  // clearSurfaces() and addSurface().
   void setSurface(const SubdivSurface& surface, int level, const SubdivShading& shading);
-  // Renders the fragments whose limit points lie in [clip.lo, clip.hi) (half-open, so a point on
-  // a face shared by two bricks belongs to one). [near_plane, far_plane] must hold the surface.
+  bool empty() const { return surfaces_.empty(); }
+  void resize(int width, int height);
+
+  // Draws the fragments whose limit points lie in [clip.lo, clip.hi) (half-open, so a point on
+  // a face shared by two bricks belongs to one) into colourTexture() and surfaceTexture(). With
+  // `under` (another opaque layer of the same brick: the metaballs'), the targets start as that
+  // layer and a fragment replaces it only where it is nearer (smaller t): the two layers merged
+  // by depth. [near_plane, far_plane] must hold the surface.
+  void draw(const Camera& cam, const Box3& clip, double near_plane, double far_plane,
+            const SurfaceLayer* under = nullptr);
+  // After draw(): the shaded colour (RGBA32F, premultiplied, alpha 1 on the surface) and (t, normal)
+  // per pixel (t = 1e30 on a miss), full-image textures with window row y = image row y.
+  unsigned colourTexture() const { return colour_; }
+  unsigned surfaceTexture() const { return surface_; }
+  // Reads `r` of the targets back (rows top first); null pointers: not wanted.
+  void read(const Rect& r, ImageRGBA8* pixels, std::vector<float>* surface, std::vector<float>* parameters = nullptr);
+  // draw() without a layer underneath and the whole image read back.
   SubdivFrame render(const Camera& cam, const Box3& clip, double near_plane, double far_plane,
                      bool want_parameters = false);
 
  private:
+  struct GpuSurface {
+    unsigned vao = 0, vbo = 0, ssbo[4] = {0, 0, 0, 0};
+    int vertex_count = 0;
+    glm::dvec3 centre{0.0};
+    double size = 1.0;
+    SubdivShading shading;
+  };
+  void makeTargets();
+  void dropTargets();
   const GlApi& gl_;
   int width_, height_;
   unsigned fbo_ = 0, colour_ = 0, surface_ = 0, params_ = 0, depth_ = 0;
-  unsigned program_ = 0, vao_ = 0, vbo_ = 0, ssbo_[4] = {0, 0, 0, 0};
-  int vertex_count_ = 0;
-  glm::dvec3 centre_{0.0};
-  double size_ = 1.0;
-  SubdivShading shading_;
+  unsigned program_ = 0;
+  std::vector<GpuSurface> surfaces_;
 };
 
 }  // namespace sortlast
