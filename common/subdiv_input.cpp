@@ -3,13 +3,45 @@
 #include <tiny_obj_loader.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
 #include <numbers>
+#include <sstream>
 
 #include "common/error.h"
 
 namespace sortlast {
 
+namespace {
+
+// tinyobjloader reads a coordinate it cannot parse ("nan", "1e999", a missing one) as 0 or
+// infinity without a word; a mesh silently moved or broken is worse than an error, so every
+// vertex line is checked first: at least three numbers, all finite.
+void checkVertexLines(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    std::istringstream words(line);
+    std::string tag;
+    if (!(words >> tag) || tag != "v") continue;
+    int count = 0;
+    for (std::string w; words >> w; ++count) {
+      char* end = nullptr;
+      const double x = std::strtod(w.c_str(), &end);
+      if (end != w.c_str() + w.size() || !std::isfinite(x))
+        throw InputError("surface file '" + path + "' line " + std::to_string(number) + ": vertex coordinate '" + w +
+                         "' is not a finite number (NaN and infinity are refused)");
+    }
+    if (count < 3)
+      throw InputError("surface file '" + path + "' line " + std::to_string(number) +
+                       ": a vertex needs three coordinates");
+  }
+}
+
+}  // namespace
+
 PolyMesh readObjMesh(const std::string& path) {
+  checkVertexLines(path);
   tinyobj::ObjReaderConfig config;
   config.triangulate = false;  // the faces as written: n-gons get a Catmull-Clark step instead
   config.vertex_color = false;

@@ -1,0 +1,167 @@
+#!/usr/bin/env bash
+# Subdivision surfaces (the `surfaces` scene key, docs/subdivision.md) in the sort-last frame loop,
+# against the CPU reference (master/surface_reference.h), on 1-4 ranks and d = 1-3 bricks.
+# Usage: surfaces.sh SORTLAST MODE
+#   alone       two surfaces: GL against the reference (colour, depth, normals), 1-4 ranks, d = 1-3
+#   volume      the surfaces inside a semi-transparent volume: against the reference, 1-4 ranks,
+#               d = 1-3 against d = 1 (seams)
+#   metaballs   a surface through a metaball splash (the two layers merged by depth per brick):
+#               against the reference, 1-4 ranks
+#   reflection  reflection lines against the reference
+#   bad         bad meshes and keys through the CLI: clear message naming the key, exit 1, no hang
+# Silhouettes: coverage is the coarse mesh's (GL) or the tessellated limit surface's (reference),
+# a pixel or two apart at the outline, so colour comparisons against the reference leave out the
+# pixels within 2 of a silhouette of either surface image (`compare --mask-silhouettes`: a hit next
+# to a miss, or a depth jump of 5 % between 4-neighbours); rank and brick comparisons compare
+# every pixel.
+source "$(dirname "$0")/lib.sh" "$1"
+S=$SORTLAST
+
+# The scenes: small images, procedural meshes.
+cat > "$WORK/alone.yaml" <<'YAML'
+volume: {procedural: none}
+image: {width: 128, height: 128}
+bricks: {per_axis: 2}
+camera: {position: [1.6, 1.0, 2.6]}
+surfaces:
+  - {procedural: pole5, color: [0.9, 0.6, 0.3], transform: {translate: [-0.3, 0, 0]}}
+  - {procedural: torus, level: 1, transform: {scale: 0.35, rotate: [70, 0, 20], translate: [0.6, -0.2, 0.2]}}
+YAML
+cat > "$WORK/volume.yaml" <<'YAML'
+volume: {procedural: sphere, dims: [48, 48, 48]}
+transfer:
+  preintegrated: false
+  points: [[0, 1, 0.5, 0.1, 0], [1, 1, 0.5, 0.1, 0.05]]
+image: {width: 128, height: 128}
+bricks: {per_axis: 2}
+surfaces:
+  - {procedural: pole5, color: [0.3, 0.6, 0.9], transform: {scale: 22, rotate: [20, 30, 0], translate: [-8, 3, 4]}}
+  - {procedural: torus, level: 1, transform: {scale: 14, rotate: [60, 0, 0], translate: [9, -7, -3]}}
+YAML
+cat > "$WORK/metaballs.yaml" <<'YAML'
+volume: {procedural: none}
+particles: {procedural: splash, count: 600, spacing: 1.2, radius: 0.8}
+image: {width: 128, height: 128}
+bricks: {per_axis: 2}
+surfaces:
+  - {procedural: pole6, color: [0.3, 0.8, 0.4], transform: {scale: 9}}
+YAML
+cat > "$WORK/reflection.yaml" <<'YAML'
+volume: {procedural: none}
+image: {width: 128, height: 128}
+bricks: {per_axis: 2}
+camera: {position: [1.2, 1.6, 2.4]}
+surfaces:
+  - {procedural: pole5, shading: reflection_lines, stripes: 8, stripe_width: 0.4, stripe_direction: [0.3, 1, 0.2]}
+YAML
+
+reference() { "$S" reference "$WORK/$1.yaml" -q -o "$WORK/ref.png" --surface-out "$WORK/ref.exr" || fail "reference $1"; }
+render() {  # render NP SCENE OUT [--set ...]
+  local np=$1 scene=$2 out=$3; shift 3
+  run_np "$np" render "$WORK/$scene.yaml" -q -o "$WORK/$out.png" --surface-out "$WORK/$out.exr" "$@" \
+    || fail "render $scene on $np rank(s)"
+}
+vs_reference() {  # vs_reference IMAGE MAX_DIFF: colour away from silhouettes
+  "$S" compare "$WORK/ref.png" "$WORK/$1.png" --max-diff "$2" \
+    --mask-silhouettes "$WORK/ref.exr" --mask-silhouettes "$WORK/$1.exr" || fail "$1 against the reference"
+}
+ranks() {  # ranks SCENE: 2-4 ranks give the 1-rank image within 1/255
+  render 1 "$1" one
+  for np in 2 3 4; do
+    render "$np" "$1" many
+    "$S" compare "$WORK/one.png" "$WORK/many.png" --max-diff 1 | tail -1 || fail "$1: $np ranks differ from 1"
+  done
+}
+bricks() {  # bricks SCENE MAX_DIFF: d = 2, 3 against d = 1
+  render 1 "$1" d1 --set bricks.per_axis=1
+  for d in 2 3; do
+    render 2 "$1" dn --set bricks.per_axis=$d
+    "$S" compare "$WORK/d1.png" "$WORK/dn.png" --max-diff "$2" | tail -1 || fail "$1: $d^3 bricks differ from one brick"
+  done
+}
+
+case $2 in
+alone)
+  reference alone
+  render 1 alone gl
+  # Measured: 0/255 away from silhouettes.
+  vs_reference gl 1
+  # Depth and normals of one surface (two overlap, and compare-surface's --ignore-edges leaves out
+  # hit/miss edges only, not where one surface's outline lies over the other). pole5 is 2.9 across:
+  # measured depth 7.7e-5, normals 0.009 degrees.
+  one=(--set "surfaces=[{procedural: pole5}]")
+  "$S" reference "$WORK/alone.yaml" -q -o "$WORK/ref.png" --surface-out "$WORK/ref.exr" "${one[@]}" || fail "reference pole5"
+  render 1 alone gl "${one[@]}"
+  "$S" compare-surface "$WORK/ref.exr" "$WORK/gl.exr" --ignore-edges --max-depth-error 1e-3 \
+    --max-normal-deg 0.05 --max-holes 0 --max-extra 0 || fail "alone: depth or normals"
+  ranks alone
+  # Each fragment belongs to the brick holding its exact limit point: bricks compose exactly.
+  bricks alone 0
+  ;;
+volume)
+  reference volume
+  render 1 volume gl
+  # Measured 2/255 (the volume's own ray-casting error), 63 dB away from silhouettes.
+  vs_reference gl 3
+  "$S" compare "$WORK/ref.png" "$WORK/gl.png" --min-psnr 55 --mask-silhouettes "$WORK/ref.exr" \
+    --mask-silhouettes "$WORK/gl.exr" >/dev/null || fail "volume: PSNR against the reference"
+  ranks volume
+  bricks volume 2
+  ;;
+metaballs)
+  reference metaballs
+  render 1 metaballs gl
+  # Measured 0/255 away from silhouettes and the seams where the two surfaces cross.
+  vs_reference gl 1
+  ranks metaballs
+  ;;
+reflection)
+  reference reflection
+  render 1 reflection gl
+  # Measured 1/255 (stripe edges, where the colour changes fastest).
+  vs_reference gl 2
+  ;;
+bad)
+  # expect_error NP PATTERN SET...: exit 1 on NP ranks (0: the binary alone, for key errors that
+  # take the same parsing path on every rank as the mesh errors do), PATTERN in stderr.
+  expect_error() {
+    local np=$1 pattern=$2; shift 2
+    local sets=()
+    for s in "$@"; do sets+=(--set "$s"); done
+    if [ "$np" = 0 ]; then
+      if timeout 60 "$S" render "$WORK/alone.yaml" -q -o "$WORK/bad.png" "${sets[@]}" 2>"$WORK/err"; then
+        fail "accepted: $*"
+      fi
+    elif run_np "$np" render "$WORK/alone.yaml" -q -o "$WORK/bad.png" "${sets[@]}" 2>"$WORK/err"; then
+      fail "accepted: $*"
+    fi
+    grep -q "$pattern" "$WORK/err" || { cat "$WORK/err"; fail "message for '$*' lacks '$pattern'"; }
+  }
+  : > "$WORK/empty.obj"
+  printf "v 0 0 0\nv 1 0 0\nv 0 1 0\nv nan 0 1\nf 1 3 2\nf 1 4 3\nf 1 2 4\nf 2 3 4\n" > "$WORK/nan.obj"
+  printf "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 4 3\nf 1 2 4\nf 2 3 9\n" > "$WORK/range.obj"
+  printf "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 1 1 1\nf 1 3 2\nf 1 4 3\nf 1 2 4\nf 2 3 4\nf 2 5 3\n" > "$WORK/nonmanifold.obj"
+  printf "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n" > "$WORK/open.obj"
+  printf "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 4 3\nf 1 2 4\nf 2 3 4\nt crease 2/1/0 1 2 5.0\n" > "$WORK/crease.obj"
+  expect_error 0 "surfaces\[0\].file'.*is empty" "surfaces=[{file: $WORK/empty.obj}]"
+  expect_error 0 "surfaces\[0\].file'.*'nan' is not a finite number" "surfaces=[{file: $WORK/nan.obj}]"
+  expect_error 0 "surfaces\[0\].file'.*out of range" "surfaces=[{file: $WORK/range.obj}]"
+  expect_error 2 "surfaces\[0\].file'.*non-manifold" "surfaces=[{file: $WORK/nonmanifold.obj}]"
+  expect_error 0 "surfaces\[0\].file'.*open meshes are not supported" "surfaces=[{file: $WORK/open.obj}]"
+  expect_error 0 "surfaces\[0\].file'.*t crease" "surfaces=[{file: $WORK/crease.obj}]"
+  expect_error 2 "surfaces\[1\].file'.*no such file" "surfaces=[{procedural: cube}, {file: $WORK/missing.obj}]"
+  expect_error 0 "surfaces\[0\].procedural'.*unknown procedural" "surfaces=[{procedural: pole2}]"
+  expect_error 0 "surfaces\[0\].level'" "surfaces=[{procedural: cube, level: 4}]"
+  expect_error 0 "surfaces\[0\].transform'.*singular" "surfaces=[{procedural: cube, transform: {scale: 0}}]"
+  expect_error 0 "surfaces\[0\].shading'" "surfaces=[{procedural: cube, shading: phong}]"
+  expect_error 0 "surfaces\[0\].colour'" "surfaces=[{procedural: cube, colour: [1, 0, 0]}]"
+  # The reference refuses alike.
+  if "$S" reference "$WORK/alone.yaml" -q -o "$WORK/bad.png" --set "surfaces=[{file: $WORK/nonmanifold.obj}]" \
+      2>"$WORK/err"; then fail "reference accepted a non-manifold mesh"; fi
+  grep -q "surfaces\[0\].file'.*non-manifold" "$WORK/err" || fail "reference: message lacks the key"
+  ;;
+*)
+  fail "unknown mode $2"
+  ;;
+esac
+echo "surfaces $2: ok"
