@@ -220,6 +220,11 @@ std::unique_ptr<RenderSession> RenderSession::external(SessionOptions options, M
   MPI_Comm_size(comm, &S->size);
   collectively(comm, [&] {
     S->base = parseScene(S->opts.scene, S->opts.overrides);
+    // The simulation's layout frames and bricks its own data only: a surface outside it would be
+    // cut off or lie beyond the depth range, so surfaces are refused rather than drawn in part.
+    if (!S->base.surfaces.empty())
+      throw InputError("scene key 'surfaces': subdivision surfaces are not drawn in situ (the "
+                       "simulation's bricks need not hold them); use `sortlast render` or `serve`");
     S->renderer = std::make_unique<BrickRenderer>(S->base.backend, S->base.camera.width, S->base.camera.height);
   });
   S->budget = memoryBudget(S->base, comm);  // requests' image sizes are checked against it

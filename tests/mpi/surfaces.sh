@@ -9,12 +9,19 @@
 #               against the reference, 1-4 ranks
 #   reflection  reflection lines against the reference
 #   bad         bad meshes and keys through the CLI: clear message naming the key, exit 1, no hang
+#   serve       a resident session (`sortlast serve`, 2 ranks) serves the frames `render` makes, at
+#               two image sizes and cameras (the surfaces' targets resize; surfaces are fixed for
+#               the session: a request setting them is refused)
 # Silhouettes: coverage is the coarse mesh's (GL) or the tessellated limit surface's (reference),
 # a pixel or two apart at the outline, so colour comparisons against the reference leave out the
 # pixels within 2 of a silhouette of either surface image (`compare --mask-silhouettes`: a hit next
 # to a miss, or a depth jump of 5 % between 4-neighbours); rank and brick comparisons compare
 # every pixel.
-source "$(dirname "$0")/lib.sh" "$1"
+if [ "${2:-}" = serve ]; then
+  source "$(dirname "$0")/../service/service_lib.sh" "$1"  # also lib.sh; start_server, frame
+else
+  source "$(dirname "$0")/lib.sh" "$1"
+fi
 S=$SORTLAST
 
 # The scenes: small images, procedural meshes.
@@ -159,6 +166,21 @@ bad)
   if "$S" reference "$WORK/alone.yaml" -q -o "$WORK/bad.png" --set "surfaces=[{file: $WORK/nonmanifold.obj}]" \
       2>"$WORK/err"; then fail "reference accepted a non-manifold mesh"; fi
   grep -q "surfaces\[0\].file'.*non-manifold" "$WORK/err" || fail "reference: message lacks the key"
+  ;;
+serve)
+  start_server 2 "$WORK/volume.yaml"
+  for req in '{"image.width":128,"image.height":128}' \
+             '{"image.width":96,"image.height":112,"camera.position":[40,-70,90],"render.method":"slicing"}'; do
+    code=$(frame "$WORK/served.png" "$req")
+    [ "$code" = 200 ] || { cat "$WORK/served.png"; fail "serve: $req answered $code"; }
+    mapfile -t sets < <(sets_of "$req")
+    render_like "$WORK/batch.png" 2 "$WORK/volume.yaml" "${sets[@]}" || fail "render ${sets[*]}"
+    same "$WORK/served.png" "$WORK/batch.png" || fail "serve: the frame of $req differs from sortlast render"
+  done
+  code=$(frame "$WORK/refused.txt" '{"surfaces":[{"procedural":"cube"}]}')
+  [ "$code" != 200 ] && grep -q "surfaces" "$WORK/refused.txt" || { cat "$WORK/refused.txt"; fail "serve: a request changing the surfaces was not refused ($code)"; }
+  cat "$WORK/refused.txt"; echo
+  stop_server || fail "serve: did not stop cleanly on SIGTERM"
   ;;
 *)
   fail "unknown mode $2"
