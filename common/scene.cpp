@@ -491,8 +491,8 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
   s.surfaces = parseSurfaces(r.get("surfaces"), base_dir);
   if (!s.hasVolume() && !s.particles.enabled() && !s.glow.enabled() && s.surfaces.empty())
     throw InputError("the scene has nothing to render: volume.procedural is none with no "
-                     "volume.file, neither particles.file nor particles.procedural is set, and "
-                     "glow.emitters and surfaces are empty");
+                     "volume.file, neither particles.file nor particles.procedural is set, "
+                     "glow.emitters is empty and there are no surfaces");
   if (!s.hasVolume() && !s.particles.enabled() && s.surfaces.empty() && !s.glow.box)
     throw InputError("scene key 'glow.box': a scene of glow emitters alone must set the box the "
                      "glow is integrated in (auto takes the volume's and particles' bounds, and "

@@ -112,10 +112,13 @@ void SurfaceReference::render(const Camera& cam, int threads, SurfaceImage& surf
         double u = h.u, v = h.v, t = h.t;
         bool clamped = false;
         const double du = 1e-6;
-        for (int it = 0; it < 12; ++it) {
+        for (int it = 0; it < 16; ++it) {
           const glm::dvec3 s = e.surface.evaluate(h.face, u, v).position;
           const glm::dvec3 F = s - o - t * d;
-          if (glm::length(F) < 1e-13 * e.size) break;
+          if (glm::length(F) < 1e-13 * e.size) {
+            clamped = false;  // on the ray, wherever the steps went
+            break;
+          }
           // Central differences inside [0, 1] (one-sided at the face's edges).
           const double ua = std::max(0.0, u - du), ub = std::min(1.0, u + du);
           const double va = std::max(0.0, v - du), vb = std::min(1.0, v + du);
@@ -125,6 +128,21 @@ void SurfaceReference::render(const Camera& cam, int threads, SurfaceImage& surf
           if (std::abs(glm::determinant(J)) < 1e-300) break;
           const glm::dvec3 step = glm::inverse(J) * F;
           double nu = u - step.x, nv = v - step.y;
+          const double out_by = std::max({-nu, nu - 1.0, -nv, nv - 1.0});
+          if (out_by > 0.0) {
+            // Across the edge it leaves by most: the same (u, v) in the neighbour's frame. Edge c
+            // runs from corner c; (a, b) = along it from corner c, into the face.
+            const int c = -nv >= out_by ? 0 : (nu - 1.0 >= out_by ? 1 : (nv - 1.0 >= out_by ? 2 : 3));
+            const double a = c == 0 ? nu : c == 1 ? nv : c == 2 ? 1.0 - nu : 1.0 - nv;
+            const double b = c == 0 ? nv : c == 1 ? 1.0 - nu : c == 2 ? 1.0 - nv : nu;
+            const ControlMesh& cm = e.surface.control();
+            const auto& twin = cm.topology.twin[size_t(cm.mesh.faceOffsets[h.face] + c)];
+            const double ga = 1.0 - a, gb = -b;  // the neighbour's edge runs the other way
+            const int d = twin.corner;
+            nu = d == 0 ? ga : d == 1 ? 1.0 - gb : d == 2 ? 1.0 - ga : gb;
+            nv = d == 0 ? gb : d == 1 ? ga : d == 2 ? 1.0 - gb : 1.0 - ga;
+            h.face = twin.face;
+          }
           clamped = nu < 0 || nu > 1 || nv < 0 || nv > 1;
           u = std::clamp(nu, 0.0, 1.0);
           v = std::clamp(nv, 0.0, 1.0);
