@@ -6,7 +6,7 @@
 #   volume      the surfaces inside a semi-transparent volume: against the reference, 1-4 ranks,
 #               d = 1-3 against d = 1 (seams)
 #   metaballs   a surface through a metaball splash (the two layers merged by depth per brick):
-#               against the reference, 1-4 ranks
+#               against the reference, 1-4 ranks; the same inside a volume, 1 and 3 ranks
 #   reflection  reflection lines against the reference
 #   bad         bad meshes and keys through the CLI: clear message naming the key, exit 1, no hang
 #   serve       a resident session (`sortlast serve`, 2 ranks) serves the frames `render` makes, at
@@ -47,6 +47,17 @@ surfaces:
 YAML
 cat > "$WORK/metaballs.yaml" <<'YAML'
 volume: {procedural: none}
+particles: {procedural: splash, count: 600, spacing: 1.2, radius: 0.8}
+image: {width: 128, height: 128}
+bricks: {per_axis: 2}
+surfaces:
+  - {procedural: pole6, color: [0.3, 0.8, 0.4], transform: {scale: 9}}
+YAML
+cat > "$WORK/all_three.yaml" <<'YAML'
+volume: {procedural: sphere, dims: [40, 40, 40]}
+transfer:
+  preintegrated: false
+  points: [[0, 1, 0.5, 0.1, 0], [1, 1, 0.5, 0.1, 0.05]]
 particles: {procedural: splash, count: 600, spacing: 1.2, radius: 0.8}
 image: {width: 128, height: 128}
 bricks: {per_axis: 2}
@@ -121,6 +132,13 @@ metaballs)
   # Measured 0/255 away from silhouettes and the seams where the two surfaces cross.
   vs_reference gl 1
   ranks metaballs
+  # The merged layer inside a volume too (and its surface image re-cut to the volume's rectangle):
+  # measured 2/255, 61 dB.
+  reference all_three
+  render 1 all_three gl
+  vs_reference gl 3
+  render 3 all_three many
+  "$S" compare "$WORK/gl.png" "$WORK/many.png" --max-diff 1 | tail -1 || fail "all three: 3 ranks differ from 1"
   ;;
 reflection)
   reference reflection
