@@ -165,8 +165,9 @@ SurfaceLayer BrickRenderer::mergeSurfaceLayers(const Handles& h, const Camera& c
   if (r.empty()) return under;
   const int x0 = std::max(0, r.x - 2), y0 = std::max(0, r.y - 2);
   r = {x0, y0, std::min(cam.width, r.x + r.w + 2) - x0, std::min(cam.height, r.y + r.h + 2) - y0};
-  subdiv_->draw(cam, h.clip, near_plane, far_plane, particles.empty() ? nullptr : &under);
-  return {subdiv_->colourTexture(), subdiv_->surfaceTexture(), particles.empty() ? r : unite(r, particles)};
+  const Rect region = particles.empty() ? r : unite(r, particles);
+  subdiv_->draw(cam, h.clip, near_plane, far_plane, particles.empty() ? nullptr : &under, &region);
+  return {subdiv_->colourTexture(), subdiv_->surfaceTexture(), region};
 }
 
 BrickFrame BrickRenderer::render(int handle, const Camera& cam, double slice_spacing,

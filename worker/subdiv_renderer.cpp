@@ -289,12 +289,19 @@ void SubdivRenderer::addSurface(const SubdivSurface& surface, int level, const S
 }
 
 void SubdivRenderer::draw(const Camera& cam, const Box3& clip, double near_plane, double far_plane,
-                          const SurfaceLayer* under) {
+                          const SurfaceLayer* under, const Rect* region) {
   gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
   const unsigned buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
   gl_.Viewport(0, 0, width_, height_);
   gl_.Disable(GL_BLEND);
-  gl_.Disable(GL_SCISSOR_TEST);
+  // Clears and fragments outside `region` are skipped: a brick's fragments elsewhere would all be
+  // evaluated (Newton steps included) only to be discarded for lying outside its box.
+  if (region) {
+    gl_.Enable(GL_SCISSOR_TEST);
+    gl_.Scissor(region->x, region->y, region->w, region->h);
+  } else {
+    gl_.Disable(GL_SCISSOR_TEST);
+  }
   // Misses: colour transparent, t = 1e30, face -1. Clear each target to its own value.
   const float clears[3][4] = {{0, 0, 0, 0}, {1e30f, 0, 0, 0}, {-1, 0, 0, 0}};
   for (int i = 0; i < 3; ++i) {
@@ -357,6 +364,7 @@ void SubdivRenderer::draw(const Camera& cam, const Box3& clip, double near_plane
   gl_.BindVertexArray(0);
   gl_.Disable(GL_DEPTH_TEST);
   gl_.Disable(GL_CULL_FACE);
+  gl_.Disable(GL_SCISSOR_TEST);
   gl_.FrontFace(GL_CCW);
   gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
 }

@@ -54,9 +54,10 @@ class SubdivRenderer {
   // a face shared by two bricks belongs to one) into colourTexture() and surfaceTexture(). With
   // `under` (another opaque layer of the same brick: the metaballs'), the targets start as that
   // layer and a fragment replaces it only where it is nearer (smaller t): the two layers merged
-  // by depth. [near_plane, far_plane] must hold the surface.
+  // by depth. [near_plane, far_plane] must hold the surface. With `region`, only that rectangle
+  // of the targets is cleared and drawn (it must hold under->rect; outside it they are stale).
   void draw(const Camera& cam, const Box3& clip, double near_plane, double far_plane,
-            const SurfaceLayer* under = nullptr);
+            const SurfaceLayer* under = nullptr, const Rect* region = nullptr);
   // After draw(): the shaded colour (RGBA32F, premultiplied, alpha 1 on the surface) and (t, normal)
   // per pixel (t = 1e30 on a miss), full-image textures with window row y = image row y.
   unsigned colourTexture() const { return colour_; }
