@@ -36,7 +36,7 @@ std::string withCommon(const char* body) { return std::string(shaders::kMetaball
 
 MetaballRenderer::MetaballRenderer(const GlContext& ctx, int width, int height,
                                    const MetaballSettings& settings)
-    : gl_(ctx.gl()), s_(settings) {
+    : gl_(ctx.gl()), s_(settings), target_(ctx.gl(), width, height) {
   if (settings.anisotropic) throw std::logic_error("MetaballRenderer: anisotropic smoothing is grid-only");
   allocateTargets(width, height);
   gl_.GenFramebuffers(1, &fbo_);
@@ -87,12 +87,10 @@ void MetaballRenderer::allocateTargets(int width, int height) {
   pot_ = makeTexture(gl_, GL_RGBA32F, width, height);
   pot2_ = makeTexture(gl_, GL_RGBA32F, width, height);
   pyramid_ = makeTexture(gl_, GL_RG32F, width, height, levels_);
-  colour_ = makeTexture(gl_, GL_RGBA32F, width, height);
-  surface_ = makeTexture(gl_, GL_RGBA32F, width, height);
 }
 
 void MetaballRenderer::freeTargets() {
-  for (unsigned t : {state_, hit_, next_, pot_, pot2_, pyramid_, colour_, surface_}) gl_.DeleteTextures(1, &t);
+  for (unsigned t : {state_, hit_, next_, pot_, pot2_, pyramid_}) gl_.DeleteTextures(1, &t);
 }
 
 void MetaballRenderer::resize(int width, int height) {
@@ -100,6 +98,7 @@ void MetaballRenderer::resize(int width, int height) {
   // Immutable storage (TexStorage2D): new textures of the new size.
   freeTargets();
   allocateTargets(width, height);
+  target_.resize(width, height);
   gl_.check("metaball renderer resize");
 }
 
@@ -182,7 +181,7 @@ void MetaballRenderer::fullscreen(unsigned program) {
 
 void MetaballRenderer::buildPyramid(const Rect& r) {
   if (!s_.cull) return;
-  attach(colour_);
+  attach(target_.colour());
   gl_.UseProgram(reduce_);
   gl_.Uniform4i(gl_.GetUniformLocation(reduce_, "u_rect"), r.x, r.y, r.w, r.h);
   int level_loc = gl_.GetUniformLocation(reduce_, "u_level");
@@ -250,16 +249,16 @@ SurfaceBrick MetaballRenderer::render(int handle, const Camera& cam, double near
   gl_.BindImageTexture(kHitImage, hit_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
   gl_.BindImageTexture(kBaseImage, pyramid_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
   gl_.BindImageTexture(kNextImage, next_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
-  gl_.BindImageTexture(kSurfaceImage, surface_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  gl_.BindImageTexture(kSurfaceImage, target_.surface(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   // The framebuffer always has a colour attachment (passes that only write images mask it off).
   attach(next_);
   if (gl_.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     throw std::runtime_error("OpenGL: metaball framebuffer is not complete");
 
-  // Passes that write only images keep `colour_` attached (masked off): no texture they sample
-  // may be the framebuffer's attachment.
+  // Passes that write only images keep the colour target attached (masked off): no texture they
+  // sample may be the framebuffer's attachment.
   auto imagePass = [&](unsigned program) {
-    attach(colour_);
+    attach(target_.colour());
     gl_.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     fullscreen(program);
   };
@@ -299,7 +298,7 @@ SurfaceBrick MetaballRenderer::render(int handle, const Camera& cam, double near
     gl_.UseProgram(potential_);
     gl_.Uniform1i(mode_loc, 0);
     blendPass(pot_, 0.0f, GL_FUNC_ADD, potential_, float(s_.h));
-    attach(colour_);
+    attach(target_.colour());
     gl_.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     gl_.BeginQuery(GL_ANY_SAMPLES_PASSED, query_);
     fullscreen(step_);
@@ -329,22 +328,11 @@ SurfaceBrick MetaballRenderer::render(int handle, const Camera& cam, double near
   gl_.UseProgram(potential_);
   gl_.Uniform1i(mode_loc, 2);
   blendPass(pot_, 0.0f, GL_FUNC_ADD, potential_, float(s_.h));
-  attach(colour_);
+  attach(target_.colour());
   gl_.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   fullscreen(shade_);
 
-  readback_.resize(size_t(r.area()) * 4);
-  gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
-  gl_.ReadPixels(r.x, r.y, r.w, r.h, GL_RGBA, GL_FLOAT, readback_.data());
-  out.rect = r;
-  out.pixels = ImageRGBA8(r.w, r.h);
-  for (size_t i = 0; i < size_t(r.area()); ++i) toRGBA8(&readback_[4 * i], &out.pixels.px[4 * i]);
-  if (want_surface) {
-    attach(surface_);
-    out.surface.resize(size_t(r.area()) * 4);
-    gl_.ReadPixels(r.x, r.y, r.w, r.h, GL_RGBA, GL_FLOAT, out.surface.data());
-  }
-  gl_.Disable(GL_SCISSOR_TEST);
+  target_.readBack(r, want_surface, out);
   gl_.check("metaball render");
   return out;
 }
