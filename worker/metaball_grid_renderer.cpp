@@ -143,28 +143,9 @@ SurfaceBrick MetaballGridRenderer::render(int handle, const Camera& cam, double,
   if (r.empty()) return out;
 
   const unsigned p = program_;
-  gl_.UseProgram(p);
-  auto v3 = [&](const char* name, const glm::dvec3& v) {
-    gl_.Uniform3f(gl_.GetUniformLocation(p, name), float(v.x), float(v.y), float(v.z));
-  };
-  auto f1 = [&](const char* name, double v) { gl_.Uniform1f(gl_.GetUniformLocation(p, name), float(v)); };
-  double th = std::tan(0.5 * cam.fov_deg * 3.14159265358979323846 / 180.0);
-  v3("u_eye", cam.position);
-  v3("u_fwd", cam.forward());
-  v3("u_right_s", cam.right() * th * (double(cam.width) / cam.height));
-  v3("u_up_s", cam.trueUp() * th);
-  gl_.Uniform2f(gl_.GetUniformLocation(p, "u_size"), float(target_.width()),
-                float(target_.height()));
-  f1("u_h", s_.h);
-  f1("u_T", s_.threshold);
-  f1("u_w", s_.step);
-  f1("u_cap", s_.max_samples);
-  gl_.Uniform1i(gl_.GetUniformLocation(p, "u_refine"), s_.refine_iterations);
-  v3("u_colour", s_.colour);
-  v3("u_box_lo", b.clip.lo);
-  v3("u_box_hi", b.clip.hi);
-  v3("u_grid_lo", glm::dvec3(b.lo));
-  f1("u_cell", b.cell);
+  setRayUniforms(gl_, p, cam, target_.width(), target_.height(), s_, b.clip);
+  gl_.Uniform3f(gl_.GetUniformLocation(p, "u_grid_lo"), b.lo.x, b.lo.y, b.lo.z);
+  gl_.Uniform1f(gl_.GetUniformLocation(p, "u_cell"), b.cell);
   gl_.Uniform4i(gl_.GetUniformLocation(p, "u_dims"), b.dims.x, b.dims.y, b.dims.z, 0);
   gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, b.offsets);
   gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, b.items);

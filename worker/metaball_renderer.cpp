@@ -34,6 +34,31 @@ std::string withCommon(const char* body) { return std::string(shaders::kMetaball
 
 }  // namespace
 
+void setRayUniforms(const GlApi& gl, unsigned p, const Camera& cam, int width, int height,
+                    const MetaballSettings& s, const Box3& clip) {
+  gl.UseProgram(p);
+  auto v3 = [&](const char* name, const glm::dvec3& v) {
+    gl.Uniform3f(gl.GetUniformLocation(p, name), float(v.x), float(v.y), float(v.z));
+  };
+  auto f1 = [&](const char* name, double v) {
+    gl.Uniform1f(gl.GetUniformLocation(p, name), float(v));
+  };
+  double th = std::tan(0.5 * cam.fov_deg * 3.14159265358979323846 / 180.0);
+  v3("u_eye", cam.position);
+  v3("u_fwd", cam.forward());
+  v3("u_right_s", cam.right() * th * (double(cam.width) / cam.height));
+  v3("u_up_s", cam.trueUp() * th);
+  gl.Uniform2f(gl.GetUniformLocation(p, "u_size"), float(width), float(height));
+  f1("u_h", s.h);
+  f1("u_T", s.threshold);
+  f1("u_w", s.step);
+  f1("u_cap", s.max_samples);
+  gl.Uniform1i(gl.GetUniformLocation(p, "u_refine"), s.refine_iterations);
+  v3("u_colour", s.colour);
+  v3("u_box_lo", clip.lo);
+  v3("u_box_hi", clip.hi);
+}
+
 MetaballRenderer::MetaballRenderer(const GlContext& ctx, int width, int height,
                                    const MetaballSettings& settings)
     : gl_(ctx.gl()), s_(settings), target_(ctx.gl(), width, height) {
@@ -144,32 +169,11 @@ void MetaballRenderer::attach(unsigned texture, int level) {
 }
 
 void MetaballRenderer::setCommonUniforms(unsigned p, const Camera& cam, const GpuBrick& b) const {
-  gl_.UseProgram(p);
-  auto v3 = [&](const char* name, const glm::dvec3& v) {
-    int loc = gl_.GetUniformLocation(p, name);
-    if (loc >= 0) gl_.Uniform3f(loc, float(v.x), float(v.y), float(v.z));
-  };
-  auto f1 = [&](const char* name, double v) {
-    int loc = gl_.GetUniformLocation(p, name);
-    if (loc >= 0) gl_.Uniform1f(loc, float(v));
-  };
-  double th = std::tan(0.5 * cam.fov_deg * 3.14159265358979323846 / 180.0);
-  v3("u_eye", cam.position);
-  v3("u_fwd", cam.forward());
-  v3("u_right_s", cam.right() * th * (double(cam.width) / cam.height));
-  v3("u_up_s", cam.trueUp() * th);
-  int loc = gl_.GetUniformLocation(p, "u_size");
-  if (loc >= 0) gl_.Uniform2f(loc, float(width_), float(height_));
-  f1("u_h", s_.h);
-  f1("u_T", s_.threshold);
-  f1("u_w", s_.step);
-  int window = gl_.GetUniformLocation(p, "u_window");
-  if (window >= 0) gl_.Uniform1i(window, s_.samples_per_pass);
+  setRayUniforms(gl_, p, cam, width_, height_, s_, b.clip);
+  gl_.Uniform1i(gl_.GetUniformLocation(p, "u_window"), s_.samples_per_pass);
   // 4 h: on the 65,536-particle layers at 512^2 the advance pass then skips the particles behind
   // the front (1.9 s/frame against 2.0 s looking all the way; 2 h: 1.8 s, 8 h: 2.3 s, noisy).
-  f1("u_lookahead", 4.0 * s_.h);
-  v3("u_box_lo", b.clip.lo);
-  v3("u_box_hi", b.clip.hi);
+  gl_.Uniform1f(gl_.GetUniformLocation(p, "u_lookahead"), float(4.0 * s_.h));
 }
 
 void MetaballRenderer::fullscreen(unsigned program) {
@@ -226,11 +230,6 @@ SurfaceBrick MetaballRenderer::render(int handle, const Camera& cam, double near
   const glm::mat4 vp = cam.viewProjection(near_plane, far_plane);
   for (unsigned p : {advance_, potential_, init_, window_, step_, secant_, bracket_, bracket_base_, shade_})
     setCommonUniforms(p, cam, b);
-  gl_.UseProgram(step_);
-  gl_.Uniform1f(gl_.GetUniformLocation(step_, "u_cap"), float(s_.max_samples));
-  gl_.UseProgram(shade_);
-  gl_.Uniform3f(gl_.GetUniformLocation(shade_, "u_colour"), float(s_.colour.x), float(s_.colour.y),
-                float(s_.colour.z));
   const int mode_loc = gl_.GetUniformLocation(potential_, "u_mode");
 
   gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);

@@ -53,6 +53,12 @@ struct SurfaceBrick {
   int rounds = 0;               // windows sampled (for stats)
 };
 
+// The uniforms every method's programs share (worker/metaball_shaders.h and the passes'): the
+// rays of `cam` over a width x height image, h, T, the step w, the sample cap, the refinement
+// passes, the colour and the brick's clip box. A program that lacks one ignores it (location -1).
+void setRayUniforms(const GlApi& gl, unsigned program, const Camera& cam, int width, int height,
+                    const MetaballSettings& s, const Box3& clip);
+
 // What master/brick_renderer.cpp needs of a metaball renderer, whichever method draws it.
 class ParticleRenderer {
  public:

@@ -144,29 +144,8 @@ SurfaceBrick MetaballSlicesRenderer::render(int handle, const Camera& cam, doubl
   if (r.empty()) return out;
 
   const unsigned p = program_;
-  gl_.UseProgram(p);
-  auto v3 = [&](const char* name, const glm::dvec3& v) {
-    gl_.Uniform3f(gl_.GetUniformLocation(p, name), float(v.x), float(v.y), float(v.z));
-  };
-  auto f1 = [&](const char* name, double v) {
-    gl_.Uniform1f(gl_.GetUniformLocation(p, name), float(v));
-  };
-  double th = std::tan(0.5 * cam.fov_deg * 3.14159265358979323846 / 180.0);
-  v3("u_eye", cam.position);
-  v3("u_fwd", cam.forward());
-  v3("u_right_s", cam.right() * th * (double(cam.width) / cam.height));
-  v3("u_up_s", cam.trueUp() * th);
-  gl_.Uniform2f(gl_.GetUniformLocation(p, "u_size"), float(target_.width()),
-                float(target_.height()));
-  f1("u_h", s_.h);
-  f1("u_T", s_.threshold);
-  f1("u_w", s_.step);
-  f1("u_cap", s_.max_samples);
-  gl_.Uniform1i(gl_.GetUniformLocation(p, "u_refine"), s_.refine_iterations);
-  v3("u_colour", s_.colour);
-  v3("u_box_lo", b.clip.lo);
-  v3("u_box_hi", b.clip.hi);
-  f1("u_spacing", float(s_.slice_spacing * s_.h));
+  setRayUniforms(gl_, p, cam, target_.width(), target_.height(), s_, b.clip);
+  gl_.Uniform1f(gl_.GetUniformLocation(p, "u_spacing"), float(s_.slice_spacing * s_.h));
   gl_.Uniform4i(gl_.GetUniformLocation(p, "u_voxel_lo"), b.voxel_lo.x, b.voxel_lo.y, b.voxel_lo.z,
                 0);
   gl_.Uniform4i(gl_.GetUniformLocation(p, "u_dims"), b.dims.x, b.dims.y, b.dims.z, 0);
