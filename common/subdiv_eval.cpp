@@ -7,18 +7,6 @@
 
 namespace sortlast {
 
-void bsplineBasis(double t, double b[4], double db[4]) {
-  const double s = 1.0 - t, t2 = t * t, t3 = t2 * t;
-  b[0] = s * s * s / 6.0;
-  b[1] = (3.0 * t3 - 6.0 * t2 + 4.0) / 6.0;
-  b[2] = (-3.0 * t3 + 3.0 * t2 + 3.0 * t + 1.0) / 6.0;
-  b[3] = t3 / 6.0;
-  db[0] = -0.5 * s * s;
-  db[1] = 1.5 * t2 - 2.0 * t;
-  db[2] = -1.5 * t2 + t + 0.5;
-  db[3] = 0.5 * t2;
-}
-
 void bsplinePatch(const std::array<glm::dvec3, 16>& p, double s, double t, glm::dvec3& position,
                   glm::dvec3& ds, glm::dvec3& dt) {
   double bs[4], dbs[4], bt[4], dbt[4];

@@ -74,8 +74,20 @@ class SubdivSurface {
   std::vector<Patch> patches_;
 };
 
-// Uniform cubic B-spline basis B_0..B_3 at t and its derivative.
-void bsplineBasis(double t, double b[4], double db[4]);
+// Uniform cubic B-spline basis B_0..B_3 at t and its derivative: in double for the exact
+// evaluation here, in float for the tables' (common/subdiv_tables.h), which mirror the GPU's.
+template <typename T>
+void bsplineBasis(T t, T b[4], T db[4]) {
+  const T s = T(1) - t, t2 = t * t, t3 = t2 * t;
+  b[0] = s * s * s / T(6);
+  b[1] = (T(3) * t3 - T(6) * t2 + T(4)) / T(6);
+  b[2] = (T(-3) * t3 + T(3) * t2 + T(3) * t + T(1)) / T(6);
+  b[3] = t3 / T(6);
+  db[0] = T(-0.5) * s * s;
+  db[1] = T(1.5) * t2 - T(2) * t;
+  db[2] = T(-1.5) * t2 + t + T(0.5);
+  db[3] = T(0.5) * t2;
+}
 // A bicubic B-spline patch: position and both partial derivatives at (s, t).
 void bsplinePatch(const std::array<glm::dvec3, 16>& p, double s, double t, glm::dvec3& position,
                   glm::dvec3& ds, glm::dvec3& dt);

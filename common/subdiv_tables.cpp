@@ -37,22 +37,6 @@ SubdivTables buildTables(const SubdivSurface& surface) {
   return t;
 }
 
-namespace {
-
-void basis(float t, float b[4], float db[4]) {
-  const float s = 1.0f - t, t2 = t * t, t3 = t2 * t;
-  b[0] = s * s * s / 6.0f;
-  b[1] = (3.0f * t3 - 6.0f * t2 + 4.0f) / 6.0f;
-  b[2] = (-3.0f * t3 + 3.0f * t2 + 3.0f * t + 1.0f) / 6.0f;
-  b[3] = t3 / 6.0f;
-  db[0] = -0.5f * s * s;
-  db[1] = 1.5f * t2 - 2.0f * t;
-  db[2] = -1.5f * t2 + t + 0.5f;
-  db[3] = 0.5f * t2;
-}
-
-}  // namespace
-
 FloatLimitPoint evaluateTables(const SubdivTables& tables, int face, float u, float v) {
   const auto& e = tables.faces[face];
   float pu = u, pv = v;
@@ -79,8 +63,8 @@ FloatLimitPoint evaluateTables(const SubdivTables& tables, int face, float u, fl
     set += (n - 1) * 3 + (k - 1);
   }
   float bs[4], dbs[4], bt[4], dbt[4];
-  basis(s, bs, dbs);
-  basis(t, bt, dbt);
+  bsplineBasis(s, bs, dbs);
+  bsplineBasis(t, bt, dbt);
   glm::vec3 p(0.0f), ds(0.0f), dt(0.0f);
   for (int b = 0; b < 4; ++b)
     for (int a = 0; a < 4; ++a) {

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "common/anisotropic_kernels.h"
 #include "common/error.h"
 #include "worker/metaball_slices.h"  // kSliceVoxelCells, kSliceSlotPoints
 
@@ -35,9 +36,23 @@ double memAvailable() {
 
 // Bytes of one particle's centre (glm::vec3).
 constexpr double kParticle = 12.0;
-// Grid entries per particle: a sphere of radius h over cells of h/2 touches about 84 cells
-// (worker/metaball_grid.h); 4 bytes each, on the host while building and on the GPU.
-constexpr double kGridEntries = 84.0;
+// Bytes of one grid list entry: its index on the host while building (4), the centre with it as
+// the shader reads it, on the host (16) and in the storage buffer (16)
+// (worker/metaball_grid_renderer.cpp); and of one cell's offset, on the host and the GPU.
+constexpr double kGridEntryBytes = 4.0 + 16.0 + 16.0, kGridCellBytes = 4.0 + 4.0;
+// Bytes per particle of anisotropic smoothing (worker/metaball_grid_renderer.cpp): every kernel
+// of the brick's particles and ghosts, then the kept ones again with their reach and centres,
+// their three vec4 rows staged on the host and in a storage buffer (the GPU), and the neighbour
+// search's cell lists (common/anisotropic_kernels.cpp: an index and a cell number a particle).
+constexpr double kAnisotropicBytes =
+    2.0 * sizeof(ParticleKernel) + 4.0 + kParticle + 2.0 * 3.0 * 16.0 + 8.0;
+
+// How many cells of edge `cell` a ball of `radius` touches on average: the volume of the cube
+// grown by the radius, in cells (a metaball grid's list entries per particle).
+double ballCellsTouched(double radius, double cell) {
+  const double pi = 3.14159265358979323846, x = radius / cell;
+  return 1.0 + 6.0 * x + 3.0 * pi * x * x + 4.0 / 3.0 * pi * x * x * x;
+}
 
 }  // namespace
 
@@ -146,9 +161,12 @@ MemoryNeed sessionNeed(const Scene& scene, const SessionLayout& layout, long lon
   if (scene.particles.enabled() && particles > 0) {
     // A rank's share of the particles with ghosts: its bricks' fraction of the scene, grown by
     // the ghost margin h on every side (at most all of them).
+    // (Anisotropic smoothing: h here is the longer reach, and the ghosts reach h_n further.)
     glm::dvec3 e = layout.bounds.extent();
     double side = std::max({e.x, e.y, e.z}) / d, h = layout.particle_h;
-    double grow = side > 0 ? std::pow((side + 2 * h) / side, 3.0) : 1.0;
+    const bool anisotropic = scene.particles.anisotropicOn();
+    const double ghosts = anisotropic ? scene.particles.ghostMargin() : h;
+    double grow = side > 0 ? std::pow((side + 2 * ghosts) / side, 3.0) : 1.0;
     double held = std::min(double(particles),
                            double(particles) * double(layout.mine.size()) / bricks_all * grow);
     n.add(
@@ -156,11 +174,17 @@ MemoryNeed sessionNeed(const Scene& scene, const SessionLayout& layout, long lon
         2.0 * held * kParticle);
     if (rank == 0) n.add("the particle set on rank 0", double(particles) * kParticle);
     if (scene.particles.method == "grid") {
+      // Cells of edge h/2 (the influence radius) over a brick grown by the reach, at most 2^24;
+      // each particle listed in every cell its ball of the reach touches (round: 84 cells;
+      // anisotropic, by the reach bound: about 10 times as many).
+      const double cell = 0.5 * scene.particles.influenceRadius();
       double cells = 0;
-      for (size_t i = 0; i < layout.mine.size();
-           ++i)  // cells of h/2 over a brick grown by h, at most 2^24
-        cells += std::min(std::pow((side + 2 * h) / (0.5 * h), 3.0), double(1 << 24));
-      n.add("metaball grids (host and GPU)", 2.0 * 4.0 * (held * kGridEntries + cells));
+      for (size_t i = 0; i < layout.mine.size(); ++i)
+        cells += std::min(std::pow((side + 2 * h) / cell, 3.0), double(1 << 24));
+      n.add("metaball grids (host and GPU)",
+            held * ballCellsTouched(h, cell) * kGridEntryBytes + cells * kGridCellBytes);
+      if (anisotropic)
+        n.add("anisotropic kernels (host and GPU)", held * kAnisotropicBytes);
     }
     if (scene.particles.method == "slices") {
       // A particle's ball (radius h) meets on average (e^3 + 6 e^2 h + 3 pi e h^2 + 4/3 pi h^3) / e^3

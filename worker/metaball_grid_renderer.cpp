@@ -16,16 +16,6 @@ namespace sortlast {
 
 namespace {
 
-unsigned makeTarget(const GlApi& gl, int w, int h) {
-  unsigned t = 0;
-  gl.GenTextures(1, &t);
-  gl.BindTexture(GL_TEXTURE_2D, t);
-  gl.TexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, w, h);
-  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  return t;
-}
-
 unsigned upload(const GlApi& gl, const void* data, size_t bytes) {
   unsigned b = 0;
   gl.GenBuffers(1, &b);
@@ -40,9 +30,7 @@ unsigned upload(const GlApi& gl, const void* data, size_t bytes) {
 
 MetaballGridRenderer::MetaballGridRenderer(const GlContext& ctx, int width, int height,
                                            const MetaballSettings& settings)
-    : gl_(ctx.gl()), s_(settings) {
-  allocateTargets(width, height);
-  gl_.GenFramebuffers(1, &fbo_);
+    : gl_(ctx.gl()), s_(settings), target_(ctx.gl(), width, height) {
   gl_.GenVertexArrays(1, &empty_vao_);
   GLint max_block = 0;
   gl_.GetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
@@ -60,26 +48,11 @@ MetaballGridRenderer::~MetaballGridRenderer() {
     for (unsigned buf : {b.offsets, b.items, b.kernels})
       if (buf) gl_.DeleteBuffers(1, &buf);
   gl_.DeleteProgram(program_);
-  freeTargets();
   gl_.DeleteVertexArrays(1, &empty_vao_);
-  gl_.DeleteFramebuffers(1, &fbo_);
-}
-
-void MetaballGridRenderer::allocateTargets(int width, int height) {
-  width_ = width;
-  height_ = height;
-  colour_ = makeTarget(gl_, width, height);
-  surface_ = makeTarget(gl_, width, height);
-}
-
-void MetaballGridRenderer::freeTargets() {
-  for (unsigned t : {colour_, surface_}) gl_.DeleteTextures(1, &t);
 }
 
 void MetaballGridRenderer::resize(int width, int height) {
-  if (width == width_ && height == height_) return;
-  freeTargets();
-  allocateTargets(width, height);
+  target_.resize(width, height);
   gl_.check("metaball grid renderer resize");
 }
 
@@ -170,64 +143,20 @@ SurfaceBrick MetaballGridRenderer::render(int handle, const Camera& cam, double,
   if (r.empty()) return out;
 
   const unsigned p = program_;
-  gl_.UseProgram(p);
-  auto v3 = [&](const char* name, const glm::dvec3& v) {
-    gl_.Uniform3f(gl_.GetUniformLocation(p, name), float(v.x), float(v.y), float(v.z));
-  };
-  auto f1 = [&](const char* name, double v) { gl_.Uniform1f(gl_.GetUniformLocation(p, name), float(v)); };
-  double th = std::tan(0.5 * cam.fov_deg * 3.14159265358979323846 / 180.0);
-  v3("u_eye", cam.position);
-  v3("u_fwd", cam.forward());
-  v3("u_right_s", cam.right() * th * (double(cam.width) / cam.height));
-  v3("u_up_s", cam.trueUp() * th);
-  gl_.Uniform2f(gl_.GetUniformLocation(p, "u_size"), float(width_), float(height_));
-  f1("u_h", s_.h);
-  f1("u_T", s_.threshold);
-  f1("u_w", s_.step);
-  f1("u_cap", s_.max_samples);
-  gl_.Uniform1i(gl_.GetUniformLocation(p, "u_refine"), s_.refine_iterations);
-  v3("u_colour", s_.colour);
-  v3("u_box_lo", b.clip.lo);
-  v3("u_box_hi", b.clip.hi);
-  v3("u_grid_lo", glm::dvec3(b.lo));
-  f1("u_cell", b.cell);
+  setRayUniforms(gl_, p, cam, target_.width(), target_.height(), s_, b.clip);
+  gl_.Uniform3f(gl_.GetUniformLocation(p, "u_grid_lo"), b.lo.x, b.lo.y, b.lo.z);
+  gl_.Uniform1f(gl_.GetUniformLocation(p, "u_cell"), b.cell);
   gl_.Uniform4i(gl_.GetUniformLocation(p, "u_dims"), b.dims.x, b.dims.y, b.dims.z, 0);
   gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, b.offsets);
   gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, b.items);
   if (s_.anisotropic) gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, b.kernels);
 
-  gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
-  gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, colour_, 0);
-  gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, surface_, 0);
-  const GLenum both[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-  gl_.DrawBuffers(2, both);
-  if (gl_.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-    throw std::runtime_error("OpenGL: metaball grid framebuffer is not complete");
-  gl_.Viewport(0, 0, width_, height_);
-  gl_.Enable(GL_SCISSOR_TEST);
-  gl_.Scissor(r.x, r.y, r.w, r.h);
-  gl_.Disable(GL_BLEND);
-  gl_.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  target_.bindForDrawing(r, "metaball grid");
   gl_.BindVertexArray(empty_vao_);
   gl_.DrawArrays(GL_TRIANGLES, 0, 3);
 
-  readback_.resize(size_t(r.area()) * 4);
-  gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
-  gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);
-  gl_.ReadPixels(r.x, r.y, r.w, r.h, GL_RGBA, GL_FLOAT, readback_.data());
-  out.rect = r;
+  target_.readBack(r, want_surface, out);
   out.rounds = 1;
-  out.pixels = ImageRGBA8(r.w, r.h);
-  for (size_t i = 0; i < size_t(r.area()); ++i) toRGBA8(&readback_[4 * i], &out.pixels.px[4 * i]);
-  if (want_surface) {
-    gl_.ReadBuffer(GL_COLOR_ATTACHMENT1);
-    out.surface.resize(size_t(r.area()) * 4);
-    gl_.ReadPixels(r.x, r.y, r.w, r.h, GL_RGBA, GL_FLOAT, out.surface.data());
-  }
-  gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);
-  gl_.DrawBuffers(1, both);
-  gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, 0, 0);
-  gl_.Disable(GL_SCISSOR_TEST);
   gl_.check("metaball grid render");
   return out;
 }

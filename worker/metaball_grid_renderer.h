@@ -11,6 +11,7 @@
 
 #include "worker/metaball_grid.h"
 #include "worker/metaball_renderer.h"
+#include "worker/surface_target.h"
 
 namespace sortlast {
 
@@ -30,8 +31,8 @@ class MetaballGridRenderer : public ParticleRenderer {
   // near_plane and far_plane are not needed (no rasterised geometry); kept for the interface.
   SurfaceBrick render(int handle, const Camera& cam, double near_plane, double far_plane,
                       bool want_surface = false) override;
-  unsigned surfaceTexture() const override { return surface_; }
-  unsigned colourTexture() const override { return colour_; }
+  unsigned surfaceTexture() const override { return target_.surface(); }
+  unsigned colourTexture() const override { return target_.colour(); }
 
  private:
   struct GpuBrick {
@@ -43,16 +44,13 @@ class MetaballGridRenderer : public ParticleRenderer {
     unsigned centres = 0, offsets = 0, items = 0, kernels = 0;  // SSBOs (kernels: anisotropic)
     int count = 0;
   };
-  void allocateTargets(int width, int height);
-  void freeTargets();
 
   const GlApi& gl_;
-  int width_, height_;
   MetaballSettings s_;
   long long max_block_bytes_ = 0;
-  unsigned fbo_ = 0, empty_vao_ = 0, program_ = 0, colour_ = 0, surface_ = 0;
+  SurfaceTarget target_;
+  unsigned empty_vao_ = 0, program_ = 0;
   std::vector<GpuBrick> bricks_;
-  std::vector<float> readback_;
 };
 
 }  // namespace sortlast

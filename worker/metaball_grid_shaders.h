@@ -66,7 +66,6 @@ const int CHUNK = 8;
 float g_s[CHUNK];   // sample distances
 float g_f[CHUNK];   // field at them
 
-vec3 safeDir(vec3 d) { return mix(d, vec3(1e-30), equal(d, vec3(0.0))); }
 ivec3 cellOf(vec3 x) { return clamp(ivec3(floor((x - u_grid_lo) / u_cell)), ivec3(0), u_dims.xyz - 1); }
 uvec2 cellRange(ivec3 c) {
   int i = (c.z * u_dims.y + c.y) * u_dims.x + c.x;
@@ -167,13 +166,10 @@ void main() {
   o_colour = vec4(0.0);
   o_surface = vec4(INF, 0.0, 0.0, 0.0);
   vec3 d = safeDir(rayDir(gl_FragCoord.xy));
-  vec2 iv = clipInterval(d);
-  float t_in = iv.x, t_out = iv.y;
-  if (t_in >= t_out) return;
   // Beyond the grid's box the field is 0: nothing to find outside [g0, g1].
-  vec2 g = gridInterval(d);
-  float g0 = max(g.x, t_in), g1 = min(g.y, t_out);
-  if (g0 >= g1) return;
+  vec4 iv;
+  if (!rayStretch(d, gridInterval(d), iv)) return;
+  float t_in = iv.x, t_out = iv.y, g0 = iv.z, g1 = iv.w;
 
   // The samples are t_in, then every lattice point up to t_out, then t_out: the billboard
   // method's points, except that it also skips the rear halves of spheres (its eq. 3). Empty
@@ -239,18 +235,7 @@ void main() {
     float q[4];
     refineProbes(b, q);
     sumProbes(q, d);
-    vec2 neg = b.xy;
-    bool stored = false;
-    for (int k = 0; k < 4; ++k) {
-      float value = sqrt(g_f[k]) - u_T;
-      if (value >= 0.0) {
-        if (q[k] > neg.x) b = vec4(neg, q[k], value);
-        stored = true;
-        break;
-      }
-      if (q[k] > neg.x) neg = vec2(q[k], value);
-    }
-    if (!stored && b.z > neg.x) b = vec4(neg, b.zw);
+    b = refineBracket(b, q, vec4(g_f[0], g_f[1], g_f[2], g_f[3]));
   }
   float t = secantEstimate(b);
 
@@ -277,11 +262,8 @@ void main() {
     grad += len > 0.0 ? (-2.0 * q / (u_h * len)) * rr : vec3(0.0);
 #endif
   }
-  // Shading: common/metaball_shading.h, as the billboard method's shade pass.
-  float len = length(grad);
-  vec3 nrm = len > 0.0 ? -grad / len : -d;
-  float diffuse = max(dot(nrm, -d), 0.0);
-  o_colour = vec4(clamp(u_colour * (0.2 + 0.8 * diffuse), 0.0, 1.0), 1.0);
+  vec3 nrm;
+  o_colour = shade(u_colour, grad, d, nrm);
   o_surface = vec4(t, nrm);
 }
 )";

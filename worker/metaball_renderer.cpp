@@ -34,9 +34,34 @@ std::string withCommon(const char* body) { return std::string(shaders::kMetaball
 
 }  // namespace
 
+void setRayUniforms(const GlApi& gl, unsigned p, const Camera& cam, int width, int height,
+                    const MetaballSettings& s, const Box3& clip) {
+  gl.UseProgram(p);
+  auto v3 = [&](const char* name, const glm::dvec3& v) {
+    gl.Uniform3f(gl.GetUniformLocation(p, name), float(v.x), float(v.y), float(v.z));
+  };
+  auto f1 = [&](const char* name, double v) {
+    gl.Uniform1f(gl.GetUniformLocation(p, name), float(v));
+  };
+  double th = std::tan(0.5 * cam.fov_deg * 3.14159265358979323846 / 180.0);
+  v3("u_eye", cam.position);
+  v3("u_fwd", cam.forward());
+  v3("u_right_s", cam.right() * th * (double(cam.width) / cam.height));
+  v3("u_up_s", cam.trueUp() * th);
+  gl.Uniform2f(gl.GetUniformLocation(p, "u_size"), float(width), float(height));
+  f1("u_h", s.h);
+  f1("u_T", s.threshold);
+  f1("u_w", s.step);
+  f1("u_cap", s.max_samples);
+  gl.Uniform1i(gl.GetUniformLocation(p, "u_refine"), s.refine_iterations);
+  v3("u_colour", s.colour);
+  v3("u_box_lo", clip.lo);
+  v3("u_box_hi", clip.hi);
+}
+
 MetaballRenderer::MetaballRenderer(const GlContext& ctx, int width, int height,
                                    const MetaballSettings& settings)
-    : gl_(ctx.gl()), s_(settings) {
+    : gl_(ctx.gl()), s_(settings), target_(ctx.gl(), width, height) {
   if (settings.anisotropic) throw std::logic_error("MetaballRenderer: anisotropic smoothing is grid-only");
   allocateTargets(width, height);
   gl_.GenFramebuffers(1, &fbo_);
@@ -87,12 +112,10 @@ void MetaballRenderer::allocateTargets(int width, int height) {
   pot_ = makeTexture(gl_, GL_RGBA32F, width, height);
   pot2_ = makeTexture(gl_, GL_RGBA32F, width, height);
   pyramid_ = makeTexture(gl_, GL_RG32F, width, height, levels_);
-  colour_ = makeTexture(gl_, GL_RGBA32F, width, height);
-  surface_ = makeTexture(gl_, GL_RGBA32F, width, height);
 }
 
 void MetaballRenderer::freeTargets() {
-  for (unsigned t : {state_, hit_, next_, pot_, pot2_, pyramid_, colour_, surface_}) gl_.DeleteTextures(1, &t);
+  for (unsigned t : {state_, hit_, next_, pot_, pot2_, pyramid_}) gl_.DeleteTextures(1, &t);
 }
 
 void MetaballRenderer::resize(int width, int height) {
@@ -100,6 +123,7 @@ void MetaballRenderer::resize(int width, int height) {
   // Immutable storage (TexStorage2D): new textures of the new size.
   freeTargets();
   allocateTargets(width, height);
+  target_.resize(width, height);
   gl_.check("metaball renderer resize");
 }
 
@@ -145,32 +169,11 @@ void MetaballRenderer::attach(unsigned texture, int level) {
 }
 
 void MetaballRenderer::setCommonUniforms(unsigned p, const Camera& cam, const GpuBrick& b) const {
-  gl_.UseProgram(p);
-  auto v3 = [&](const char* name, const glm::dvec3& v) {
-    int loc = gl_.GetUniformLocation(p, name);
-    if (loc >= 0) gl_.Uniform3f(loc, float(v.x), float(v.y), float(v.z));
-  };
-  auto f1 = [&](const char* name, double v) {
-    int loc = gl_.GetUniformLocation(p, name);
-    if (loc >= 0) gl_.Uniform1f(loc, float(v));
-  };
-  double th = std::tan(0.5 * cam.fov_deg * 3.14159265358979323846 / 180.0);
-  v3("u_eye", cam.position);
-  v3("u_fwd", cam.forward());
-  v3("u_right_s", cam.right() * th * (double(cam.width) / cam.height));
-  v3("u_up_s", cam.trueUp() * th);
-  int loc = gl_.GetUniformLocation(p, "u_size");
-  if (loc >= 0) gl_.Uniform2f(loc, float(width_), float(height_));
-  f1("u_h", s_.h);
-  f1("u_T", s_.threshold);
-  f1("u_w", s_.step);
-  int window = gl_.GetUniformLocation(p, "u_window");
-  if (window >= 0) gl_.Uniform1i(window, s_.samples_per_pass);
+  setRayUniforms(gl_, p, cam, width_, height_, s_, b.clip);
+  gl_.Uniform1i(gl_.GetUniformLocation(p, "u_window"), s_.samples_per_pass);
   // 4 h: on the 65,536-particle layers at 512^2 the advance pass then skips the particles behind
   // the front (1.9 s/frame against 2.0 s looking all the way; 2 h: 1.8 s, 8 h: 2.3 s, noisy).
-  f1("u_lookahead", 4.0 * s_.h);
-  v3("u_box_lo", b.clip.lo);
-  v3("u_box_hi", b.clip.hi);
+  gl_.Uniform1f(gl_.GetUniformLocation(p, "u_lookahead"), float(4.0 * s_.h));
 }
 
 void MetaballRenderer::fullscreen(unsigned program) {
@@ -182,7 +185,7 @@ void MetaballRenderer::fullscreen(unsigned program) {
 
 void MetaballRenderer::buildPyramid(const Rect& r) {
   if (!s_.cull) return;
-  attach(colour_);
+  attach(target_.colour());
   gl_.UseProgram(reduce_);
   gl_.Uniform4i(gl_.GetUniformLocation(reduce_, "u_rect"), r.x, r.y, r.w, r.h);
   int level_loc = gl_.GetUniformLocation(reduce_, "u_level");
@@ -227,11 +230,6 @@ SurfaceBrick MetaballRenderer::render(int handle, const Camera& cam, double near
   const glm::mat4 vp = cam.viewProjection(near_plane, far_plane);
   for (unsigned p : {advance_, potential_, init_, window_, step_, secant_, bracket_, bracket_base_, shade_})
     setCommonUniforms(p, cam, b);
-  gl_.UseProgram(step_);
-  gl_.Uniform1f(gl_.GetUniformLocation(step_, "u_cap"), float(s_.max_samples));
-  gl_.UseProgram(shade_);
-  gl_.Uniform3f(gl_.GetUniformLocation(shade_, "u_colour"), float(s_.colour.x), float(s_.colour.y),
-                float(s_.colour.z));
   const int mode_loc = gl_.GetUniformLocation(potential_, "u_mode");
 
   gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
@@ -250,16 +248,16 @@ SurfaceBrick MetaballRenderer::render(int handle, const Camera& cam, double near
   gl_.BindImageTexture(kHitImage, hit_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
   gl_.BindImageTexture(kBaseImage, pyramid_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
   gl_.BindImageTexture(kNextImage, next_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
-  gl_.BindImageTexture(kSurfaceImage, surface_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  gl_.BindImageTexture(kSurfaceImage, target_.surface(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   // The framebuffer always has a colour attachment (passes that only write images mask it off).
   attach(next_);
   if (gl_.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     throw std::runtime_error("OpenGL: metaball framebuffer is not complete");
 
-  // Passes that write only images keep `colour_` attached (masked off): no texture they sample
-  // may be the framebuffer's attachment.
+  // Passes that write only images keep the colour target attached (masked off): no texture they
+  // sample may be the framebuffer's attachment.
   auto imagePass = [&](unsigned program) {
-    attach(colour_);
+    attach(target_.colour());
     gl_.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     fullscreen(program);
   };
@@ -299,7 +297,7 @@ SurfaceBrick MetaballRenderer::render(int handle, const Camera& cam, double near
     gl_.UseProgram(potential_);
     gl_.Uniform1i(mode_loc, 0);
     blendPass(pot_, 0.0f, GL_FUNC_ADD, potential_, float(s_.h));
-    attach(colour_);
+    attach(target_.colour());
     gl_.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     gl_.BeginQuery(GL_ANY_SAMPLES_PASSED, query_);
     fullscreen(step_);
@@ -329,22 +327,11 @@ SurfaceBrick MetaballRenderer::render(int handle, const Camera& cam, double near
   gl_.UseProgram(potential_);
   gl_.Uniform1i(mode_loc, 2);
   blendPass(pot_, 0.0f, GL_FUNC_ADD, potential_, float(s_.h));
-  attach(colour_);
+  attach(target_.colour());
   gl_.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   fullscreen(shade_);
 
-  readback_.resize(size_t(r.area()) * 4);
-  gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
-  gl_.ReadPixels(r.x, r.y, r.w, r.h, GL_RGBA, GL_FLOAT, readback_.data());
-  out.rect = r;
-  out.pixels = ImageRGBA8(r.w, r.h);
-  for (size_t i = 0; i < size_t(r.area()); ++i) toRGBA8(&readback_[4 * i], &out.pixels.px[4 * i]);
-  if (want_surface) {
-    attach(surface_);
-    out.surface.resize(size_t(r.area()) * 4);
-    gl_.ReadPixels(r.x, r.y, r.w, r.h, GL_RGBA, GL_FLOAT, out.surface.data());
-  }
-  gl_.Disable(GL_SCISSOR_TEST);
+  target_.readBack(r, want_surface, out);
   gl_.check("metaball render");
   return out;
 }

@@ -22,6 +22,7 @@
 #include "common/camera.h"
 #include "common/image.h"
 #include "worker/gl_context.h"
+#include "worker/surface_target.h"
 
 namespace sortlast {
 
@@ -51,6 +52,12 @@ struct SurfaceBrick {
   std::vector<float> surface;   // if asked for: rect.w x rect.h x (t, nx, ny, nz); t = 1e30 on a miss
   int rounds = 0;               // windows sampled (for stats)
 };
+
+// The uniforms every method's programs share (worker/metaball_shaders.h and the passes'): the
+// rays of `cam` over a width x height image, h, T, the step w, the sample cap, the refinement
+// passes, the colour and the brick's clip box. A program that lacks one ignores it (location -1).
+void setRayUniforms(const GlApi& gl, unsigned program, const Camera& cam, int width, int height,
+                    const MetaballSettings& s, const Box3& clip);
 
 // What master/brick_renderer.cpp needs of a metaball renderer, whichever method draws it.
 class ParticleRenderer {
@@ -89,9 +96,9 @@ class MetaballRenderer : public ParticleRenderer {
 
   // After render(): a texture of (t, nx, ny, nz) per pixel over the last brick's rectangle
   // (t = 1e30 where it missed), for a volume renderer to end its rays at the surface.
-  unsigned surfaceTexture() const override { return surface_; }
+  unsigned surfaceTexture() const override { return target_.surface(); }
   // After render(): the shaded colour (RGBA32F, premultiplied, alpha 1 on the surface).
-  unsigned colourTexture() const override { return colour_; }
+  unsigned colourTexture() const override { return target_.colour(); }
 
  private:
   struct GpuBrick {
@@ -113,11 +120,11 @@ class MetaballRenderer : public ParticleRenderer {
   int width_, height_, levels_;
   MetaballSettings s_;
   unsigned fbo_ = 0, vao_ = 0, empty_vao_ = 0, query_ = 0;
-  unsigned state_ = 0, hit_ = 0, next_ = 0, pot_ = 0, pot2_ = 0, pyramid_ = 0, colour_ = 0, surface_ = 0;
+  unsigned state_ = 0, hit_ = 0, next_ = 0, pot_ = 0, pot2_ = 0, pyramid_ = 0;
+  SurfaceTarget target_;  // the shade pass's colour and the surface (t, normal)
   unsigned advance_ = 0, potential_ = 0, init_ = 0, window_ = 0, step_ = 0, secant_ = 0,
            bracket_ = 0, bracket_base_ = 0, shade_ = 0, reduce_ = 0;
   std::vector<GpuBrick> bricks_;
-  std::vector<float> readback_;
 };
 
 }  // namespace sortlast

@@ -77,6 +77,37 @@ void refineProbes(vec4 b, out float q[4]) {
   else if (mid <= a2) { q[0] = a0; q[1] = a1; q[2] = mid; q[3] = a2; }
   else { q[0] = a0; q[1] = a1; q[2] = a2; q[3] = mid; }
 }
+// Refinement, eq. 6: the new bracket is the first sign change along the ray among t_neg, the 4
+// probes q (ascending, F there in f) and t_pos; b itself where no probe narrows it.
+vec4 refineBracket(vec4 b, float q[4], vec4 f) {
+  vec2 neg = b.xy;
+  for (int k = 0; k < 4; ++k) {
+    float value = sqrt(f[k]) - u_T;
+    if (value >= 0.0) return q[k] > neg.x ? vec4(neg, q[k], value) : b;
+    if (q[k] > neg.x) neg = vec2(q[k], value);
+  }
+  return b.z > neg.x ? vec4(neg, b.zw) : b;
+}
+// Shading, the formula of common/metaball_shading.h: headlight L = -D, N = -grad F / |grad F|,
+// rgb = colour * (0.2 + 0.8 * max(N.L, 0)), alpha 1 (premultiplied).
+vec4 shade(vec3 colour, vec3 grad, vec3 d, out vec3 n) {
+  float len = length(grad);
+  n = len > 0.0 ? -grad / len : -d;
+  float diffuse = max(dot(n, -d), 0.0);
+  return vec4(clamp(colour * (0.2 + 0.8 * diffuse), 0.0, 1.0), 1.0);
+}
+// The one-pass ray casters (grid, slices): a direction with no zero component (their slab tests
+// divide by it), and the ray's stretch in the clip box, [t_in, t_out], with the part of it in the
+// box of the brick's data (where the field can be non-zero), [g0, g1], for data interval g:
+// false if either is empty, else iv = (t_in, t_out, g0, g1).
+vec3 safeDir(vec3 d) { return mix(d, vec3(1e-30), equal(d, vec3(0.0))); }
+bool rayStretch(vec3 d, vec2 g, out vec4 iv) {
+  vec2 c = clipInterval(d);
+  if (c.x >= c.y) return false;
+  iv = vec4(c, max(g.x, c.x), min(g.y, c.y));
+  if (iv.z >= iv.w) return false;
+  return true;
+}
 )";
 
 // Billboards: for each particle the square facing the eye in front of its sphere of influence
@@ -352,8 +383,7 @@ void main() {
 }
 )";
 
-// Refinement, eq. 6 over the probes: the new bracket is the first sign change along the ray
-// among t_neg, the 4 probes and t_pos.
+// Refinement, eq. 6 over the probes (refineBracket).
 inline constexpr const char* kBracketFragment = R"(
 layout(rgba32f, binding = 1) uniform image2D i_hit;
 uniform sampler2D u_pot;
@@ -363,17 +393,7 @@ void main() {
   if (b.z <= 0.0) return;
   float q[4];
   refineProbes(b, q);
-  vec4 f = texelFetch(u_pot, p, 0);
-  vec2 neg = b.xy;
-  for (int k = 0; k < 4; ++k) {
-    float value = sqrt(f[k]) - u_T;
-    if (value >= 0.0) {
-      if (q[k] > neg.x) imageStore(i_hit, p, vec4(neg, q[k], value));
-      return;
-    }
-    if (q[k] > neg.x) neg = vec2(q[k], value);
-  }
-  if (b.z > neg.x) imageStore(i_hit, p, vec4(neg, b.zw));
+  imageStore(i_hit, p, refineBracket(b, q, texelFetch(u_pot, p, 0)));
 }
 )";
 
@@ -395,8 +415,7 @@ void main() {
 }
 )";
 
-// Shading, the formula of common/metaball_shading.h: headlight L = -D, N = -grad F / |grad F|,
-// rgb = colour * (0.2 + 0.8 * max(N.L, 0)), alpha 1. Also stores (t, N) for depth tests and the
+// Shading (shade(), common/metaball_shading.h). Also stores (t, N) for depth tests and the
 // surface output; misses get t = INF.
 inline constexpr const char* kShadeFragment = R"(
 layout(rgba32f, binding = 1) uniform readonly image2D i_hit;
@@ -413,11 +432,8 @@ void main() {
     return;
   }
   vec3 d = rayDir(gl_FragCoord.xy);
-  vec3 g = texelFetch(u_pot, p, 0).xyz;
-  float len = length(g);
-  vec3 n = len > 0.0 ? -g / len : -d;
-  float diffuse = max(dot(n, -d), 0.0);
-  o_colour = vec4(clamp(u_colour * (0.2 + 0.8 * diffuse), 0.0, 1.0), 1.0);
+  vec3 n;
+  o_colour = shade(u_colour, texelFetch(u_pot, p, 0).xyz, d, n);
   imageStore(i_surface, p, vec4(texelFetch(u_next, p, 0).x, n));
 }
 )";

@@ -73,7 +73,6 @@ layout(location = 0) out vec4 o_colour;
 layout(location = 1) out vec4 o_surface;
 const int CELLS = SIDE - 1;
 
-vec3 safeDir(vec3 d) { return mix(d, vec3(1e-30), equal(d, vec3(0.0))); }
 // The brick's voxel holding lattice cell c, and its slot (-1: no slot, or outside the brick).
 ivec3 voxelOfCell(ivec3 c) { return ivec3(floor(vec3(c) / float(CELLS))); }
 int slotOf(ivec3 v) {
@@ -118,12 +117,9 @@ void main() {
   o_colour = vec4(0.0);
   o_surface = vec4(INF, 0.0, 0.0, 0.0);
   vec3 d = safeDir(rayDir(gl_FragCoord.xy));
-  vec2 iv = clipInterval(d);
-  float t_in = iv.x, t_out = iv.y;
-  if (t_in >= t_out) return;
-  vec2 g = gridInterval(d);
-  float g0 = max(g.x, t_in), g1 = min(g.y, t_out);
-  if (g0 >= g1) return;
+  vec4 iv;
+  if (!rayStretch(d, gridInterval(d), iv)) return;
+  float t_in = iv.x, t_out = iv.y, g0 = iv.z, g1 = iv.w;
 
   // Samples: the lattice points k w in [t_in, t_out): each point belongs to exactly one brick
   // (the half-open rule of the volume bricks), and no brick adds samples at its faces, so every
@@ -172,18 +168,9 @@ void main() {
   for (int i = 0; i < u_refine; ++i) {
     float q[4];
     refineProbes(b, q);
-    vec2 neg = b.xy;
-    bool stored = false;
-    for (int k = 0; k < 4; ++k) {
-      float value = sqrt(fieldAt(u_eye + q[k] * d)) - u_T;
-      if (value >= 0.0) {
-        if (q[k] > neg.x) b = vec4(neg, q[k], value);
-        stored = true;
-        break;
-      }
-      if (q[k] > neg.x) neg = vec2(q[k], value);
-    }
-    if (!stored && b.z > neg.x) b = vec4(neg, b.zw);
+    vec4 f;
+    for (int k = 0; k < 4; ++k) f[k] = fieldAt(u_eye + q[k] * d);
+    b = refineBracket(b, q, f);
   }
   float t = secantEstimate(b);
 
@@ -193,11 +180,8 @@ void main() {
   vec3 grad = vec3(fieldAt(x + vec3(e, 0, 0)) - fieldAt(x - vec3(e, 0, 0)),
                    fieldAt(x + vec3(0, e, 0)) - fieldAt(x - vec3(0, e, 0)),
                    fieldAt(x + vec3(0, 0, e)) - fieldAt(x - vec3(0, 0, e)));
-  // Shading: common/metaball_shading.h, as the other methods.
-  float len = length(grad);
-  vec3 nrm = len > 0.0 ? -grad / len : -d;
-  float diffuse = max(dot(nrm, -d), 0.0);
-  o_colour = vec4(clamp(u_colour * (0.2 + 0.8 * diffuse), 0.0, 1.0), 1.0);
+  vec3 nrm;
+  o_colour = shade(u_colour, grad, d, nrm);
   o_surface = vec4(t, nrm);
 }
 )";

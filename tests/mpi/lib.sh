@@ -10,3 +10,25 @@ trap 'rm -rf "$WORK"' EXIT
 # Every run is bounded: a hang is a failure, not a stuck test suite.
 run_np() { local np=$1; shift; timeout 120 "${MPIRUN[@]}" -np "$np" "$SORTLAST" "$@"; }
 fail() { echo "FAIL: $*"; exit 1; }
+
+# The particle tests (particles.sh, particles_slices.sh): the CPU reference of scene $1 (options
+# after it) into $WORK/ref.png and $WORK/ref.exr.
+reference() {
+  "$SORTLAST" reference "$1" -q -o "$WORK/ref.png" --surface-out "$WORK/ref.exr" "${@:2}" ||
+    fail "reference $1"
+}
+# The mixed scene $1 (a volume with particles inside) on one rank against its reference: the
+# frame within $2 dB PSNR, the surface with no hole and no extra hit away from the silhouettes and
+# within the depth bounds given after $2 (compare-surface options). Renders with the calling
+# script's render function (which writes $WORK/gl.png and gl.exr); leaves the frame in
+# $WORK/one.png for the rank comparisons that follow.
+mixed_vs_reference() {
+  local scene=$1 min_psnr=$2; shift 2
+  reference "$scene"
+  render 1 "$scene"
+  mv "$WORK/gl.png" "$WORK/one.png"
+  "$SORTLAST" compare "$WORK/ref.png" "$WORK/one.png" --min-psnr "$min_psnr" ||
+    fail "mixed scene against the reference"
+  "$SORTLAST" compare-surface "$WORK/ref.exr" "$WORK/gl.exr" --ignore-edges --max-holes 0 \
+    --max-extra 0 "$@" || fail "mixed scene surface"
+}

@@ -14,7 +14,6 @@ source "$(dirname "$0")/lib.sh" "$1"
 DATA=$2
 S=$SORTLAST
 
-reference() { "$S" reference "$1" -q -o "$WORK/ref.png" --surface-out "$WORK/ref.exr" "${@:2}" || fail "reference $1"; }
 render() {
   local np=$1 scene=$2; shift 2
   run_np "$np" render "$scene" -q -o "$WORK/gl.png" --surface-out "$WORK/gl.exr" \
@@ -84,12 +83,7 @@ mixed)
   # 55.8 dB; without the surface ending the rays 37.1 dB), no hole or extra hit away from the
   # silhouettes, depth beyond 0.1 h = 0.341 on 24 of 1,609 pixels.
   scene=$DATA/mixed.yaml
-  reference "$scene"
-  render 1 "$scene"
-  mv "$WORK/gl.png" "$WORK/one.png"
-  "$S" compare "$WORK/ref.png" "$WORK/one.png" --min-psnr 42 || fail "mixed scene against the reference"
-  "$S" compare-surface "$WORK/ref.exr" "$WORK/gl.exr" --ignore-edges --max-holes 0 --max-extra 0 \
-    --depth-tolerance 0.341 --max-depth-outliers 50 || fail "mixed scene surface"
+  mixed_vs_reference "$scene" 42 --depth-tolerance 0.341 --max-depth-outliers 50
   render 3 "$scene"
   "$S" compare "$WORK/one.png" "$WORK/gl.png" --max-diff 1 || fail "mixed: 3 ranks differ from 1"
   ;;

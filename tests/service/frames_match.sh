@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# A frame from POST /api/frame is the frame `sortlast render` makes of the same settings (within
-# 1/255): the default scene and neghip, on 1 and 3 ranks, with the scene's own settings, another
-# camera, render.method=raycast, compositing.strategy=binary-swap, a transfer function with a
-# built-in colour map, and gradient shading (slicing, the shading keys set in place). Requests are
-# not cumulative:
-# the scene's settings asked for again after the others give the first frame, byte for byte.
+# A frame from POST /api/frame is the frame `sortlast render` makes of the same settings on one
+# rank (within 1/255, as on every rank count; rendered once and compared with the service's on 1
+# and 3 ranks: half the launches): the default scene and neghip, with the scene's own settings,
+# another camera, render.method=raycast, compositing.strategy=binary-swap, a transfer function
+# with a built-in colour map, and gradient shading (slicing, the shading keys set in place).
+# Requests are not cumulative: the scene's settings asked for again after the others give the
+# first frame, byte for byte.
 # Usage: frames_match.sh SORTLAST DATA_DIR
 source "$(dirname "$0")/service_lib.sh" "$1"
 DATA=${2:?usage: frames_match.sh SORTLAST DATA_DIR}
@@ -31,10 +32,12 @@ for scene in default "$DATA/neghip.yaml"; do
       code=$(frame "$out" "$req")
       [ "$code" = 200 ] || { cat "$out"; fail "$name, $np rank(s): $req answered $code"; }
       mapfile -t sets < <(sets_of "$req")
-      render_like "$WORK/${name}_np${np}_${i}_render.png" "$np" "${sargs[@]}" "${sets[@]}" \
-        || fail "sortlast render $name ${sets[*]}"
-      same "$out" "$WORK/${name}_np${np}_${i}_render.png" \
-        || fail "$name, $np rank(s): the frame of $req differs from sortlast render ${sets[*]}"
+      batch=$WORK/${name}_${i}_render.png
+      if [ ! -e "$batch" ]; then
+        render_like "$batch" 1 "${sargs[@]}" "${sets[@]}" || fail "sortlast render $name ${sets[*]}"
+      fi
+      same "$out" "$batch" \
+        || fail "$name, $np rank(s): the frame of $req differs from sortlast render ${sets[*]} (1 rank)"
       echo "ok: $name, $np rank(s): $req"
       i=$((i + 1))
     done

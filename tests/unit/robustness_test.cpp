@@ -3,9 +3,14 @@
 // parts and the budget.
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <random>
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
+
+#include "common/anisotropic_kernels.h"
 #include "common/scene.h"
 #include "master/memory_budget.h"
 #include "master/session_layout.h"
@@ -92,6 +97,67 @@ TEST(MemoryBudget, RefusesWhatCannotFitNamingTheParts) {
   SessionLayout sl = makeLayout(small, Box3{glm::dvec3(1), glm::dvec3(-1)}, 0, 1);
   EXPECT_NO_THROW(checkMemory(sessionNeed(small, sl, 0, 0, false),
                               MemoryBudget{1024.0 * 1024 * 1024, "1 GiB"}, 0, "x"));
+}
+
+double partBytes(const MemoryNeed& need, const std::string& prefix) {
+  for (const MemoryPart& p : need.parts)
+    if (p.what.rfind(prefix, 0) == 0) return p.bytes;
+  return 0.0;
+}
+
+// Anisotropic smoothing (grid method): each held particle's kernels and their GPU buffer, and
+// list entries in every cell of edge h/2 its ball of the reach bound touches (about 10 times the
+// round metaballs' 84). The entries expected are counted here directly: the cells within the
+// reach of many random centres, averaged.
+TEST(MemoryBudget, CountsAnisotropicKernelsAndTheirLongerCellLists) {
+  const long long count = 10000;
+  auto scene = [&](const std::string& smoothing) {
+    return loadScene("", {"volume.procedural=none", "particles.procedural=layers",
+                          "particles.count=" + std::to_string(count), "particles.method=grid",
+                          "particles.smoothing=" + smoothing, "bricks.per_axis=1"});
+  };
+  const Box3 centres{glm::dvec3(0.0), glm::dvec3(2.0)};
+  Scene round = scene("none"), aniso = scene("anisotropic");
+  SessionLayout rl = makeLayout(round, centres, 0, 1), al = makeLayout(aniso, centres, 0, 1);
+  MemoryNeed rn = sessionNeed(round, rl, count, 0, false);
+  MemoryNeed an = sessionNeed(aniso, al, count, 0, false);
+
+  // One brick on one rank holds every particle. Per particle: two copies of its kernel (all,
+  // then the kept ones), its reach and centre, its three vec4 rows on the host and on the GPU,
+  // and the neighbour search's index and cell number.
+  const double kernel_bytes = 2.0 * sizeof(ParticleKernel) + sizeof(float) + sizeof(glm::vec3) +
+                              2.0 * 3.0 * sizeof(glm::vec4) + 2.0 * sizeof(uint32_t);
+  EXPECT_DOUBLE_EQ(partBytes(an, "anisotropic kernels"), double(count) * kernel_bytes);
+  EXPECT_EQ(partBytes(rn, "anisotropic kernels"), 0.0);
+
+  // Cells of edge h/2 within the reach of a centre uniform in one cell, averaged over 4000.
+  const double h = aniso.particles.influenceRadius(), cell = 0.5 * h;
+  auto meanCells = [&](double reach) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(0.0, cell);
+    const int n = int(std::ceil(reach / cell)) + 1;
+    double sum = 0;
+    for (int trial = 0; trial < 4000; ++trial) {
+      const glm::dvec3 c(u(rng), u(rng), u(rng));
+      for (int z = -n; z <= n; ++z)
+        for (int y = -n; y <= n; ++y)
+          for (int x = -n; x <= n; ++x) {
+            const glm::dvec3 lo = glm::dvec3(x, y, z) * cell;
+            const glm::dvec3 q = glm::clamp(c, lo, lo + cell);  // nearest point of the cell
+            sum += glm::length(q - c) <= reach ? 1.0 : 0.0;
+          }
+    }
+    return sum / 4000.0;
+  };
+  // An entry: its index while building, its centre staged and in the storage buffer (vec4 each).
+  const double entry_bytes = sizeof(uint32_t) + 2.0 * sizeof(glm::vec4);
+  const double round_lists = double(count) * meanCells(h) * entry_bytes;
+  const double aniso_lists = double(count) * meanCells(aniso.particles.reach()) * entry_bytes;
+  // The part also holds the cells' offsets (8 bytes a cell, here under 1 %), and the Monte
+  // Carlo mean is within 0.5 %.
+  EXPECT_NEAR(partBytes(rn, "metaball grids"), round_lists, 0.015 * round_lists);
+  EXPECT_NEAR(partBytes(an, "metaball grids"), aniso_lists, 0.015 * aniso_lists);
+  EXPECT_GT(aniso_lists, 8.0 * round_lists);  // the reach bound is 2.6 h
 }
 
 }  // namespace
