@@ -68,9 +68,22 @@ void BrickRenderer::enableParticles(const MetaballSettings& settings) {
     metaballs_ = std::make_unique<MetaballRenderer>(*ctx_, width_, height_, settings);
 }
 
+void BrickRenderer::enableGlow() { glow_ = std::make_unique<GlowRenderer>(ctx_->gl(), width_, height_); }
+
+void BrickRenderer::setGlowEmitters(const std::vector<GlowEmitter>& emitters, double eps, double intensity) {
+  if (glow_) glow_->setEmitters(emitters, eps, intensity);
+}
+
+void BrickRenderer::setBrickGlow(int handle, const Box3& box) {
+  Handles& h = bricks_.at(size_t(handle));
+  h.glow = true;
+  h.glow_box = box;
+}
+
 void BrickRenderer::setImageSize(int width, int height) {
   width_ = width;
   height_ = height;
+  if (glow_) glow_->resize(width, height);
   std::visit([&](auto& r) { if (r) r->resize(width, height); }, volume_);
   if (metaballs_) metaballs_->resize(width, height);
 }
@@ -101,6 +114,7 @@ void BrickRenderer::setMetaballSettings(const MetaballSettings& settings) {
 void BrickRenderer::reset() {
   bricks_.clear();
   metaballs_.reset();
+  glow_.reset();
   volume_ = std::unique_ptr<SlicingRenderer>();
 }
 
@@ -138,6 +152,24 @@ int BrickRenderer::addParticleBrick(const Box3& particle_clip, const std::vector
   return int(bricks_.size()) - 1;
 }
 
+namespace {
+
+// The surface floats cover the particle rectangle; re-cut them to the brick image's rectangle.
+void recutSurface(std::vector<float>& surface, const Rect& from, const Rect& to) {
+  if (surface.empty() || to == from) return;
+  std::vector<float> cut(size_t(to.area()) * 4, 0.0f);
+  for (size_t i = 0; i < cut.size(); i += 4) cut[i] = 1e30f;
+  for (int y = 0; y < from.h; ++y)
+    for (int x = 0; x < from.w; ++x) {
+      size_t src = 4 * (size_t(y) * from.w + x);
+      size_t dst = 4 * (size_t(y + from.y - to.y) * to.w + (x + from.x - to.x));
+      for (int c = 0; c < 4; ++c) cut[dst + c] = surface[src + c];
+    }
+  surface = std::move(cut);
+}
+
+}  // namespace
+
 BrickFrame BrickRenderer::render(int handle, const Camera& cam, double slice_spacing,
                                  double near_plane, double far_plane, bool want_surface) {
   const Handles& h = bricks_.at(size_t(handle));
@@ -147,6 +179,22 @@ BrickFrame BrickRenderer::render(int handle, const Camera& cam, double slice_spa
     surface = metaballs_->render(h.particles, cam, near_plane, far_plane, want_surface);
     out.particle_rounds = surface.rounds;
     out.surface = std::move(surface.surface);
+  }
+  if (glow_) {
+    if (h.volume >= 0) throw std::logic_error("glow in a volume brick is not drawn by the GL renderers");
+    if (h.glow) {
+      SurfaceLayer layer;
+      if (!surface.rect.empty())
+        layer = {metaballs_->colourTexture(), metaballs_->surfaceTexture(), surface.rect};
+      GlowBrickImage g = glow_->render(h.glow_box, cam, surface.rect.empty() ? nullptr : &layer);
+      recutSurface(out.surface, surface.rect, g.rect);
+      out.rect = g.rect;
+      out.pixels_f = std::move(g.pixels);
+    } else {
+      out.rect = surface.rect;
+      out.pixels_f = toFloat(surface.pixels).px;
+    }
+    return out;
   }
   if (h.volume < 0) {
     out.rect = surface.rect;
@@ -162,18 +210,7 @@ BrickFrame BrickRenderer::render(int handle, const Camera& cam, double slice_spa
                          surface.rect.empty() ? nullptr : &layer);
       },
       volume_);
-  // The surface floats cover the particle rectangle; re-cut them to the brick image's rectangle.
-  if (!out.surface.empty() && !(rb.rect == surface.rect)) {
-    std::vector<float> cut(size_t(rb.rect.area()) * 4, 0.0f);
-    for (size_t i = 0; i < cut.size(); i += 4) cut[i] = 1e30f;
-    for (int y = 0; y < surface.rect.h; ++y)
-      for (int x = 0; x < surface.rect.w; ++x) {
-        size_t src = 4 * (size_t(y) * surface.rect.w + x);
-        size_t dst = 4 * (size_t(y + surface.rect.y - rb.rect.y) * rb.rect.w + (x + surface.rect.x - rb.rect.x));
-        for (int c = 0; c < 4; ++c) cut[dst + c] = out.surface[src + c];
-      }
-    out.surface = std::move(cut);
-  }
+  recutSurface(out.surface, surface.rect, rb.rect);
   out.rect = rb.rect;
   out.pixels = std::move(rb.pixels);
   return out;

@@ -15,6 +15,7 @@
 #include "common/particles.h"
 #include "common/transfer_function.h"
 #include "worker/gl_context.h"
+#include "worker/glow_renderer.h"
 #include "worker/metaball_grid_renderer.h"
 #include "worker/metaball_renderer.h"
 #include "worker/metaball_slices_renderer.h"
@@ -37,6 +38,9 @@ VolumeMethod volumeMethod(const Scene& scene);
 struct BrickFrame {
   Rect rect;
   ImageRGBA8 pixels;
+  // With glow (enableGlow): the brick image unrounded instead, light without opacity included
+  // (rect.w x rect.h premultiplied RGBA floats); `pixels` is then empty.
+  std::vector<float> pixels_f;
   std::vector<float> surface;  // (t, nx, ny, nz) per pixel of rect, when asked for and there are particles
   int particle_rounds = 0;
 };
@@ -49,6 +53,12 @@ class BrickRenderer {
   void enableVolume(const TransferFunction& tf, int table_size, int block_cells,
                     const VolumeMethod& method = {}, bool preintegrated = false);
   void enableParticles(const MetaballSettings& settings);
+  // Glow emitters (docs/glow.md): every brick's image comes back in float (BrickFrame::pixels_f),
+  // and bricks given a glow box (setBrickGlow) integrate the emitters inside it, up to their
+  // particle surface. Bricks with a volume are not drawn with glow (the session refuses them).
+  void enableGlow();
+  void setGlowEmitters(const std::vector<GlowEmitter>& emitters, double eps, double intensity);
+  void setBrickGlow(int handle, const Box3& box);
 
   // A brick: its volume samples (stored box; null: no volume) and its particles with ghosts
   // (null: no particles), clipped to `particle_clip`. With `adaptive` (ray casting only) the
@@ -82,12 +92,15 @@ class BrickRenderer {
  private:
   struct Handles {
     int volume = -1, particles = -1;
+    bool glow = false;
+    Box3 glow_box;
   };
   std::unique_ptr<GlContext> ctx_;
   int width_, height_;
   // The volume renderer; a null slicing renderer until enableVolume().
   std::variant<std::unique_ptr<SlicingRenderer>, std::unique_ptr<RaycastRenderer>> volume_;
   std::unique_ptr<ParticleRenderer> metaballs_;  // particles.method: billboards or grid
+  std::unique_ptr<GlowRenderer> glow_;
   std::vector<Handles> bricks_;
 };
 
