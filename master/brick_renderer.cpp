@@ -74,10 +74,11 @@ void BrickRenderer::setGlowEmitters(const std::vector<GlowEmitter>& emitters, do
   if (glow_) glow_->setEmitters(emitters, eps, intensity);
 }
 
-void BrickRenderer::setBrickGlow(int handle, const Box3& box) {
+void BrickRenderer::setBrickGlow(int handle, const Box3& box, const Box3& whole) {
   Handles& h = bricks_.at(size_t(handle));
   h.glow = true;
   h.glow_box = box;
+  h.glow_whole = whole;
 }
 
 void BrickRenderer::setImageSize(int width, int height) {
@@ -186,7 +187,7 @@ BrickFrame BrickRenderer::render(int handle, const Camera& cam, double slice_spa
       SurfaceLayer layer;
       if (!surface.rect.empty())
         layer = {metaballs_->colourTexture(), metaballs_->surfaceTexture(), surface.rect};
-      GlowBrickImage g = glow_->render(h.glow_box, cam, surface.rect.empty() ? nullptr : &layer);
+      GlowBrickImage g = glow_->render(h.glow_box, h.glow_whole, cam, surface.rect.empty() ? nullptr : &layer);
       recutSurface(out.surface, surface.rect, g.rect);
       out.rect = g.rect;
       out.pixels_f = std::move(g.pixels);

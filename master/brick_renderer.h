@@ -58,7 +58,7 @@ class BrickRenderer {
   // particle surface. Bricks with a volume are not drawn with glow (the session refuses them).
   void enableGlow();
   void setGlowEmitters(const std::vector<GlowEmitter>& emitters, double eps, double intensity);
-  void setBrickGlow(int handle, const Box3& box);
+  void setBrickGlow(int handle, const Box3& box, const Box3& whole);  // its part of the glow box
 
   // A brick: its volume samples (stored box; null: no volume) and its particles with ghosts
   // (null: no particles), clipped to `particle_clip`. With `adaptive` (ray casting only) the
@@ -93,7 +93,7 @@ class BrickRenderer {
   struct Handles {
     int volume = -1, particles = -1;
     bool glow = false;
-    Box3 glow_box;
+    Box3 glow_box, glow_whole;
   };
   std::unique_ptr<GlContext> ctx_;
   int width_, height_;

@@ -39,13 +39,15 @@ vec3 glowAlong(vec3 o, vec3 u, float s0, float s1) {
 }
 
 // The ray's span inside [lo, hi], t >= 0; false: it misses. An axis the ray does not move along
-// is tested by position (no 0 * inf: a ray in a brick's face plane is neither NaN nor lost).
-bool glowSpan(vec3 o, vec3 u, vec3 lo, vec3 hi, out float t0, out float t1) {
+// is tested by position (no 0 * inf): a ray lying in a face plane between two bricks belongs to
+// the brick above it only (hi_open 1 on that axis: [lo, hi)), so it is neither lost nor counted
+// twice; the glow box's own upper faces are closed, as the reference's box is.
+bool glowSpan(vec3 o, vec3 u, vec3 lo, vec3 hi, vec3 hi_open, out float t0, out float t1) {
   t0 = 0.0;
   t1 = 3.0e38;
   for (int k = 0; k < 3; ++k) {
-    if (abs(u[k]) < 1e-30) {
-      if (o[k] < lo[k] || o[k] > hi[k]) return false;
+    if (u[k] == 0.0) {
+      if (o[k] < lo[k] || o[k] > hi[k] || (hi_open[k] > 0.5 && o[k] == hi[k])) return false;
       continue;
     }
     float a = (lo[k] - o[k]) / u[k], b = (hi[k] - o[k]) / u[k];

@@ -20,7 +20,7 @@ void main() {
 
 // The ray as the ray caster makes it (raycast_shaders.h), so t is the surface layer's t.
 const char* kMain = R"(
-uniform vec3 u_eye, u_forward, u_right, u_up, u_box_lo, u_box_hi;
+uniform vec3 u_eye, u_forward, u_right, u_up, u_box_lo, u_box_hi, u_box_hi_open;
 uniform vec2 u_pixel_scale;
 uniform float u_intensity;
 uniform sampler2D u_surface;
@@ -32,7 +32,7 @@ void main() {
   vec3 dir = normalize(u_forward + s.x * u_right + s.y * u_up);
   float t0, t1;
   vec3 sum = vec3(0.0);
-  if (glowSpan(u_eye, dir, u_box_lo, u_box_hi, t0, t1)) {
+  if (glowSpan(u_eye, dir, u_box_lo, u_box_hi, u_box_hi_open, t0, t1)) {
     ivec2 px = ivec2(gl_FragCoord.xy);
     if (u_has_surface != 0 && all(greaterThanEqual(px, u_surface_rect.xy)) &&
         all(lessThan(px, u_surface_rect.xy + u_surface_rect.zw)))
@@ -71,7 +71,8 @@ void GlowRenderer::setEmitters(const std::vector<GlowEmitter>& emitters, double 
   intensity_ = float(intensity);
 }
 
-GlowBrickImage GlowRenderer::render(const Box3& box, const Camera& cam, const SurfaceLayer* surface) {
+GlowBrickImage GlowRenderer::render(const Box3& box, const Box3& whole, const Camera& cam,
+                                    const SurfaceLayer* surface) {
   GlowBrickImage out;
   const bool has_surface = surface && !surface->rect.empty();
   Rect r = count_ > 0 ? screenRectOf(cam, box) : Rect{};
@@ -93,6 +94,7 @@ GlowBrickImage GlowRenderer::render(const Box3& box, const Camera& cam, const Su
     u3("u_up", cam.trueUp() * th);
     u3("u_box_lo", box.lo);
     u3("u_box_hi", box.hi);
+    u3("u_box_hi_open", glm::dvec3(glm::lessThan(box.hi, whole.hi)));
     gl_.Uniform2f(loc("u_pixel_scale"), float(2.0 / cam.width), float(2.0 / cam.height));
     gl_.Uniform1f(loc("u_intensity"), intensity_);
     gl_.Uniform1f(loc("u_glow_eps"), eps_);

@@ -30,9 +30,11 @@ class GlowRenderer {
   void resize(int width, int height) { target_.resize(width, height); }
   // This frame's emitters (an orbit animates them), core radius and intensity.
   void setEmitters(const std::vector<GlowEmitter>& emitters, double eps, double intensity);
-  // The glow inside `box` (world), over `surface` (may be null: any opaque surface layer with
-  // (t, normal) per pixel, t = 1e30 on a miss). The rectangle covers the box and the surface.
-  GlowBrickImage render(const Box3& box, const Camera& cam, const SurfaceLayer* surface);
+  // The glow inside `box` (world; the brick's part of the glow box `whole`), over `surface` (may be
+  // null: any opaque surface layer with (t, normal) per pixel, t = 1e30 on a miss). The rectangle
+  // covers the box and the surface.
+  GlowBrickImage render(const Box3& box, const Box3& whole, const Camera& cam,
+                        const SurfaceLayer* surface);
 
  private:
   const GlApi& gl_;
