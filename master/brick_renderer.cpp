@@ -181,8 +181,7 @@ BrickFrame BrickRenderer::render(int handle, const Camera& cam, double slice_spa
     out.particle_rounds = surface.rounds;
     out.surface = std::move(surface.surface);
   }
-  if (glow_) {
-    if (h.volume >= 0) throw std::logic_error("glow in a volume brick is not drawn by the GL renderers");
+  if (glow_ && h.volume < 0) {
     if (h.glow) {
       SurfaceLayer layer;
       if (!surface.rect.empty())
@@ -205,15 +204,22 @@ BrickFrame BrickRenderer::render(int handle, const Camera& cam, double slice_spa
   SurfaceLayer layer;
   if (!surface.rect.empty())
     layer = {metaballs_->colourTexture(), metaballs_->surfaceTexture(), surface.rect};
-  RenderedBrick rb = std::visit(
-      [&](auto& r) {
-        return r->render(h.volume, cam, slice_spacing, near_plane, far_plane,
-                         surface.rect.empty() ? nullptr : &layer);
-      },
-      volume_);
+  // Glow in a volume brick: the ray caster integrates it (the session refuses slicing).
+  std::optional<GlowPass> glow;
+  if (glow_) glow = glow_->pass(h.glow ? h.glow_box : Box3{glm::dvec3(1), glm::dvec3(-1)}, h.glow_whole);
+  RenderedBrick rb;
+  if (auto* ray = std::get_if<std::unique_ptr<RaycastRenderer>>(&volume_); ray && *ray)
+    rb = (*ray)->render(h.volume, cam, slice_spacing, near_plane, far_plane,
+                        surface.rect.empty() ? nullptr : &layer, glow ? &*glow : nullptr);
+  else if (glow)
+    throw std::logic_error("glow in a slicing brick");
+  else
+    rb = std::get<std::unique_ptr<SlicingRenderer>>(volume_)->render(
+        h.volume, cam, slice_spacing, near_plane, far_plane, surface.rect.empty() ? nullptr : &layer);
   recutSurface(out.surface, surface.rect, rb.rect);
   out.rect = rb.rect;
   out.pixels = std::move(rb.pixels);
+  out.pixels_f = std::move(rb.pixels_f);
   return out;
 }
 

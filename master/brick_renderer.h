@@ -55,7 +55,7 @@ class BrickRenderer {
   void enableParticles(const MetaballSettings& settings);
   // Glow emitters (docs/glow.md): every brick's image comes back in float (BrickFrame::pixels_f),
   // and bricks given a glow box (setBrickGlow) integrate the emitters inside it, up to their
-  // particle surface. Bricks with a volume are not drawn with glow (the session refuses them).
+  // particle surface; in volume bricks the ray caster integrates it per step.
   void enableGlow();
   void setGlowEmitters(const std::vector<GlowEmitter>& emitters, double eps, double intensity);
   void setBrickGlow(int handle, const Box3& box, const Box3& whole);  // its part of the glow box

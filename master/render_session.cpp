@@ -82,10 +82,9 @@ void checkGlowScene(const Scene& sc) {
   if (sc.hasVolume() && sc.volume_method == "slicing")
     throw InputError("scene keys 'glow.emitters' and 'render.method: slicing' cannot go together: "
                      "the glow inside a volume is integrated per ray step (render.method: raycast)");
-  if (sc.hasVolume())
-    throw InputError("scene key 'glow.emitters' with a volume: the GL renderers draw glow alone and "
-                     "with particles so far, not inside a volume (docs/glow.md); `sortlast "
-                     "reference` draws it");
+  if (sc.hasVolume() && sc.adaptive_tolerance > 0.0)
+    throw InputError("scene keys 'glow.emitters' and 'adaptive.tolerance' above 0 cannot go "
+                     "together: the ray caster's adaptive blocks do not integrate glow");
 }
 
 // The composited glow frame (rank 0, float, premultiplied): the tone map once, then an opaque

@@ -3,10 +3,13 @@
 // worker/bench_glow_main.cpp): float data textures, the emitters' texel layout, and the GLSL that
 // sums every emitter's exact segment integral along a ray (after worker/glow_glsl.h's
 // glowSegment()).
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "common/glow_field.h"
 #include "worker/gl_api.h"
+#include "worker/glow_glsl.h"
 
 namespace sortlast {
 
@@ -57,6 +60,14 @@ bool glowSpan(vec3 o, vec3 u, vec3 lo, vec3 hi, vec3 hi_open, out float t0, out 
   return t1 > t0;
 }
 )";
+
+// A fragment shader `src` (starting with its #version line) with GLOW defined and the glow
+// functions above put before its own text (the ray caster's GLOW variant).
+inline std::string withGlow(const std::string& src) {
+  const std::string version = "#version 450 core\n";
+  if (src.rfind(version, 0) != 0) throw std::logic_error("glow shader: no #version line");
+  return version + "#define GLOW 1\n" + kGlowSegment + kGlowAlong + src.substr(version.size());
+}
 }  // namespace shaders
 
 }  // namespace sortlast

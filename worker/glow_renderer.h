@@ -35,6 +35,10 @@ class GlowRenderer {
   // covers the box and the surface.
   GlowBrickImage render(const Box3& box, const Box3& whole, const Camera& cam,
                         const SurfaceLayer* surface);
+  // The same emitters for another renderer's pass over `box` (the ray caster's GLOW variant).
+  GlowPass pass(const Box3& box, const Box3& whole) const {
+    return {emitters_, count_, eps_, intensity_, box, whole};
+  }
 
  private:
   const GlApi& gl_;
