@@ -1,8 +1,8 @@
 // The glow emitters' GL cost alone (issue 16): one fullscreen pass per frame evaluates every
 // emitter's exact segment integral (worker/glow_glsl.h) over each pixel's ray inside the glow box,
 // on llvmpipe; then the frame's PSNR (8-bit, after the tone map) against the same integral in
-// double on the CPU. What a brick's glow pass would cost on one rank with d = 1 (the GL path does
-// not draw emitters in `sortlast render` yet: docs/glow.md). See scripts/bench-glow.
+// double on the CPU. What one brick's glow pass (worker/glow_renderer.h) costs with d = 1, without
+// the pipeline around it (scripts/bench-glow measures that too, through `sortlast render`).
 //
 // Usage: bench_glow EMITTERS SIZE FRAMES   -> one CSV line:
 // emitters,size,frames,ms_per_frame,fps,psnr_db
