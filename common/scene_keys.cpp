@@ -297,9 +297,9 @@ const std::vector<SceneKey>& sceneKeys() {
        "`turn` [x, y, z] added to the direction (then normalised), `a_rate`, `b_rate` added to a "
        "and b (refused if a, b would turn negative or the direction zero by the last frame). Glow "
        "is emission without opacity, integrated exactly along each ray inside `glow.box`, dimmed "
-       "by the volume in front of it and stopped at opaque surfaces. Drawn by `sortlast "
-       "reference` (and `--psnr`); the GL renderers refuse it so far (docs/glow.md: what is "
-       "missing)."},
+       "by the volume in front of it and stopped at opaque surfaces. Drawn by `sortlast render`, "
+       "`serve` and `reference`; refused with `render.method: slicing`, `adaptive.tolerance` > 0, "
+       "`compositing.precision: rgba8` and in situ (docs/glow.md)."},
       {"glow.core_radius", "0.01",
        "eps, the emitters' core radius (world units), > 0: it keeps the field finite at the "
        "centre and on the axis, where with eps = 0 the integral along a ray through them diverges."},

@@ -1,6 +1,8 @@
 #include "compositing/blend.h"
 
+#include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "compositing/over.h"
 #include "compositing/rle.h"
@@ -38,22 +40,35 @@ void blendRectF(const float* src, const Rect& r, float* dst, int dst_width, int 
     const float* s = src + size_t(y) * r.w * 4;
     float* d = dst + (size_t(r.y - oy + y) * dst_width + size_t(r.x - ox)) * 4;
     for (int x = 0; x < r.w; ++x)
-      if (s[4 * x + 3] > 0.0f) overFloat(s + 4 * x, d + 4 * x);
+      if (shows(s + 4 * x)) overFloat(s + 4 * x, d + 4 * x);
   }
 }
 
-// Decodes each brick image and blends it into `dst` (a frame or a rectangle image).
+// Decodes each brick image and blends it into `dst` (a frame or a rectangle image). Brick images
+// are RGBA8, or (glow scenes) WireFormat::Emission, blended in float.
 template <class Pixel>
-void blendBricks(const std::vector<const BrickImage*>& images, Pixel* dst, const Rect& dst_rect) {
+void blendBricks(const std::vector<const BrickImage*>& images, Pixel* dst, const Rect& dst_rect,
+                 WireFormat format = WireFormat::RGBA8) {
   std::vector<uint8_t> pixels;
+  std::vector<float> floats;
   for (const BrickImage* b : images) {
     const Rect& r = b->rect;
     if (r.empty()) continue;
     if (!contains(dst_rect, r))
       throw RleError("brick " + std::to_string(b->brick_id) + ": rectangle outside the frame");
-    pixels.resize(size_t(r.area()) * 4);
-    rleDecode(b->rle, size_t(r.area()), pixels);
-    blendRect8(pixels.data(), r, dst, dst_rect.w, dst_rect.x, dst_rect.y);
+    const int bytes = pixelBytes(format);
+    pixels.resize(size_t(r.area()) * size_t(bytes));
+    rleDecode(b->rle, size_t(r.area()), pixels, bytes);
+    if (format == WireFormat::RGBA8) {
+      blendRect8(pixels.data(), r, dst, dst_rect.w, dst_rect.x, dst_rect.y);
+    } else if constexpr (std::is_same_v<Pixel, float>) {
+      if (format != WireFormat::Emission) throw std::logic_error("brick images: RGBA8 or Emission");
+      floats.resize(size_t(r.area()) * 4);
+      for (size_t i = 0; i < size_t(r.area()); ++i) fromEmission16(&pixels[8 * i], &floats[4 * i]);
+      blendRectF(floats.data(), r, dst, dst_rect.w, dst_rect.x, dst_rect.y);
+    } else {
+      throw std::logic_error("emission brick images blend in float only");
+    }
   }
 }
 
@@ -63,15 +78,15 @@ void blendBackToFront(const std::vector<const BrickImage*>& images, ImageRGBA8& 
   blendBricks(images, frame.px.data(), Rect{0, 0, frame.width, frame.height});
 }
 
-void blendBackToFront(const std::vector<const BrickImage*>& images, ImageF& frame) {
-  blendBricks(images, frame.px.data(), Rect{0, 0, frame.width, frame.height});
+void blendBackToFront(const std::vector<const BrickImage*>& images, ImageF& frame, WireFormat format) {
+  blendBricks(images, frame.px.data(), Rect{0, 0, frame.width, frame.height}, format);
 }
 
-RectImage blendBackToFront(const std::vector<const BrickImage*>& images) {
+RectImage blendBackToFront(const std::vector<const BrickImage*>& images, WireFormat format) {
   Rect all;
   for (const BrickImage* b : images) all = unionOf(all, b->rect);
   RectImage out(all);
-  blendBricks(images, out.px.data(), all);
+  blendBricks(images, out.px.data(), all, format);
   return out;
 }
 

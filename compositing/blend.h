@@ -14,11 +14,13 @@ namespace sortlast {
 // (which starts transparent). Throws RleError on a malformed stream or a rectangle outside the
 // frame. RGBA8: rounds at every blend.
 void blendBackToFront(const std::vector<const BrickImage*>& images, ImageRGBA8& frame);
-// The same in float.
-void blendBackToFront(const std::vector<const BrickImage*>& images, ImageF& frame);
+// The same in float; the images are RGBA8 or (glow scenes) WireFormat::Emission.
+void blendBackToFront(const std::vector<const BrickImage*>& images, ImageF& frame,
+                      WireFormat format = WireFormat::RGBA8);
 
 // The same in float into one image of the rectangle the (non-empty) images cover.
-RectImage blendBackToFront(const std::vector<const BrickImage*>& images);
+RectImage blendBackToFront(const std::vector<const BrickImage*>& images,
+                           WireFormat format = WireFormat::RGBA8);
 
 // Layers in back-to-front order, each blended over the ones before it, into one image of the
 // rectangle they cover.

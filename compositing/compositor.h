@@ -43,6 +43,10 @@ struct CompositeOptions {
   // Run-length coding of transparent runs (the paper's Fig. 7) on every message; false: each
   // pixel travels (for measuring what RLE gains).
   bool rle = true;
+  // Glow scenes (docs/glow.md): brick images and partial composites carry light without opacity,
+  // above 1 before the final tone map, as WireFormat::Emission (half floats); precision must be
+  // Float and the caller asks for the float frame (the RGBA8 one clamps colour to alpha).
+  bool emission = false;
 };
 
 // This rank's part of one frame.

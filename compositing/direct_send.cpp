@@ -128,7 +128,7 @@ void DirectSend::blendInOrder(const std::vector<int>& order) {
     std::vector<const BrickImage*> one{&it->second};
     dirty_ = unionOf(dirty_, it->second.rect);
     if (opt_.precision == Precision::Float)
-      blendBackToFront(one, frame_f_);
+      blendBackToFront(one, frame_f_, opt_.emission ? WireFormat::Emission : WireFormat::RGBA8);
     else
       blendBackToFront(one, frame_8_);
     pending_.erase(it);

@@ -88,7 +88,8 @@ class Exchange {
 };
 
 // This rank's bricks, far to near, blended into one image shrunk to its active rectangle.
-RectImage blendOwnBricks(const std::vector<BrickImage>& mine, const std::vector<int>& brick_order) {
+RectImage blendOwnBricks(const std::vector<BrickImage>& mine, const std::vector<int>& brick_order,
+                         bool emission) {
   std::map<int, const BrickImage*> by_id;
   for (const BrickImage& b : mine) by_id[b.brick_id] = &b;
   std::vector<const BrickImage*> seq;
@@ -98,7 +99,7 @@ RectImage blendOwnBricks(const std::vector<BrickImage>& mine, const std::vector<
   }
   if (seq.size() != mine.size() || by_id.size() != mine.size())
     throw std::runtime_error("radix-k: this rank's brick ids are not in the visibility order");
-  RectImage img = blendBackToFront(seq);
+  RectImage img = blendBackToFront(seq, emission ? WireFormat::Emission : WireFormat::RGBA8);
   Rect active = activeRect(img, img.rect);
   return active == img.rect ? img : crop(img, active);
 }
@@ -125,8 +126,9 @@ ImageRGBA8 radixKComposite(std::vector<BrickImage> mine, const VisibilityOrder& 
                            int height, int k, Transport& transport, CompositeStats& stats,
                            const CompositeOptions& options, ImageF* float_frame) {
   // Partial composites travel at 16 bits unless the scene asks for the paper's RGBA8.
-  const WireFormat partials =
-      options.precision == Precision::RGBA8 ? WireFormat::RGBA8 : WireFormat::RGBA16;
+  const WireFormat partials = options.emission                      ? WireFormat::Emission
+                              : options.precision == Precision::RGBA8 ? WireFormat::RGBA8
+                                                                      : WireFormat::RGBA16;
   Stopwatch watch(stats);
   Exchange ex(transport, stats, watch);
   const int rank = transport.rank(), ranks = transport.size();
@@ -136,7 +138,7 @@ ImageRGBA8 radixKComposite(std::vector<BrickImage> mine, const VisibilityOrder& 
                                 std::to_string(ranks));
 
   // 1. Own bricks, then everyone's content rectangle.
-  RectImage image = blendOwnBricks(mine, order.bricks);
+  RectImage image = blendOwnBricks(mine, order.bricks, options.emission);
   const Rect& c = image.rect;
   watch.lapComposite();
   std::vector<int> rects = transport.allgather({c.x, c.y, c.w, c.h});
@@ -200,26 +202,29 @@ ImageRGBA8 radixKComposite(std::vector<BrickImage> mine, const VisibilityOrder& 
 
   // 5. Every unit's part to rank 0. The parts are final: rounded to RGBA8 where they are, which
   // is what rank 0 would do, unless rank 0 wants the frame unrounded.
-  const WireFormat finals = options.float_frame ? WireFormat::RGBA16 : WireFormat::RGBA8;
+  const WireFormat finals = options.emission      ? WireFormat::Emission
+                            : options.float_frame ? WireFormat::RGBA16
+                                                  : WireFormat::RGBA8;
   BrickImage last;
   if (unit >= 0 && !plan.bound(s.rounds(), unit).empty()) {
     last = encodePart(image, s.region(s.rounds(), unit, plan.whole), unit, finals, options.rle);
     if (rank != 0) ex.send(0, kGatherTag, last);
   }
   ImageRGBA8 frame;
+  const bool exact_frame = options.float_frame || options.emission;  // emission: no RGBA8 parts
   if (rank == 0) {
-    ImageF exact(options.float_frame ? width : 0, options.float_frame ? height : 0);
+    ImageF exact(exact_frame ? width : 0, exact_frame ? height : 0);
     frame = ImageRGBA8(width, height);
     for (int u = 0; u < s.units(); ++u) {
       if (plan.bound(s.rounds(), u).empty()) continue;
       const BrickImage part =
           plan.carrier(u) == 0 ? std::move(last) : ex.receiveEncoded(plan.carrier(u), kGatherTag);
-      if (options.float_frame)
+      if (exact_frame)
         pastePart(decodePart(part, finals, Rect{0, 0, width, height}), exact);
       else
         pastePart(part, frame);
     }
-    if (options.float_frame) {
+    if (exact_frame) {
       frame = toRGBA8(exact);
       if (float_frame) *float_frame = std::move(exact);
     }

@@ -5,6 +5,8 @@
 #include <cstring>
 #include <string>
 
+#include <glm/gtc/packing.hpp>
+
 #include "compositing/rle.h"
 
 namespace sortlast {
@@ -28,6 +30,32 @@ float fromRGBA16(const uint8_t* in) {
 }
 
 }  // namespace
+
+void toEmission16(const float* in, uint8_t* out) {
+  uint16_t v[4] = {0, 0, 0, 0};
+  if (shows(in)) {
+    // 65504: the largest finite half (radiance beyond it is far past any tone map's white).
+    for (int c = 0; c < 3; ++c) v[c] = glm::packHalf1x16(std::clamp(in[c], 0.0f, 65504.0f));
+    v[3] = glm::packHalf1x16(-std::clamp(1.0f - in[3], 0.0f, 1.0f)) | 0x8000u;  // -T, -0 included
+  }
+  for (int c = 0; c < 4; ++c) {
+    out[2 * c] = uint8_t(v[c] & 0xff);
+    out[2 * c + 1] = uint8_t(v[c] >> 8);
+  }
+}
+
+void fromEmission16(const uint8_t* in, float* out) {
+  uint16_t v[4];
+  for (int c = 0; c < 4; ++c) v[c] = uint16_t(unsigned(in[2 * c]) | unsigned(in[2 * c + 1]) << 8);
+  if (v[3] == 0) {  // a transparent pixel (from a run)
+    for (int c = 0; c < 4; ++c) out[c] = 0.0f;
+    return;
+  }
+  // A corrupt stream may hold NaN or Inf halves: read as 0 / opaque, never passed on.
+  auto finite = [](float x, float fallback) { return std::isfinite(x) ? x : fallback; };
+  for (int c = 0; c < 3; ++c) out[c] = std::max(finite(glm::unpackHalf1x16(v[c]), 0.0f), 0.0f);
+  out[3] = 1.0f - std::clamp(-finite(glm::unpackHalf1x16(v[3]), -0.0f), 0.0f, 1.0f);
+}
 
 Rect intersect(const Rect& a, const Rect& b) {
   if (a.empty() || b.empty()) return {};
@@ -59,7 +87,7 @@ Rect activeRect(const RectImage& img, const Rect& within) {
     const float* row = img.at(r.x, y);
     int first = -1, last = -1;
     for (int x = 0; x < r.w; ++x)
-      if (row[4 * x + 3] > 0.0f) {
+      if (shows(row + 4 * x)) {
         if (first < 0) first = x;
         last = x;
       }
@@ -86,7 +114,7 @@ BrickImage encodePart(const RectImage& img, const Rect& part, int id, WireFormat
   b.brick_id = id;
   b.rect = activeRect(img, part);
   if (b.rect.empty()) return b;
-  const size_t bytes = size_t(format);
+  const size_t bytes = size_t(pixelBytes(format));
   std::vector<uint8_t> px(size_t(b.rect.area()) * bytes);
   uint8_t* o = px.data();
   for (int y = b.rect.y; y < b.rect.y + b.rect.h; ++y) {
@@ -94,6 +122,8 @@ BrickImage encodePart(const RectImage& img, const Rect& part, int id, WireFormat
     for (int x = 0; x < b.rect.w; ++x, o += bytes)
       if (format == WireFormat::RGBA8)
         toRGBA8(row + 4 * x, o);
+      else if (format == WireFormat::Emission)
+        toEmission16(row + 4 * x, o);
       else
         toRGBA16(row + 4 * x, o);
   }
@@ -108,11 +138,13 @@ RectImage decodePart(const BrickImage& b, WireFormat format, const Rect& within)
   }
   if (!contains(within, b.rect))
     throw RleError("image part: rectangle outside the region it belongs to");
-  const int bytes = int(format);
+  const int bytes = pixelBytes(format);
   std::vector<uint8_t> px(size_t(b.rect.area()) * size_t(bytes));
   rleDecode(b.rle, size_t(b.rect.area()), px, bytes);
   RectImage out(b.rect);
-  if (format == WireFormat::RGBA16)
+  if (format == WireFormat::Emission)
+    for (size_t i = 0; i < size_t(b.rect.area()); ++i) fromEmission16(&px[8 * i], &out.px[4 * i]);
+  else if (format == WireFormat::RGBA16)
     for (size_t i = 0; i < out.px.size(); ++i) out.px[i] = fromRGBA16(&px[2 * i]);
   else
     for (size_t i = 0; i < out.px.size(); ++i) out.px[i] = px[i] / 255.0f;

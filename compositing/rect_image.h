@@ -40,7 +40,21 @@ Rect activeRect(const RectImage& img, const Rect& within);
 // The pixels of `img` inside `r` (which is clipped to img.rect).
 RectImage crop(const RectImage& img, const Rect& r);
 
-enum class WireFormat { RGBA8 = 4, RGBA16 = 8 };  // bytes per pixel
+// Emission: scenes with glow (docs/glow.md), whose pixels carry light without opacity (colour
+// above alpha, and above 1 before the final tone map). Four IEEE half floats: premultiplied rgb
+// unclamped (up to 65504) and the transmittance T = 1 - alpha stored negated, so the alpha word
+// is never 0 on a pixel that shows anything (the RLE marks runs by A = 0) and T keeps its relative
+// precision (2^-11) near 0, where it dims bright glow behind dense material.
+enum class WireFormat { RGBA8, RGBA16, Emission };
+inline int pixelBytes(WireFormat f) { return f == WireFormat::RGBA8 ? 4 : 8; }
+
+// Whether a float pixel shows anything: alpha > 0, or (emission) light without opacity. Without
+// emission colour <= alpha, so this is alpha > 0.
+inline bool shows(const float* p) { return p[3] > 0.0f || p[0] > 0.0f || p[1] > 0.0f || p[2] > 0.0f; }
+
+// One premultiplied float pixel to / from the Emission wire format (8 bytes).
+void toEmission16(const float* in, uint8_t* out);
+void fromEmission16(const uint8_t* in, float* out);
 
 // `img`'s pixels inside `part`, shrunk to their active rectangle, rounded to `format` and
 // RLE-encoded (`rle` false: with runs of 1, as long as the raw pixels); `id` goes into the brick

@@ -84,10 +84,24 @@ int BrickRenderer::addHandles(Handles h, const Box3& clip) {
   return int(bricks_.size()) - 1;
 }
 
+void BrickRenderer::enableGlow() { glow_ = std::make_unique<GlowRenderer>(ctx_->gl(), width_, height_); }
+
+void BrickRenderer::setGlowEmitters(const std::vector<GlowEmitter>& emitters, double eps, double intensity) {
+  if (glow_) glow_->setEmitters(emitters, eps, intensity);
+}
+
+void BrickRenderer::setBrickGlow(int handle, const Box3& box, const Box3& whole) {
+  Handles& h = bricks_.at(size_t(handle));
+  h.glow = true;
+  h.glow_box = box;
+  h.glow_whole = whole;
+}
+
 void BrickRenderer::setImageSize(int width, int height) {
   width_ = width;
   height_ = height;
   if (subdiv_) subdiv_->resize(width, height);
+  if (glow_) glow_->resize(width, height);
   std::visit([&](auto& r) { if (r) r->resize(width, height); }, volume_);
   if (metaballs_) metaballs_->resize(width, height);
 }
@@ -118,6 +132,7 @@ void BrickRenderer::setMetaballSettings(const MetaballSettings& settings) {
 void BrickRenderer::reset() {
   bricks_.clear();
   metaballs_.reset();
+  glow_.reset();
   volume_ = std::unique_ptr<SlicingRenderer>();
 }
 
@@ -170,6 +185,24 @@ SurfaceLayer BrickRenderer::mergeSurfaceLayers(const Handles& h, const Camera& c
   return {subdiv_->colourTexture(), subdiv_->surfaceTexture(), region};
 }
 
+namespace {
+
+// The surface floats cover the particle rectangle; re-cut them to the brick image's rectangle.
+void recutSurface(std::vector<float>& surface, const Rect& from, const Rect& to) {
+  if (surface.empty() || to == from) return;
+  std::vector<float> cut(size_t(to.area()) * 4, 0.0f);
+  for (size_t i = 0; i < cut.size(); i += 4) cut[i] = 1e30f;
+  for (int y = 0; y < from.h; ++y)
+    for (int x = 0; x < from.w; ++x) {
+      size_t src = 4 * (size_t(y) * from.w + x);
+      size_t dst = 4 * (size_t(y + from.y - to.y) * to.w + (x + from.x - to.x));
+      for (int c = 0; c < 4; ++c) cut[dst + c] = surface[src + c];
+    }
+  surface = std::move(cut);
+}
+
+}  // namespace
+
 BrickFrame BrickRenderer::render(int handle, const Camera& cam, double slice_spacing,
                                  double near_plane, double far_plane, bool want_surface) {
   const Handles& h = bricks_.at(size_t(handle));
@@ -189,31 +222,40 @@ BrickFrame BrickRenderer::render(int handle, const Camera& cam, double slice_spa
     out.surface.clear();
     subdiv_->read(layer.rect, h.volume < 0 ? &surface.pixels : nullptr, want_surface ? &out.surface : nullptr);
   }
+  const SurfaceLayer* opaque = surface.rect.empty() ? nullptr : &layer;
+  if (glow_ && h.volume < 0) {
+    if (h.glow) {
+      GlowBrickImage g = glow_->render(h.glow_box, h.glow_whole, cam, opaque);
+      recutSurface(out.surface, surface.rect, g.rect);
+      out.rect = g.rect;
+      out.pixels_f = std::move(g.pixels);
+    } else {
+      out.rect = surface.rect;
+      out.pixels_f = toFloat(surface.pixels).px;
+    }
+    return out;
+  }
   if (h.volume < 0) {
     out.rect = surface.rect;
     out.pixels = std::move(surface.pixels);
     return out;
   }
-  RenderedBrick rb = std::visit(
-      [&](auto& r) {
-        return r->render(h.volume, cam, slice_spacing, near_plane, far_plane,
-                         surface.rect.empty() ? nullptr : &layer);
-      },
-      volume_);
+  // Glow in a volume brick: the ray caster integrates it (the session refuses slicing).
+  std::optional<GlowPass> glow;
+  if (glow_) glow = glow_->pass(h.glow ? h.glow_box : Box3{glm::dvec3(1), glm::dvec3(-1)}, h.glow_whole);
+  RenderedBrick rb;
+  if (auto* ray = std::get_if<std::unique_ptr<RaycastRenderer>>(&volume_); ray && *ray)
+    rb = (*ray)->render(h.volume, cam, slice_spacing, near_plane, far_plane, opaque, glow ? &*glow : nullptr);
+  else if (glow)
+    throw std::logic_error("glow in a slicing brick");
+  else
+    rb = std::get<std::unique_ptr<SlicingRenderer>>(volume_)->render(h.volume, cam, slice_spacing, near_plane,
+                                                                    far_plane, opaque);
   // The surface floats cover the layer's rectangle; re-cut them to the brick image's rectangle.
-  if (!out.surface.empty() && !(rb.rect == surface.rect)) {
-    std::vector<float> cut(size_t(rb.rect.area()) * 4, 0.0f);
-    for (size_t i = 0; i < cut.size(); i += 4) cut[i] = 1e30f;
-    for (int y = 0; y < surface.rect.h; ++y)
-      for (int x = 0; x < surface.rect.w; ++x) {
-        size_t src = 4 * (size_t(y) * surface.rect.w + x);
-        size_t dst = 4 * (size_t(y + surface.rect.y - rb.rect.y) * rb.rect.w + (x + surface.rect.x - rb.rect.x));
-        for (int c = 0; c < 4; ++c) cut[dst + c] = out.surface[src + c];
-      }
-    out.surface = std::move(cut);
-  }
+  recutSurface(out.surface, surface.rect, rb.rect);
   out.rect = rb.rect;
   out.pixels = std::move(rb.pixels);
+  out.pixels_f = std::move(rb.pixels_f);
   return out;
 }
 

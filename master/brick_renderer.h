@@ -19,6 +19,7 @@
 #include "common/surface_scene.h"
 #include "common/transfer_function.h"
 #include "worker/gl_context.h"
+#include "worker/glow_renderer.h"
 #include "worker/metaball_grid_renderer.h"
 #include "worker/metaball_renderer.h"
 #include "worker/metaball_slices_renderer.h"
@@ -42,6 +43,9 @@ VolumeMethod volumeMethod(const Scene& scene);
 struct BrickFrame {
   Rect rect;
   ImageRGBA8 pixels;
+  // With glow (enableGlow): the brick image unrounded instead, light without opacity included
+  // (rect.w x rect.h premultiplied RGBA floats); `pixels` is then empty.
+  std::vector<float> pixels_f;
   std::vector<float> surface;  // (t, nx, ny, nz) per pixel of rect, when asked for and there are particles or surfaces
   int particle_rounds = 0;
 };
@@ -58,6 +62,12 @@ class BrickRenderer {
   // clips them to its box). Kept by reset(): a session's surfaces do not change (`surfaces` is
   // not a frame key), so a second call with the same list does nothing.
   void enableSurfaces(const std::vector<SurfaceSpec>& surfaces);
+  // Glow emitters (docs/glow.md): every brick's image comes back in float (BrickFrame::pixels_f),
+  // and bricks given a glow box (setBrickGlow) integrate the emitters inside it, up to their
+  // particle surface; in volume bricks the ray caster integrates it per step.
+  void enableGlow();
+  void setGlowEmitters(const std::vector<GlowEmitter>& emitters, double eps, double intensity);
+  void setBrickGlow(int handle, const Box3& box, const Box3& whole);  // its part of the glow box
 
   // A brick: its volume samples (stored box; null: no volume) and its particles with ghosts
   // (null: no particles), clipped to `particle_clip`. With `adaptive` (ray casting only) the
@@ -93,6 +103,8 @@ class BrickRenderer {
     int volume = -1, particles = -1;
     bool surfaces = false;  // the subdivision surfaces' bounds meet the brick's box
     Box3 clip;              // the brick's box
+    bool glow = false;
+    Box3 glow_box, glow_whole;
   };
   int addHandles(Handles h, const Box3& clip);
   // This brick's subdivision surfaces, merged by depth with the particle layer `particles` (empty
@@ -108,6 +120,7 @@ class BrickRenderer {
   std::unique_ptr<SubdivRenderer> subdiv_;       // the scene's surfaces; null: none
   size_t surface_count_ = 0;
   Box3 surface_bounds_;
+  std::unique_ptr<GlowRenderer> glow_;
   std::vector<Handles> bricks_;
 };
 

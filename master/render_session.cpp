@@ -12,6 +12,7 @@
 
 #include "common/error.h"
 #include "compositing/compositor.h"
+#include "compositing/rect_image.h"
 #include "compositing/rle.h"
 #include "compositing/visibility.h"
 #include "master/adaptive_loading.h"
@@ -71,6 +72,34 @@ void dumpLayer(const std::string& dir, const BrickImage& img) {
   if (!out) throw InputError("cannot write brick image into " + dir);
 }
 
+// What the GL path draws with glow emitters (docs/glow.md), checked at start and per request.
+void checkGlowScene(const Scene& sc) {
+  if (!sc.glow.enabled()) return;
+  if (sc.precision == "rgba8")
+    throw InputError("scene keys 'glow.emitters' and 'compositing.precision: rgba8' cannot go "
+                     "together: glow is light above 1 until the final tone map, which 8-bit "
+                     "partial images would clamp; use compositing.precision: float");
+  if (sc.hasVolume() && sc.volume_method == "slicing")
+    throw InputError("scene keys 'glow.emitters' and 'render.method: slicing' cannot go together: "
+                     "the glow inside a volume is integrated per ray step (render.method: raycast)");
+  if (sc.hasVolume() && sc.adaptive_tolerance > 0.0)
+    throw InputError("scene keys 'glow.emitters' and 'adaptive.tolerance' above 0 cannot go "
+                     "together: the ray caster's adaptive blocks do not integrate glow");
+}
+
+// The composited glow frame (rank 0, float, premultiplied): the tone map once, then an opaque
+// RGBA8 frame over the background, since premultiplied RGBA8 cannot hold colour above alpha.
+void finishGlowFrame(const GlowSpec& g, const glm::dvec3& background, ImageF& f, ImageRGBA8& out) {
+  for (size_t i = 0; i < f.px.size(); i += 4)
+    for (int k = 0; k < 3; ++k) f.px[i + k] = float(toneMap(g, f.px[i + k]));
+  const std::vector<float> rgb = overBackground(f, background);
+  out = ImageRGBA8(f.width, f.height);
+  for (size_t p = 0; p < size_t(f.width) * f.height; ++p) {
+    const float px[4] = {rgb[3 * p], rgb[3 * p + 1], rgb[3 * p + 2], 1.0f};
+    toRGBA8(px, &out.px[4 * p]);
+  }
+}
+
 nlohmann::json vec3Json(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 
 nlohmann::json cameraJson(const Camera& c) {
@@ -83,7 +112,7 @@ struct CompositorKey {
   std::string strategy;
   int radix = 0;
   std::string precision;
-  bool overlap = true, rle = true, float_frame = false;
+  bool overlap = true, rle = true, float_frame = false, emission = false;
   bool operator==(const CompositorKey&) const = default;
 };
 
@@ -153,12 +182,7 @@ RenderSession::RenderSession(SessionOptions options, MPI_Comm comm) : s_(std::ma
     S.base = parseScene(S.opts.scene, S.opts.overrides);
     S.adaptive = usesAdaptiveBlocks(S.base);
     if (S.base.hasVolume()) validateVolume(S.base.volume);
-    // The emitters' math, reference and keys exist (docs/glow.md); the GL brick renderers do not
-    // draw them yet: a clear refusal rather than a frame without the glow.
-    if (S.base.glow.enabled())
-      throw InputError("scene key 'glow.emitters': glow emitters are drawn by `sortlast reference` "
-                       "only so far; the GL renderers (render, serve, in situ) do not draw them yet "
-                       "(docs/glow.md)");
+    checkGlowScene(S.base);
   });
   const Scene& scene = S.base;
   S.budget = memoryBudget(scene, comm);
@@ -225,6 +249,10 @@ std::unique_ptr<RenderSession> RenderSession::external(SessionOptions options, M
     if (!S->base.surfaces.empty())
       throw InputError("scene key 'surfaces': subdivision surfaces are not drawn in situ (the "
                        "simulation's bricks need not hold them); use `sortlast render` or `serve`");
+    // The simulation's bricks have no glow boxes (docs/glow.md): refused, not drawn without it.
+    if (S->base.glow.enabled())
+      throw InputError("scene key 'glow.emitters': in situ sessions do not draw glow emitters; "
+                       "remove them (`sortlast render` and `serve` draw them)");
     S->renderer = std::make_unique<BrickRenderer>(S->base.backend, S->base.camera.width, S->base.camera.height);
   });
   S->budget = memoryBudget(S->base, comm);  // requests' image sizes are checked against it
@@ -280,6 +308,7 @@ Scene RenderSession::State::resolve(const FrameRequest& request) const {
     sc.adaptive_tolerance = 0.0;
   }
   usesAdaptiveBlocks(sc);  // adaptive blocks need the ray caster: refuse slicing
+  checkGlowScene(sc);
   sc.volume.grid = layout.grid;  // a VTK file's grid, read at start
   if (sc.camera.width > opts.max_image_side || sc.camera.height > opts.max_image_side)
     throw InputError("image size " + std::to_string(sc.camera.width) + " x " + std::to_string(sc.camera.height) +
@@ -324,6 +353,7 @@ void RenderSession::State::uploadBricks(const Scene& scene, StepData& d) {
                            scene.transfer.table_size, scene.block_cells, volumeMethod(scene));
   if (has_particles) renderer->enableParticles(metaballSettings(scene.particles));
   renderer->enableSurfaces(scene.surfaces);
+  if (scene.glow.enabled()) renderer->enableGlow();
   for (size_t i = 0; i < layout.mine.size(); ++i) {
     const int id = layout.mine[i];
     Box3 clip = brickBox(layout.planes, cellOf(id));
@@ -333,6 +363,11 @@ void RenderSession::State::uploadBricks(const Scene& scene, StepData& d) {
     handles.push_back(renderer->addBrick(vb, &layout.grid, vb && !adaptive ? &d.samples[i] : nullptr, clip,
                                          has_particles ? &near : nullptr,
                                          vb && adaptive ? &d.adaptive.bricks[i] : nullptr));
+    // The brick's share of the glow box: brick boxes tile it, so the shares add up to the whole.
+    if (scene.glow.enabled()) {
+      const Box3 g{glm::max(clip.lo, layout.glow_box.lo), glm::min(clip.hi, layout.glow_box.hi)};
+      if (g.lo.x < g.hi.x && g.lo.y < g.hi.y && g.lo.z < g.hi.z) renderer->setBrickGlow(handles.back(), g, layout.glow_box);
+    }
   }
 }
 
@@ -389,6 +424,7 @@ FrameResult RenderSession::render(const FrameRequest& request) {
   const Camera cam = sc.frameCameras(S.layout.bounds)[size_t(std::max(0, request.orbit_frame))];
   const bool has_particles = sc.particles.enabled();
   const bool want_surface = (has_particles || !sc.surfaces.empty()) && request.surface;
+  const bool glow = sc.glow.enabled();
   // What changes in place: image size, transfer function, renderer settings, compositor.
   collectively(S.comm, [&] {
     S.renderer->setImageSize(cam.width, cam.height);
@@ -398,13 +434,20 @@ FrameResult RenderSession::render(const FrameRequest& request) {
       S.renderer->setVolumeMethodSettings(volumeMethod(sc));
     }
     if (has_particles) S.renderer->setMetaballSettings(metaballSettings(sc.particles));
-    CompositorKey key{sc.strategy, sc.radix, sc.precision, sc.overlap, sc.rle, request.float_frame};
+    // An orbit moves the emitters: this frame's go up (a few texels).
+    if (glow)
+      S.renderer->setGlowEmitters(sc.glow.emittersAt(std::max(0, request.orbit_frame)),
+                                  sc.glow.core_radius, sc.glow.intensity);
+    // Glow: the frame comes back in float for the tone map.
+    const bool float_frame = request.float_frame || glow;
+    CompositorKey key{sc.strategy, sc.radix, sc.precision, sc.overlap, sc.rle, float_frame, glow};
     if (!S.compositor || !(key == S.compositor_key)) {
       CompositeOptions copts;
       copts.precision = sc.precision == "rgba8" ? Precision::RGBA8 : Precision::Float;
       copts.overlap = sc.overlap;
       copts.rle = sc.rle;
-      copts.float_frame = request.float_frame;
+      copts.float_frame = float_frame;
+      copts.emission = glow;
       S.compositor = makeCompositor(sc.strategy, sc.radix, copts);
       S.compositor_key = key;
     }
@@ -433,10 +476,17 @@ FrameResult RenderSession::render(const FrameRequest& request) {
                                            far_plane, want_surface);
         double t1 = MPI_Wtime();
         BrickImage img{mine[i], bf.rect, {}};
-        if (!bf.rect.empty()) rleEncode(bf.pixels.px, img.rle, 4, sc.rle ? kMaxRun : 1);
+        const int pixel_bytes = glow ? 8 : 4;  // glow: WireFormat::Emission
+        if (!bf.rect.empty() && glow) {
+          std::vector<uint8_t> px(size_t(bf.rect.area()) * 8);
+          for (size_t p = 0; p < size_t(bf.rect.area()); ++p) toEmission16(&bf.pixels_f[4 * p], &px[8 * p]);
+          rleEncode(px, img.rle, 8, sc.rle ? kMaxRun : 1);
+        } else if (!bf.rect.empty()) {
+          rleEncode(bf.pixels.px, img.rle, 4, sc.rle ? kMaxRun : 1);
+        }
         st.render_s += t1 - t0;
         st.encode_s += MPI_Wtime() - t1;
-        st.bytes_raw += double(bf.rect.area()) * 4;
+        st.bytes_raw += double(bf.rect.area()) * pixel_bytes;
         st.bytes_rle += double(img.rle.size());
         st.particle_rounds = std::max(st.particle_rounds, double(bf.particle_rounds));
         (bf.rect.empty() ? st.bricks_skipped : st.bricks_rendered) += 1;
@@ -453,7 +503,11 @@ FrameResult RenderSession::render(const FrameRequest& request) {
   FrameResult out;
   CompositeStats cs;
   collectively(S.comm, [&] {
-    out.image = S.compositor->finish(cs, request.float_frame ? &out.image_f : nullptr);
+    out.image = S.compositor->finish(cs, request.float_frame || glow ? &out.image_f : nullptr);
+    if (glow && rank == 0) {
+      finishGlowFrame(sc.glow, sc.background, out.image_f, out.image);
+      if (!request.float_frame) out.image_f = ImageF();
+    }
   });
   if (want_surface) out.surface = gatherSurface(surfaces, cam.width, cam.height, S.comm);
   st.transfer_s = cs.transfer_s;

@@ -30,9 +30,21 @@ SessionLayout makeLayout(const Scene& scene, const Box3& particle_centres, int r
       L.planes = coverBox(L.planes, L.particle_domain);
       L.bounds = unite(L.bounds, L.particle_domain);
     }
+    // Glow (docs/glow.md): the outer bricks reach out to the glow box, as for the particles.
+    if (scene.glow.enabled()) {
+      L.glow_box = scene.glow.box.value_or(L.bounds);
+      L.planes = coverBox(L.planes, L.glow_box);
+      L.bounds = unite(L.bounds, L.glow_box);
+    }
   } else {
     // No volume and no particle at all: an empty (transparent) frame of a unit box.
     L.bounds = isEmpty(L.particle_domain) ? Box3{glm::dvec3(-0.5), glm::dvec3(0.5)} : L.particle_domain;
+    // Glow emitters (docs/glow.md): the bricks cut the glow box too (emitters alone: only it;
+    // the scene refuses them without a box), as the reference's bounds hold it.
+    if (scene.glow.enabled()) {
+      L.glow_box = scene.glow.box.value_or(L.bounds);
+      L.bounds = isEmpty(L.particle_domain) ? L.glow_box : unite(L.bounds, L.glow_box);
+    }
     L.planes = uniformBrickPlanes(L.bounds, d);
   }
   L.assignment = assignBricks(d, size);

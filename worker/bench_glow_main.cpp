@@ -1,8 +1,8 @@
 // The glow emitters' GL cost alone (issue 16): one fullscreen pass per frame evaluates every
 // emitter's exact segment integral (worker/glow_glsl.h) over each pixel's ray inside the glow box,
 // on llvmpipe; then the frame's PSNR (8-bit, after the tone map) against the same integral in
-// double on the CPU. What a brick's glow pass would cost on one rank with d = 1 (the GL path does
-// not draw emitters in `sortlast render` yet: docs/glow.md). See scripts/bench-glow.
+// double on the CPU. What one brick's glow pass (worker/glow_renderer.h) costs with d = 1, without
+// the pipeline around it (scripts/bench-glow measures that too, through `sortlast render`).
 //
 // Usage: bench_glow EMITTERS SIZE FRAMES   -> one CSV line:
 // emitters,size,frames,ms_per_frame,fps,psnr_db
@@ -19,6 +19,7 @@
 #include "common/glow_integral.h"
 #include "worker/gl_context.h"
 #include "worker/gl_program.h"
+#include "worker/glow_gl.h"
 #include "worker/glow_glsl.h"
 
 using namespace sortlast;
@@ -33,35 +34,20 @@ void main() {
 )";
 
 const char* kMain = R"(
-uniform sampler2D u_emitters;  // per emitter (row): (centre, a), (dir, b), (colour, 0)
-uniform int u_count;
 uniform vec3 u_eye, u_forward, u_right, u_up, u_box_lo, u_box_hi;
 uniform vec2 u_pixel_scale;
-uniform float u_eps, u_intensity, u_exposure;
+uniform float u_intensity, u_exposure;
 out vec4 frag;
 void main() {
   vec2 s = vec2(gl_FragCoord.x * u_pixel_scale.x - 1.0, 1.0 - gl_FragCoord.y * u_pixel_scale.y);
   vec3 dir = normalize(u_forward + s.x * u_right + s.y * u_up);
-  vec3 inv = 1.0 / dir;  // +-inf on an axis-parallel ray: the slabs below still give the span
-  vec3 ta = (u_box_lo - u_eye) * inv, tb = (u_box_hi - u_eye) * inv;
-  vec3 tn = min(ta, tb), tf = max(ta, tb);
-  float t0 = max(max(max(tn.x, tn.y), tn.z), 0.0), t1 = min(min(tf.x, tf.y), tf.z);
+  float t0, t1;
   vec3 sum = vec3(0.0);
-  if (t1 > t0)
-    for (int i = 0; i < u_count; ++i) {
-      vec4 e0 = texelFetch(u_emitters, ivec2(0, i), 0), e1 = texelFetch(u_emitters, ivec2(1, i), 0);
-      vec3 colour = texelFetch(u_emitters, ivec2(2, i), 0).rgb;
-      sum += colour * glowSegment(e0.xyz, e1.xyz, e0.w, e1.w, u_eps, u_eye, dir, t0, t1);
-    }
+  if (glowSpan(u_eye, dir, u_box_lo, u_box_hi, vec3(0.0), t0, t1)) sum = glowAlong(u_eye, dir, t0, t1);
   // Tone-mapped here only because this benchmark has no compositing: one brick, the final frame.
   frag = vec4(1.0 - exp(-u_exposure * u_intensity * sum), 1.0);
 }
 )";
-
-struct Emitter {
-  glm::vec3 centre, dir, colour;
-  float a, b;
-};
 
 }  // namespace
 
@@ -80,19 +66,18 @@ int main(int argc, char** argv) {
   std::mt19937 g(16);
   std::uniform_real_distribution<float> c(-1.5f, 1.5f), u(0.2f, 1.0f);
   std::normal_distribution<float> n;
-  std::vector<Emitter> em;
-  std::vector<float> texels;
+  // Float values (the shader's) held in double: the reference integrates the same emitters.
+  std::vector<GlowEmitter> em;
   for (int i = 0; i < count; ++i) {
-    Emitter e{{c(g), c(g), c(g)},
-              glm::normalize(glm::vec3(n(g), n(g), n(g))),
-              {u(g), u(g), u(g)},
-              u(g),
-              u(g)};
+    GlowEmitter e;
+    e.centre = glm::vec3(c(g), c(g), c(g));
+    e.direction = glm::normalize(glm::vec3(n(g), n(g), n(g)));
+    e.colour = glm::vec3(u(g), u(g), u(g));
+    e.a = u(g);
+    e.b = u(g);
     em.push_back(e);
-    for (float v : {e.centre.x, e.centre.y, e.centre.z, e.a, e.dir.x, e.dir.y, e.dir.z, e.b,
-                    e.colour.r, e.colour.g, e.colour.b, 0.0f})
-      texels.push_back(v);
   }
+  const std::vector<float> texels = glowEmitterTexels(em);
   Camera cam;
   cam.position = {1.0, 2.0, 7.0};
   cam.look_at = {0.0, 0.0, 0.0};
@@ -100,30 +85,21 @@ int main(int argc, char** argv) {
 
   auto ctx = createGlContext("osmesa");
   const GlApi& gl = ctx->gl();
-  std::string fragment = std::string("#version 450 core\n") + shaders::kGlowSegment + kMain;
+  std::string fragment =
+      std::string("#version 450 core\n") + shaders::kGlowSegment + shaders::kGlowAlong + kMain;
   unsigned program = linkProgram(gl, kVertex, fragment.c_str());
-  unsigned tex = 0, target = 0, fbo = 0, vao = 0;
-  gl.GenTextures(1, &tex);
-  gl.ActiveTexture(GL_TEXTURE0);
-  gl.BindTexture(GL_TEXTURE_2D, tex);
-  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, 3, count, 0, GL_RGBA, GL_FLOAT, texels.data());
-  gl.GenTextures(1, &target);
-  gl.BindTexture(GL_TEXTURE_2D, target);
-  gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, size, size, 0, GL_RGBA, GL_FLOAT, nullptr);
-  gl.GenFramebuffers(1, &fbo);
-  gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
-  gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, target, 0);
-  gl.BindTexture(GL_TEXTURE_2D, tex);
+  unsigned vao = 0;
+  const unsigned target = makeFloatTexture(gl, size, size, nullptr);
+  makeFramebuffer(gl, target);
+  makeFloatTexture(gl, 3, count, texels.data());  // bound to unit 0 last
   gl.UseProgram(program);
   auto loc = [&](const char* name) { return gl.GetUniformLocation(program, name); };
   auto u3 = [&](const char* name, glm::dvec3 v) {
     gl.Uniform3f(loc(name), float(v.x), float(v.y), float(v.z));
   };
   const double th = std::tan(0.5 * cam.fov_deg * 3.14159265358979323846 / 180.0);
-  gl.Uniform1i(loc("u_emitters"), 0);
-  gl.Uniform1i(loc("u_count"), count);
+  gl.Uniform1i(loc("u_glow_emitters"), 0);
+  gl.Uniform1i(loc("u_glow_count"), count);
   u3("u_eye", cam.position);
   u3("u_forward", cam.forward());
   u3("u_right", cam.right() * th);
@@ -131,7 +107,7 @@ int main(int argc, char** argv) {
   u3("u_box_lo", glm::dvec3(lo));
   u3("u_box_hi", glm::dvec3(hi));
   gl.Uniform2f(loc("u_pixel_scale"), 2.0f / size, 2.0f / size);
-  gl.Uniform1f(loc("u_eps"), eps);
+  gl.Uniform1f(loc("u_glow_eps"), eps);
   gl.Uniform1f(loc("u_intensity"), intensity);
   gl.Uniform1f(loc("u_exposure"), exposure);
   gl.GenVertexArrays(1, &vao);
@@ -159,10 +135,9 @@ int main(int argc, char** argv) {
       double t0, t1;
       if (intersectRayBox(o, d, Box3{glm::dvec3(lo), glm::dvec3(hi)}, t0, t1) &&
           t1 > std::max(t0, 0.0))
-        for (const Emitter& e : em)
-          sum += glm::dvec3(e.colour) * glowSegment<double>(glm::dvec3(e.centre), glm::dvec3(e.dir),
-                                                            e.a, e.b, eps, o, d, std::max(t0, 0.0),
-                                                            t1);
+        for (const GlowEmitter& e : em)
+          sum += e.colour * glowSegment<double>(e.centre, e.direction, e.a, e.b, eps, o, d,
+                                                std::max(t0, 0.0), t1);
       for (int k = 0; k < 3; ++k) {
         double ref = std::round(255.0 * -std::expm1(-double(exposure) * intensity * sum[k]));
         double got =

@@ -48,6 +48,15 @@ void FloatTarget::begin(const Rect& r, const SurfaceLayer* surface) {
   }
 }
 
+std::vector<float> FloatTarget::finishFloat(const Rect& r) {
+  std::vector<float> out(size_t(r.area()) * 4);
+  gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
+  gl_.ReadPixels(r.x, r.y, r.w, r.h, GL_RGBA, GL_FLOAT, out.data());
+  gl_.Disable(GL_SCISSOR_TEST);
+  gl_.check("brick render");
+  return out;
+}
+
 ImageRGBA8 FloatTarget::finish(const Rect& r) {
   // Window row y is image row y (the projection flips y), so rows come back top first.
   readback_.resize(size_t(r.area()) * 4);

@@ -28,6 +28,8 @@ class FloatTarget {
   void begin(const Rect& r, const SurfaceLayer* surface);
   // Reads `r` back as premultiplied RGBA8 (top row first) and ends the scissor.
   ImageRGBA8 finish(const Rect& r);
+  // The same unrounded (glow scenes: light without opacity, above 1): 4 floats a pixel.
+  std::vector<float> finishFloat(const Rect& r);
 
  private:
   const GlApi& gl_;

@@ -8,6 +8,7 @@
 
 #include "worker/adaptive_gpu_brick.h"
 #include "worker/gl_program.h"
+#include "worker/glow_gl.h"
 #include "worker/preintegration_glsl.h"
 #include "worker/raycast_shaders.h"
 #include "worker/volume_shading.h"
@@ -38,6 +39,8 @@ RaycastRenderer::~RaycastRenderer() {
   gl_.DeleteProgram(program_);
   if (adaptive_program_) gl_.DeleteProgram(adaptive_program_);
   for (unsigned p : variant_programs_)
+    if (p) gl_.DeleteProgram(p);
+  for (unsigned p : glow_programs_)
     if (p) gl_.DeleteProgram(p);
 }
 
@@ -216,7 +219,7 @@ void RaycastRenderer::classify(GpuBrick& g, float delta) {
 
 RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spacing,
                                       double /*near_plane*/, double /*far_plane*/,
-                                      const SurfaceLayer* surface) {
+                                      const SurfaceLayer* surface, const GlowPass* glow) {
   GpuBrick& g = bricks_.at(size_t(handle));
   const VolumeBrick& b = g.volume;
   RenderedBrick out;
@@ -225,25 +228,42 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
     throw std::logic_error("ray caster: pre-integration of adaptive bricks is not supported");
   classify(g, float(spacing));
   Rect r = g.any ? screenRectOf(cam, g.bound) : Rect{};
+  // Glow: the whole of the brick's part of the glow box, empty blocks and all.
+  const bool glowing = glow && glow->count > 0 && glow->box.lo.x < glow->box.hi.x &&
+                       glow->box.lo.y < glow->box.hi.y && glow->box.lo.z < glow->box.hi.z;
+  if (glowing) {
+    if (g.adaptive) throw std::logic_error("ray caster: glow in an adaptive brick");
+    const Rect gr = screenRectOf(cam, glow->box);
+    if (!gr.empty()) r = r.empty() ? gr : unite(r, gr);
+  }
   const bool has_surface = surface && !surface->rect.empty();
   if (has_surface) r = r.empty() ? surface->rect : unite(r, surface->rect);
   if (r.empty()) return out;
 
   target_.begin(r, has_surface ? surface : nullptr);
-  if (g.any) {
+  if (g.any || glowing) {
     gl_.Enable(GL_BLEND);
     gl_.BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // the ray's colour over the surface's
     // Adaptive blocks cannot be shaded (raycast_shaders.h shadedSample); the scene refuses it.
     if (g.adaptive && shading_.enabled)
       throw std::logic_error("ray caster: gradient shading of an adaptive brick");
     const int v = (preint ? 1 : 0) + (shading_.enabled ? 2 : 0);
+    if (glowing && !glow_programs_[v]) {
+      std::string src = preint ? shaders::withPreintegration(shaders::kRaycastFragment)
+                               : std::string(shaders::kRaycastFragment);
+      if (shading_.enabled) src = withShading(src.c_str());
+      glow_programs_[v] = linkProgram(gl_, shaders::kRaycastVertex, shaders::withGlow(src).c_str());
+    }
     if (!g.adaptive && v != 0 && !variant_programs_[v]) {
       const std::string src = preint ? shaders::withPreintegration(shaders::kRaycastFragment)
                                      : std::string(shaders::kRaycastFragment);
       variant_programs_[v] = linkProgram(gl_, shaders::kRaycastVertex,
                                          shading_.enabled ? withShading(src.c_str()).c_str() : src.c_str());
     }
-    const unsigned program = g.adaptive ? adaptive_program_ : v != 0 ? variant_programs_[v] : program_;
+    const unsigned program = glowing      ? glow_programs_[v]
+                             : g.adaptive ? adaptive_program_
+                             : v != 0     ? variant_programs_[v]
+                                          : program_;
     gl_.UseProgram(program);
     auto u3 = [&](const char* name, const glm::dvec3& v) {
       gl_.Uniform3f(gl_.GetUniformLocation(program, name), float(v.x), float(v.y), float(v.z));
@@ -288,6 +308,17 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
       gl_.ActiveTexture(GL_TEXTURE2);
       gl_.BindTexture(GL_TEXTURE_2D, surface->surface_texture);
     }
+    if (glowing) {
+      u3("u_glow_lo", glow->box.lo);
+      u3("u_glow_hi", glow->box.hi);
+      u3("u_glow_hi_open", glm::dvec3(glm::lessThan(glow->box.hi, glow->whole.hi)));
+      gl_.Uniform1f(gl_.GetUniformLocation(program, "u_glow_intensity"), glow->intensity);
+      gl_.Uniform1f(gl_.GetUniformLocation(program, "u_glow_eps"), glow->eps);
+      gl_.Uniform1i(gl_.GetUniformLocation(program, "u_glow_count"), glow->count);
+      gl_.Uniform1i(gl_.GetUniformLocation(program, "u_glow_emitters"), 7);  // 6: the pre-integration table
+      gl_.ActiveTexture(GL_TEXTURE7);
+      gl_.BindTexture(GL_TEXTURE_2D, glow->emitters);
+    }
     gl_.ActiveTexture(GL_TEXTURE3);
     gl_.BindTexture(GL_TEXTURE_2D, g.planes);
     gl_.ActiveTexture(GL_TEXTURE4);
@@ -299,7 +330,10 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
     gl_.Disable(GL_BLEND);
   }
   out.rect = r;
-  out.pixels = target_.finish(r);
+  if (glow)
+    out.pixels_f = target_.finishFloat(r);
+  else
+    out.pixels = target_.finish(r);
   return out;
 }
 

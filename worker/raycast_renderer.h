@@ -84,8 +84,11 @@ class RaycastRenderer {
   // Renders one brick for `cam` with samples `spacing` world units apart along every ray. The
   // depth range is not needed (rays are not rasterised); it is taken so both volume renderers
   // have one call. Rays end at `surface`, whose colour goes behind what they gathered.
+  // With `glow`, the rays also integrate the emitters inside glow->box (the GLOW variant of the
+  // program, raycast_shaders.h), the rectangle covers that box, and the image comes back in float.
   RenderedBrick render(int handle, const Camera& cam, double spacing, double near_plane,
-                       double far_plane, const SurfaceLayer* surface = nullptr);
+                       double far_plane, const SurfaceLayer* surface = nullptr,
+                       const GlowPass* glow = nullptr);
 
  private:
   // The adaptive lookup's per-brick inputs (worker/adaptive_gpu_brick.h).
@@ -135,6 +138,7 @@ class RaycastRenderer {
   // Variants linked when first used: pre-integrated (PREINTEGRATED), shaded (render.shading:
   // worker/volume_shading.h in front) and both; index preintegrated + 2 * shaded, 0 unused.
   unsigned variant_programs_[4] = {0, 0, 0, 0};
+  unsigned glow_programs_[4] = {0, 0, 0, 0};  // the same with GLOW (index as above)
   std::vector<GpuBrick> bricks_;
 };
 

@@ -170,9 +170,49 @@ vec4 sampleAt(vec3 p) {
   return e;
 }
 
-// A sample standing for `len` of the ray, front to back (opacity corrected for len).
-void composite(inout vec4 acc, vec4 e, float len) {
+#ifdef GLOW
+// Glow emitters (the GLOW variant, docs/glow.md; withGlow() puts glowSegment() and glowAlong()
+// before this text): emission without opacity, added to acc.rgb and never to acc.a. The ray's
+// glow is integrated exactly over [g_t, g_end] in pieces, each seen through the transmittance
+// at its middle as master/reference.cpp does: in front of the volume 1; a sample's segment
+// [(k - 1/2) delta, (k + 1/2) delta] (an anchor's: its steps) the transmittance before it times
+// exp(-tau len / 2); jumped empty blocks the (constant) transmittance; behind the volume what is
+// left. Only inside this brick's part of the glow box (u_glow_lo, u_glow_hi), so the bricks'
+// pieces tile every ray; up to the surface's t. After early ray termination the rest is dropped
+// (at most 1 - u_ert of it).
+// Consecutive pieces whose transmittances stay within kGlowMerge of the first are integrated as
+// one (the closed form once, not once per sample), weighted by the mean of the first and last
+// transmittance: every weight it stands for lies within kGlowMerge / 2 of that, so the glow is
+// off by at most kGlowMerge / 2 = 1/512 of the undimmed glow inside the volume.
+uniform vec3 u_glow_lo, u_glow_hi, u_glow_hi_open;
+uniform float u_glow_intensity;
+const float kGlowMerge = 1.0 / 256.0;
+float g_t = 0.0, g_end = 0.0;  // integrated up to g_t; the glow span ends at g_end
+float g_pend = 0.0;            // pending piece [g_t, g_pend], transmittances g_tr0 .. g_tr1
+float g_tr0 = 1.0, g_tr1 = 1.0;
+vec3 g_dir;
+void glowFlush(inout vec4 acc) {
+  if (g_pend > g_t)
+    acc.rgb += 0.5 * (g_tr0 + g_tr1) * u_glow_intensity * glowAlong(u_eye, g_dir, g_t, g_pend);
+  g_t = g_pend;
+}
+void glowTo(inout vec4 acc, float t_end, float tr) {
+  float te = min(t_end, g_end);
+  if (!(te > g_pend)) return;
+  if (g_pend > g_t && abs(tr - g_tr0) > kGlowMerge) glowFlush(acc);
+  if (!(g_pend > g_t)) g_tr0 = tr;
+  g_pend = te;
+  g_tr1 = tr;
+}
+#endif
+
+// A sample standing for `len` of the ray, front to back (opacity corrected for len); its segment
+// ends at t_end (the glow variant's piece).
+void composite(inout vec4 acc, vec4 e, float len, float t_end) {
   float alpha = 1.0 - exp(-e.a * len);
+#ifdef GLOW
+  glowTo(acc, t_end, (1.0 - acc.a) * exp(-0.5 * e.a * len));
+#endif
   acc += (1.0 - acc.a) * vec4(e.rgb * alpha, alpha);
 }
 
@@ -180,11 +220,14 @@ void composite(inout vec4 acc, vec4 e, float len) {
 // The pre-integrated segment `len` long with front value vf and back value vb whose middle value
 // is read at lattice sample `mid`, front to back; with SHADING its colour is shaded with the
 // gradient there (premultiplied: shaded as the colour rgb / alpha, then weighted again).
-void compositeSegment(inout vec4 acc, float vf, float vb, int mid, float len, vec3 dir) {
+void compositeSegment(inout vec4 acc, float vf, float vb, int mid, float len, vec3 dir, float t_end) {
   vec3 p = u_eye + float(mid) * u_delta * dir;
   vec4 e = segment(vf, sampleVolume(p), vb, len);
 #ifdef SHADING
   if (e.a > 0.0) e.rgb = e.a * shadeColour(e.rgb / e.a, u_volume, p * u_tex_scale + u_tex_offset, dir);
+#endif
+#ifdef GLOW
+  glowTo(acc, t_end, (1.0 - acc.a) * sqrt(max(1.0 - e.a, 0.0)));
 #endif
   acc += (1.0 - acc.a) * e;
 }
@@ -224,7 +267,24 @@ void main() {
   if (u_has_surface != 0 && all(greaterThanEqual(px, u_surface_rect.xy)) &&
       all(lessThan(px, u_surface_rect.xy + u_surface_rect.zw)))
     t1 = min(t1, texelFetch(u_surface, px, 0).x);
+  vec4 acc = vec4(0.0);
+#ifdef GLOW
+  g_dir = dir;
+  if (!glowSpan(u_eye, dir, u_glow_lo, u_glow_hi, u_glow_hi_open, g_t, g_end)) g_end = g_t;
+  g_pend = g_t;
+  if (u_has_surface != 0 && all(greaterThanEqual(px, u_surface_rect.xy)) &&
+      all(lessThan(px, u_surface_rect.xy + u_surface_rect.zw)))
+    g_end = min(g_end, texelFetch(u_surface, px, 0).x);
+  if (!(t0 < t1)) {  // no volume on this ray: its glow in the brick, undimmed
+    glowTo(acc, g_end, 1.0);
+    glowFlush(acc);
+    frag = acc;
+    return;
+  }
+  glowTo(acc, t0, 1.0);  // in front of the volume
+#else
   if (!(t0 < t1)) discard;
+#endif
 
   // The block holding t0 on each axis: the first slab, in ray order, that the ray leaves after t0.
   ivec3 idx;
@@ -233,7 +293,6 @@ void main() {
     while (i + g_step[a] >= 0 && i + g_step[a] < nb[a] && exitT(a, i) <= t0) i += g_step[a];
     idx[a] = i;
   }
-  vec4 acc = vec4(0.0);
   int k = firstSample(t0);
 #ifdef PREINTEGRATED
   int k_back = k - 1;  // v_back holds the value at (float(k_back) - 0.5) * delta; none yet
@@ -262,7 +321,7 @@ void main() {
         float vf = k == k_back ? v_back : sampleVolume(u_eye + (float(k) - 0.5) * u_delta * dir);
         for (; k < k_end; ++k) {
           float vb = sampleVolume(u_eye + (float(k) + 0.5) * u_delta * dir);
-          compositeSegment(acc, vf, vb, k, u_delta, dir);
+          compositeSegment(acc, vf, vb, k, u_delta, dir, (float(k) + 0.5) * u_delta);
           vf = vb;
           if (acc.a >= u_ert) { ++k; break; }
         }
@@ -275,7 +334,7 @@ void main() {
           int anchor = (k + m / 2) / m * m;
           int next = min(anchor - m / 2 + m, k_end);
           float vb = sampleVolume(u_eye + (float(next) - 0.5) * u_delta * dir);
-          compositeSegment(acc, vf, vb, anchor, float(next - k) * u_delta, dir);
+          compositeSegment(acc, vf, vb, anchor, float(next - k) * u_delta, dir, (float(next) - 0.5) * u_delta);
           vf = vb;
           k = next;
           if (acc.a >= u_ert) break;
@@ -286,20 +345,24 @@ void main() {
 #else
       if (m == 1) {  // every sample (the same arithmetic as below with m = 1, without its cost)
         for (; k < k_end; ++k) {
-          composite(acc, sampleAt(u_eye + float(k) * u_delta * dir), u_delta);
+          composite(acc, sampleAt(u_eye + float(k) * u_delta * dir), u_delta, (float(k) + 0.5) * u_delta);
           if (acc.a >= u_ert) break;
         }
       } else {
         while (k < k_end) {
           int anchor = (k + m / 2) / m * m;
           int next = min(anchor - m / 2 + m, k_end);
-          composite(acc, sampleAt(u_eye + float(anchor) * u_delta * dir), float(next - k) * u_delta);
+          composite(acc, sampleAt(u_eye + float(anchor) * u_delta * dir), float(next - k) * u_delta,
+                    (float(next) - 0.5) * u_delta);
           k = next;
           if (acc.a >= u_ert) break;
         }
       }
 #endif
     }
+#ifdef GLOW
+    else if (acc.a < u_ert) glowTo(acc, (float(k_end) - 0.5) * u_delta, 1.0 - acc.a);  // jumped: T constant
+#endif
     k = k_end;
     // Into the block holding tb: on each axis, past every slab the ray has left by then.
     bool inside = true;
@@ -310,6 +373,10 @@ void main() {
     if (!inside) break;
     t = tb;
   }
+#ifdef GLOW
+  if (acc.a < u_ert) glowTo(acc, g_end, 1.0 - acc.a);  // the rest of the brick, behind the volume
+  glowFlush(acc);
+#endif
   frag = acc;
 }
 )";

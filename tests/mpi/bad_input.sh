@@ -39,8 +39,8 @@ expect_error "NaN in float data" "NaN at voxel [3, 4, 5]" \
 expect_error "zero-size image" "image.width and image.height must be in [1, 32768]" --set image.width=0
 expect_error "camera inside the volume" "is inside the scene" --set "camera.position=[5,-3,2]"
 expect_error "unknown backend" "expected osmesa or egl" --set render.backend=vulkan
-expect_error "glow emitters on the GL path (not drawn yet)" "glow emitters are drawn by \`sortlast reference\` only" \
-  --set "glow.emitters=[{center: [0, 0, 0]}]"
+expect_error "glow emitters with the slicing renderer" "'glow.emitters' and 'render.method: slicing'" \
+  --set "glow.emitters=[{center: [0, 0, 0]}]" --set render.method=slicing
 expect_error "glow emitter with a zero direction" "glow.emitters[0].direction': must not be zero" \
   --set "glow.emitters=[{center: [0, 0, 0], direction: [0, 0, 0]}]"
 expect_error "bricks finer than the grid" "bricks per axis need at least" \

@@ -14,6 +14,7 @@
 #include "common/glow_integral.h"
 #include "worker/gl_context.h"
 #include "worker/gl_program.h"
+#include "worker/glow_gl.h"
 
 namespace sortlast {
 namespace {
@@ -138,21 +139,10 @@ void main() {
 }
 )";
   unsigned program = linkProgram(gl, kVertex, fragment.c_str());
-  unsigned tex = 0, target = 0, fbo = 0, vao = 0;
-  gl.GenTextures(1, &tex);
-  gl.ActiveTexture(GL_TEXTURE0);
-  gl.BindTexture(GL_TEXTURE_2D, tex);
-  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, 5, n, 0, GL_RGBA, GL_FLOAT, texels.data());
-  gl.GenTextures(1, &target);
-  gl.BindTexture(GL_TEXTURE_2D, target);
-  gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, n, 1, 0, GL_RGBA, GL_FLOAT, nullptr);
-  gl.GenFramebuffers(1, &fbo);
-  gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
-  gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, target, 0);
-  ASSERT_EQ(gl.CheckFramebufferStatus(GL_FRAMEBUFFER), unsigned(GL_FRAMEBUFFER_COMPLETE));
-  gl.BindTexture(GL_TEXTURE_2D, tex);
+  unsigned vao = 0;
+  const unsigned target = makeFloatTexture(gl, n, 1, nullptr);
+  const unsigned fbo = makeFramebuffer(gl, target);  // throws if incomplete
+  const unsigned tex = makeFloatTexture(gl, 5, n, texels.data());  // bound to unit 0
   gl.UseProgram(program);
   gl.Uniform1i(gl.GetUniformLocation(program, "u_cases"), 0);
   gl.GenVertexArrays(1, &vao);

@@ -1,0 +1,73 @@
+#pragma once
+// What every GL user of the glow emitters shares (the brick pass, tests/unit/glow_glsl_test.cpp,
+// worker/bench_glow_main.cpp): float data textures, the emitters' texel layout, and the GLSL that
+// sums every emitter's exact segment integral along a ray (after worker/glow_glsl.h's
+// glowSegment()).
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "common/glow_field.h"
+#include "worker/gl_api.h"
+#include "worker/glow_glsl.h"
+
+namespace sortlast {
+
+// A w x h RGBA32F texture with nearest filtering, bound to GL_TEXTURE_2D of texture unit 0;
+// `texels` (4 floats each, row 0 first) may be null.
+unsigned makeFloatTexture(const GlApi& gl, int w, int h, const float* texels);
+// A framebuffer drawing into `texture`; throws std::runtime_error if it is not complete.
+unsigned makeFramebuffer(const GlApi& gl, unsigned texture);
+
+// Row i of a 3-texel-wide texture is emitter i: (centre, a), (direction, b), (colour, 0).
+std::vector<float> glowEmitterTexels(const std::vector<GlowEmitter>& emitters);
+
+namespace shaders {
+// glowAlong(o, u, s0, s1): the colour-weighted sum of every emitter's integral over [s0, s1] of
+// the ray o + s u (unit u), from the texture above (u_glow_emitters, u_glow_count rows) with core
+// radius u_glow_eps. Include after kGlowSegment.
+inline constexpr const char* kGlowAlong = R"(
+uniform sampler2D u_glow_emitters;
+uniform int u_glow_count;
+uniform float u_glow_eps;
+vec3 glowAlong(vec3 o, vec3 u, float s0, float s1) {
+  vec3 sum = vec3(0.0);
+  if (!(s1 > s0)) return sum;
+  for (int i = 0; i < u_glow_count; ++i) {
+    vec4 e0 = texelFetch(u_glow_emitters, ivec2(0, i), 0), e1 = texelFetch(u_glow_emitters, ivec2(1, i), 0);
+    vec3 colour = texelFetch(u_glow_emitters, ivec2(2, i), 0).rgb;
+    sum += colour * glowSegment(e0.xyz, e1.xyz, e0.w, e1.w, u_glow_eps, o, u, s0, s1);
+  }
+  return sum;
+}
+
+// The ray's span inside [lo, hi], t >= 0; false: it misses. An axis the ray does not move along
+// is tested by position (no 0 * inf): a ray lying in a face plane between two bricks belongs to
+// the brick above it only (hi_open 1 on that axis: [lo, hi)), so it is neither lost nor counted
+// twice; the glow box's own upper faces are closed, as the reference's box is.
+bool glowSpan(vec3 o, vec3 u, vec3 lo, vec3 hi, vec3 hi_open, out float t0, out float t1) {
+  t0 = 0.0;
+  t1 = 3.0e38;
+  for (int k = 0; k < 3; ++k) {
+    if (u[k] == 0.0) {
+      if (o[k] < lo[k] || o[k] > hi[k] || (hi_open[k] > 0.5 && o[k] == hi[k])) return false;
+      continue;
+    }
+    float a = (lo[k] - o[k]) / u[k], b = (hi[k] - o[k]) / u[k];
+    t0 = max(t0, min(a, b));
+    t1 = min(t1, max(a, b));
+  }
+  return t1 > t0;
+}
+)";
+
+// A fragment shader `src` (starting with its #version line) with GLOW defined and the glow
+// functions above put before its own text (the ray caster's GLOW variant).
+inline std::string withGlow(const std::string& src) {
+  const std::string version = "#version 450 core\n";
+  if (src.rfind(version, 0) != 0) throw std::logic_error("glow shader: no #version line");
+  return version + "#define GLOW 1\n" + kGlowSegment + kGlowAlong + src.substr(version.size());
+}
+}  // namespace shaders
+
+}  // namespace sortlast
