@@ -57,6 +57,19 @@ ImageRGBA8 readImageRGBA8(const std::string& path) {
   if (!in) throw InputError("image " + path + ": cannot open (" + OIIO::geterror() + ")");
   const OIIO::ImageSpec& spec = in->spec();
   int w = spec.width, h = spec.height, nc = spec.nchannels;
+  // A float file (an .exr frame) is first read as stored: a NaN or Inf would otherwise become a
+  // plausible 0 or 255 in the 8-bit conversion, and comparisons would pass over it.
+  if (spec.format.is_floating_point()) {
+    std::vector<float> f(size_t(w) * h * nc);
+    if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, f.data()))
+      throw InputError("image " + path + ": " + in->geterror());
+    size_t bad = 0, first = 0;
+    for (size_t i = 0; i < f.size(); ++i)
+      if (!std::isfinite(f[i]) && bad++ == 0) first = i / size_t(nc);
+    if (bad)
+      throw InputError("image " + path + ": " + std::to_string(bad) + " non-finite values (NaN or Inf), the first at pixel (" +
+                       std::to_string(first % size_t(w)) + ", " + std::to_string(first / size_t(w)) + ")");
+  }
   std::vector<uint8_t> raw(size_t(w) * h * nc);
   if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::UINT8, raw.data()))
     throw InputError("image " + path + ": " + in->geterror());

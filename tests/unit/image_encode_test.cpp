@@ -7,9 +7,11 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <unistd.h>
 
+#include "common/error.h"
 #include "common/image.h"
 #include "common/image_encode.h"
 #include "tests/unit/input_error_of.h"
@@ -103,6 +105,31 @@ TEST_F(ImageEncode, RefusesBadFormatAndQuality) {
             std::string::npos);
   EXPECT_NE(inputErrorOf([&] { encodeImage(frame, bg_, "jpeg", 101); }).find("quality"),
             std::string::npos);
+}
+
+// An .exr frame is read as stored before its 8-bit conversion, so a NaN or Inf (which the
+// conversion would turn into a plausible 0 or 255) is an error naming the file and pixel.
+TEST_F(ImageEncode, ReadingAFloatFrameRefusesNonFiniteValues) {
+  ImageF frame(5, 4);
+  for (size_t i = 0; i < frame.px.size(); ++i) frame.px[i] = 0.1f * float(i % 7);
+  const std::string ok = (dir_ / "finite.exr").string();
+  writeImage(ok, frame, bg_);
+  ImageRGBA8 back = readImageRGBA8(ok);
+  EXPECT_EQ(back.width, 5);
+  EXPECT_EQ(back.height, 4);
+  for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+    ImageF f = frame;
+    f.px[4 * (2 * 5 + 3) + 1] = bad;  // pixel (3, 2), green
+    const std::string path = (dir_ / "bad.exr").string();
+    writeImage(path, f, bg_);
+    try {
+      readImageRGBA8(path);
+      FAIL() << "a non-finite value was read without an error";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("1 non-finite"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("(3, 2)"), std::string::npos) << e.what();
+    }
+  }
 }
 
 }  // namespace
