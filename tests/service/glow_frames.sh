@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Glow emitters in a resident session (issue 16, docs/glow.md): frames of a glow scene at two sizes
+# and cameras, over a volume with the ray caster and alone, equal `sortlast render`'s (1/255); a
+# request for 8-bit partial images (compositing.precision rgba8, which would clamp the glow) is
+# refused with a message naming both keys, and the service keeps answering.
+# Usage: glow_frames.sh SORTLAST DATA_DIR
+source "$(dirname "$0")/service_lib.sh" "$1"
+scene=$2/glow.yaml
+vol=(--set volume.procedural=blobs --set "volume.dims=[24,24,24]" --set render.method=raycast
+     --set glow.box=auto --set glow.intensity=0.02 --set glow.core_radius=0.03)
+for case in alone volume; do
+  extra=() far='[2.5,1.5,-3]'
+  [ $case = volume ] && extra=("${vol[@]}") far='[30,18,-36]'  # outside the volume's box
+  start_server 2 "$scene" "${extra[@]}"
+  for req in '{"image.width":96,"image.height":96}' \
+             '{"image.width":80,"image.height":112,"camera.position":'"$far"'}'; do
+    code=$(frame "$WORK/served.png" "$req")
+    [ "$code" = 200 ] || { cat "$WORK/served.png"; fail "$case: $req answered $code"; }
+    mapfile -t sets < <(sets_of "$req")
+    render_like "$WORK/batch.png" 2 "$scene" "${extra[@]}" "${sets[@]}" || fail "render ${sets[*]}"
+    same "$WORK/served.png" "$WORK/batch.png" || fail "$case: the frame of $req differs from sortlast render"
+    echo "ok: $case $req"
+  done
+  code=$(frame "$WORK/refused.txt" '{"compositing.precision":"rgba8"}')
+  [ "$code" = 400 ] && grep -q "compositing.precision" "$WORK/refused.txt" && grep -q "glow.emitters" "$WORK/refused.txt" \
+    || { cat "$WORK/refused.txt"; fail "$case: an rgba8 request was not refused naming the keys ($code)"; }
+  code=$(frame "$WORK/after.png" '{"image.width":96,"image.height":96}')
+  [ "$code" = 200 ] || fail "$case: no frame after the refusal ($code)"
+  stop_server || fail "$case: sortlast serve did not stop on SIGTERM"
+done
+echo "glow_frames passed"
