@@ -381,7 +381,11 @@ bool isFrameKey(const std::string& path) {
                           "render.adaptive_step", "render.adaptive_tolerance",
                           "particles.radius", "particles.influence", "particles.threshold",
                           "particles.color", "particles.step", "particles.max_samples",
-                          "particles.refine_iterations", "particles.cull", "particles.samples_per_pass"})
+                          "particles.refine_iterations", "particles.cull", "particles.samples_per_pass",
+                          // Emitters are uploaded every frame; a session refuses turning glow on or
+                          // off (its bricks cover glow.box only if it started with emitters).
+                          "glow.emitters", "glow.core_radius", "glow.intensity", "glow.tone_map",
+                          "glow.exposure"})
     if (path == key) return true;
   return false;
 }

@@ -309,6 +309,16 @@ Scene RenderSession::State::resolve(const FrameRequest& request) const {
   }
   usesAdaptiveBlocks(sc);  // adaptive blocks need the ray caster: refuse slicing
   checkGlowScene(sc);
+  // The layout and the renderers were made with or without glow (the bricks reach out to
+  // glow.box, the images travel in float): a request may change the emitters, not their presence.
+  if (external && sc.glow.enabled())
+    throw InputError("scene key 'glow.emitters': in situ sessions do not draw glow emitters");
+  if (sc.glow.enabled() != base.glow.enabled())
+    throw InputError(base.glow.enabled()
+                         ? "scene key 'glow.emitters': this session draws glow and a request cannot remove "
+                           "every emitter; set glow.intensity: 0 to hide the glow"
+                         : "scene key 'glow.emitters': this session was started without glow emitters, so "
+                           "its bricks do not cover a glow box; start it with glow.emitters");
   sc.volume.grid = layout.grid;  // a VTK file's grid, read at start
   if (sc.camera.width > opts.max_image_side || sc.camera.height > opts.max_image_side)
     throw InputError("image size " + std::to_string(sc.camera.width) + " x " + std::to_string(sc.camera.height) +
