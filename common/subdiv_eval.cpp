@@ -1,6 +1,5 @@
 #include "common/subdiv_eval.h"
 
-#include "common/subdiv_local.h"
 
 #include <glm/geometric.hpp>
 
@@ -85,6 +84,10 @@ SubdivSurface::SubdivSurface(const PolyMesh& input) : control_(buildControlMesh(
           p.rotation = c;
           p.valence = t.valence[m.corner(f, c)];
         }
+      if (p.kind == Kind::BoundaryIrregular) {
+        nets_.resize(m.faceCount());
+        nets_[f] = std::make_unique<LocalNet>(m, t, f, p.rotation);
+      }
       if (p.kind == Kind::BoundaryRegular) {
         LocalNet::Grid world, local;
         LocalNet(m, t, f, 0).grid(world, local);
@@ -177,10 +180,10 @@ std::array<glm::dvec3, 16> SubdivSurface::controlPoints(int face, int n, int k, 
 
 void SubdivSurface::boundarySubPatch(int face, int n, int k, std::array<glm::dvec3, 16>& position,
                                      std::array<glm::dvec3, 16>& tangent) const {
-  LocalNet net(control_.mesh, control_.topology, face, patches_[face].rotation);
+  LocalNet net = *nets_[face];
   for (int level = 1; level < n; ++level) net.step();
   std::array<LocalNet::Grid, 3> world, local;
-  net.step(&world, &local);
+  net.step(&world, &local, k);
   position = world[k - 1];
   tangent = local[k - 1];
 }
@@ -190,7 +193,7 @@ void SubdivSurface::subPatches(int face, int levels, std::vector<std::array<glm:
   positions.clear();
   tangents.clear();
   if (patches_[face].kind == Kind::BoundaryIrregular) {
-    LocalNet net(control_.mesh, control_.topology, face, patches_[face].rotation);
+    LocalNet net = *nets_[face];
     for (int n = 1; n <= levels; ++n) {
       std::array<LocalNet::Grid, 3> world, local;
       net.step(&world, &local);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "common/subdiv_basis.h"
+#include "common/subdiv_local.h"
 #include "common/subdiv_mesh.h"
 
 namespace sortlast {
@@ -86,6 +87,8 @@ class SubdivSurface {
   ControlMesh control_;
   std::map<int, std::unique_ptr<ValenceBasis>> bases_;
   std::vector<Patch> patches_;
+  // Per irregular boundary face, its one-ring as level 0 of the local subdivision (built once).
+  std::vector<std::unique_ptr<LocalNet>> nets_;
   // Sub-patch (n, k) of an irregular boundary face by n steps of local subdivision.
   void boundarySubPatch(int face, int n, int k, std::array<glm::dvec3, 16>& position,
                         std::array<glm::dvec3, 16>& tangent) const;

@@ -103,7 +103,7 @@ void LocalNet::keepOneRing(const PolyMesh& refined, int face) {
   }
 }
 
-void LocalNet::step(std::array<Grid, 3>* world, std::array<Grid, 3>* tangent) {
+void LocalNet::step(std::array<Grid, 3>* world, std::array<Grid, 3>* tangent, int only) {
   const MeshTopology t = MeshTopology::build(mesh_);
   RefinedMesh r = catmullClarkStep(mesh_, t);
   // Children of face_ are 4 face_ + c (every face is a quad); child c sits at corner c. Sub-patch
@@ -111,6 +111,7 @@ void LocalNet::step(std::array<Grid, 3>* world, std::array<Grid, 3>* tangent) {
   // corner 4 - k: the edge point before corner 1, the face point, the edge point after corner 3.
   if (world)
     for (int k = 1; k <= 3; ++k) {
+      if (only != 0 && k != only) continue;
       const Grid local = gridOf(r.mesh, 4 * face_ + k, 4 - k);
       (*world)[k - 1] = toWorld(local);
       if (tangent) (*tangent)[k - 1] = local;

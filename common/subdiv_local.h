@@ -32,7 +32,8 @@ class LocalNet {
   // `world`, the three other children's grids first (sub-patch k = 1, 2, 3 of the new level, in
   // the frame's orientation), in world coordinates and in `tangent` in local ones: the same
   // patch moved and scaled, so the same normal, from points of the order of 1.
-  void step(std::array<Grid, 3>* world = nullptr, std::array<Grid, 3>* tangent = nullptr);
+  // `only` (1, 2 or 3) computes that sub-patch's grids alone (the others are left as they are).
+  void step(std::array<Grid, 3>* world = nullptr, std::array<Grid, 3>* tangent = nullptr, int only = 0);
   // The grid of the current face (which must be regular), in world and in local coordinates.
   void grid(Grid& world, Grid& tangent) const;
 
