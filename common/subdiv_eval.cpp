@@ -1,6 +1,5 @@
 #include "common/subdiv_eval.h"
 
-
 #include <glm/geometric.hpp>
 
 #include <algorithm>
