@@ -2,6 +2,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -69,6 +70,31 @@ SubdivSurface::SubdivSurface(const PolyMesh& input) : control_(buildControlMesh(
   patches_.resize(m.faceCount());
   for (int f = 0; f < m.faceCount(); ++f) {
     Patch& p = patches_[f];
+    bool onBoundary = false;
+    for (int c = 0; c < 4; ++c) onBoundary |= t.boundary[m.corner(f, c)] != 0;
+    if (onBoundary) {
+      // At most one irregular corner (buildControlMesh checks), and it is on the boundary: an
+      // interior extraordinary vertex's faces do not reach the boundary after refinement.
+      p.kind = Kind::BoundaryRegular;
+      for (int c = 0; c < 4; ++c)
+        if (!regularVertex(t, m.corner(f, c))) {
+          if (!t.boundary[m.corner(f, c)]) throw std::logic_error("a boundary face has an interior extraordinary vertex");
+          p.kind = Kind::BoundaryIrregular;
+          p.rotation = c;
+          p.valence = t.valence[m.corner(f, c)];
+        }
+      if (p.kind == Kind::BoundaryIrregular) {
+        nets_.resize(m.faceCount());
+        nets_[f] = std::make_unique<LocalNet>(m, t, f, p.rotation);
+      }
+      if (p.kind == Kind::BoundaryRegular) {
+        LocalNet::Grid world, local;
+        LocalNet(m, t, f, 0).grid(world, local);
+        p.points.resize(16, 3);
+        for (int i = 0; i < 16; ++i) p.points.row(i) << world[i].x, world[i].y, world[i].z;
+      }
+      continue;
+    }
     for (int c = 0; c < 4; ++c)
       if (t.valence[m.corner(f, c)] != 4) {
         p.rotation = c;
@@ -76,6 +102,7 @@ SubdivSurface::SubdivSurface(const PolyMesh& input) : control_(buildControlMesh(
       }
     const std::vector<int> label = gatherPatch(m, t, f, p.rotation, p.valence);
     if (p.valence == 4) {
+      p.kind = Kind::Regular;
       p.points.resize(16, 3);
       for (int b = 0; b < 4; ++b)
         for (int a = 0; a < 4; ++a) {
@@ -84,6 +111,7 @@ SubdivSurface::SubdivSurface(const PolyMesh& input) : control_(buildControlMesh(
         }
       continue;
     }
+    p.kind = Kind::Stam;
     auto& basis = bases_[p.valence];
     if (!basis) basis = std::make_unique<ValenceBasis>(p.valence);
     Eigen::MatrixXd c0(label.size(), 3);
@@ -102,7 +130,8 @@ SubdivSurface::Location SubdivSurface::locate(int face, double u, double v, int 
     default: break;
   }
   Location loc;
-  if (p.valence == 4) {
+  if (p.kind == Kind::BoundaryIrregular) maxLevel = std::min(maxLevel, kBoundaryMaxLevel);
+  if (regular(face)) {
     loc.s = pu, loc.t = pv;
     return loc;
   }
@@ -129,7 +158,12 @@ SubdivSurface::Location SubdivSurface::locate(int face, double u, double v, int 
 std::array<glm::dvec3, 16> SubdivSurface::controlPoints(int face, int n, int k, bool tangent) const {
   const Patch& p = patches_[face];
   std::array<glm::dvec3, 16> out;
-  if (p.valence == 4) {
+  if (p.kind == Kind::BoundaryIrregular) {
+    std::array<glm::dvec3, 16> position, tangents;
+    boundarySubPatch(face, n, k, position, tangents);
+    return tangent ? tangents : position;
+  }
+  if (regular(face)) {
     for (int i = 0; i < 16; ++i) out[i] = {p.points(i, 0), p.points(i, 1), p.points(i, 2)};
     return out;
   }
@@ -143,9 +177,47 @@ std::array<glm::dvec3, 16> SubdivSurface::controlPoints(int face, int n, int k, 
   return out;
 }
 
+void SubdivSurface::boundarySubPatch(int face, int n, int k, std::array<glm::dvec3, 16>& position,
+                                     std::array<glm::dvec3, 16>& tangent) const {
+  LocalNet net = *nets_[face];
+  for (int level = 1; level < n; ++level) net.step();
+  std::array<LocalNet::Grid, 3> world, local;
+  net.step(&world, &local, k);
+  position = world[k - 1];
+  tangent = local[k - 1];
+}
+
+void SubdivSurface::subPatches(int face, int levels, std::vector<std::array<glm::dvec3, 16>>& positions,
+                               std::vector<std::array<glm::dvec3, 16>>& tangents) const {
+  positions.clear();
+  tangents.clear();
+  if (patches_[face].kind == Kind::BoundaryIrregular) {
+    LocalNet net = *nets_[face];
+    for (int n = 1; n <= levels; ++n) {
+      std::array<LocalNet::Grid, 3> world, local;
+      net.step(&world, &local);
+      positions.insert(positions.end(), world.begin(), world.end());
+      tangents.insert(tangents.end(), local.begin(), local.end());
+    }
+    return;
+  }
+  for (int n = 1; n <= levels; ++n)
+    for (int k = 1; k <= 3; ++k) {
+      positions.push_back(controlPoints(face, n, k));
+      tangents.push_back(controlPoints(face, n, k, true));
+    }
+}
+
 LimitPoint SubdivSurface::evaluate(int face, double u, double v) const {
   const Location loc = locate(face, u, v);
   glm::dvec3 position, ds, dt, unused;
+  if (patches_[face].kind == Kind::BoundaryIrregular) {
+    std::array<glm::dvec3, 16> points, tangents;
+    boundarySubPatch(face, loc.n, loc.k, points, tangents);
+    bsplinePatch(points, loc.s, loc.t, position, unused, unused);
+    bsplinePatch(tangents, loc.s, loc.t, unused, ds, dt);
+    return {position, glm::normalize(glm::cross(ds, dt))};
+  }
   bsplinePatch(controlPoints(face, loc.n, loc.k), loc.s, loc.t, position, unused, unused);
   bsplinePatch(controlPoints(face, loc.n, loc.k, true), loc.s, loc.t, unused, ds, dt);
   // The frame rotation keeps orientation, and the 2^n scale of the sub-patch does not turn the

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "common/subdiv_basis.h"
+#include "common/subdiv_local.h"
 #include "common/subdiv_mesh.h"
 
 namespace sortlast {
@@ -28,6 +29,10 @@ struct LimitPoint {
 // eigen-component for the position (the exact limit point) and only the subdominant pair for the
 // tangents (the exact limit tangent plane).
 constexpr int kCpuMaxLevel = 1100;
+// Deepest level of the explicit local subdivision round an irregular boundary vertex (no
+// eigenbasis there): nearer than 2^-48 of a control face the level-48 sub-patch is extrapolated,
+// which moves the point by about lambda^48 (< 1e-9) of the face's size.
+constexpr int kBoundaryMaxLevel = 48;
 // Levels the GPU tables hold, as in the paper (n <= 15, 45 control-point sets per patch).
 constexpr int kTableLevels = 15;
 
@@ -59,19 +64,34 @@ class SubdivSurface {
   // eigen-component (lambda = 1), which has no derivative, is left out, and the others are
   // scaled by 1 / lambda_sub^(n-1), so the points stay of the order of the mesh.
   std::array<glm::dvec3, 16> controlPoints(int face, int n, int k, bool tangent = false) const;
-  bool regular(int face) const { return patches_[face].valence == 4; }
+  // Sub-patches (n, k) for n = 1..levels of an irregular face, set (n - 1) * 3 + (k - 1), positions
+  // and tangent points: what the tables hold (one pass of local subdivision on boundary faces).
+  void subPatches(int face, int levels, std::vector<std::array<glm::dvec3, 16>>& positions,
+                  std::vector<std::array<glm::dvec3, 16>>& tangents) const;
+  // Regular: a bicubic B-spline patch (interior, or at a boundary with phantom points).
+  bool regular(int face) const { return patches_[face].kind <= Kind::BoundaryRegular; }
+  // Touches a boundary (and then is evaluated by local subdivision if irregular).
+  bool boundary(int face) const { return patches_[face].kind == Kind::BoundaryRegular || patches_[face].kind == Kind::BoundaryIrregular; }
   int rotation(int face) const { return patches_[face].rotation; }
   const std::map<int, std::unique_ptr<ValenceBasis>>& bases() const { return bases_; }
 
  private:
+  enum class Kind { Regular, BoundaryRegular, Stam, BoundaryIrregular };
   struct Patch {
+    Kind kind = Kind::Regular;
     int valence = 4;
     int rotation = 0;           // corner of the face at the patch's (0, 0)
-    Eigen::MatrixXd points;     // regular: 16 x 3 grid; irregular: (2N+8) x 3, V^-1 C0 (Stam's C-hat)
+    Eigen::MatrixXd points;     // regular: 16 x 3 grid; Stam: (2N+8) x 3, V^-1 C0 (Stam's C-hat);
+                                // irregular at a boundary: none (local subdivision each time)
   };
   ControlMesh control_;
   std::map<int, std::unique_ptr<ValenceBasis>> bases_;
   std::vector<Patch> patches_;
+  // Per irregular boundary face, its one-ring as level 0 of the local subdivision (built once).
+  std::vector<std::unique_ptr<LocalNet>> nets_;
+  // Sub-patch (n, k) of an irregular boundary face by n steps of local subdivision.
+  void boundarySubPatch(int face, int n, int k, std::array<glm::dvec3, 16>& position,
+                        std::array<glm::dvec3, 16>& tangent) const;
 };
 
 // Uniform cubic B-spline basis B_0..B_3 at t and its derivative: in double for the exact

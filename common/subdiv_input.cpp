@@ -2,6 +2,7 @@
 
 #include <tiny_obj_loader.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -137,13 +138,41 @@ PolyMesh octahedron() {
   return m;
 }
 
+// A saddle z = (x^2 - y^2) / 6 over a 4 x 4 grid of quads: an open surface whose boundary has
+// only regular vertices (valence 3) and four corners.
 PolyMesh openGrid() {
   PolyMesh m;
   m.name = "open_grid";
   for (int j = 0; j <= 4; ++j)
-    for (int i = 0; i <= 4; ++i) m.points.emplace_back(i, j, 0.1 * ((i * j) % 3));
+    for (int i = 0; i <= 4; ++i) {
+      const double x = i - 2.0, y = j - 2.0;
+      m.points.emplace_back(x, y, (x * x - y * y) / 6.0 + 0.05 * std::sin(1.3 * i + 2.1 * j));
+    }
   for (int j = 0; j < 4; ++j)
     for (int i = 0; i < 4; ++i) m.addFace({j * 5 + i, j * 5 + i + 1, (j + 1) * 5 + i + 1, (j + 1) * 5 + i});
+  return m;
+}
+
+// An open fan of two rings round a centre vertex on the boundary: N quads round the centre (a
+// boundary vertex of N faces, valence N + 1: irregular unless N = 2, a corner if N = 1), 2N quads
+// outside them. The inner ring's vertices between two spokes are interior of valence 3, the
+// outer ring's are boundary vertices of valence 3 and corners. Curved and irregularly deformed.
+PolyMesh fan(int n) {
+  PolyMesh m;
+  m.name = "fan" + std::to_string(n);
+  const double pi = std::numbers::pi;
+  const double span = 0.5 * pi * std::min(n, 3);  // 90, 180, then 270 degrees
+  m.points.emplace_back(0.0, 0.0, 0.0);
+  for (int ring = 1; ring <= 2; ++ring)
+    for (int i = 0; i <= 2 * n; ++i) {
+      const double a = span * i / (2 * n), r = ring;
+      const int k = static_cast<int>(m.points.size());
+      m.points.emplace_back(r * std::cos(a), r * std::sin(a),
+                            0.2 * r * r * std::sin(2 * a + 0.3) + 0.06 * std::sin(1.7 * k + 0.4));
+    }
+  auto id = [n](int ring, int i) { return 1 + (ring - 1) * (2 * n + 1) + i; };
+  for (int i = 0; i < n; ++i) m.addFace({0, id(1, 2 * i), id(1, 2 * i + 1), id(1, 2 * i + 2)});
+  for (int i = 0; i < 2 * n; ++i) m.addFace({id(1, i), id(2, i), id(2, i + 1), id(1, i + 1)});
   return m;
 }
 
@@ -166,8 +195,10 @@ PolyMesh proceduralMesh(const std::string& name) {
     const int n = suffixNumber(name, prefix);
     if (n >= 3 && n <= 32) return prefix == "pole" ? pole(n) : prism(n);
   }
+  if (const int n = suffixNumber(name, "fan"); n >= 1 && n <= 12) return fan(n);
   throw InputError("unknown procedural surface '" + name +
-                   "' (known: cube, torus, pole<N>, prism<N> for N = 3..32, octahedron, open_grid)");
+                   "' (known: cube, torus, pole<N>, prism<N> for N = 3..32, octahedron, open_grid, "
+                   "fan<N> for N = 1..12)");
 }
 
 }  // namespace sortlast

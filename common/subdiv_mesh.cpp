@@ -88,42 +88,65 @@ MeshTopology MeshTopology::build(const PolyMesh& mesh) {
                        "): faces are not consistently oriented");
       ++t.valence[a];
     }
+  t.boundary.assign(mesh.points.size(), 0);
   for (int f = 0; f < mesh.faceCount(); ++f)
     for (int c = 0; c < mesh.faceSizes[f]; ++c) {
       const int a = mesh.corner(f, c), b = mesh.corner(f, (c + 1) % mesh.faceSizes[f]);
       const auto it = directed.find(edgeKey(b, a));
-      if (it == directed.end())
-        fail(mesh, "edge (" + std::to_string(a) + ", " + std::to_string(b) + ") of face " + std::to_string(f) +
-                       " is a boundary edge: open meshes are not supported (close the mesh; boundary "
-                       "rules are not implemented)");
+      if (it == directed.end()) {  // a boundary edge: no face on the other side
+        t.boundary[a] = t.boundary[b] = 1;
+        continue;
+      }
       const int slot = it->second;
       const int g = static_cast<int>(std::upper_bound(mesh.faceOffsets.begin(), mesh.faceOffsets.end(), slot) -
                                      mesh.faceOffsets.begin()) - 1;
       t.twin[mesh.faceOffsets[f] + c] = {g, slot - mesh.faceOffsets[g]};
     }
+  // Valence counts edges: a boundary vertex of m faces has m + 1 (a manifold one; checkMesh
+  // refuses the others).
+  for (size_t p = 0; p < mesh.points.size(); ++p) t.valence[p] += t.boundary[p];
   return t;
 }
 
 MeshTopology checkMesh(const PolyMesh& mesh) {
   checkFaces(mesh);
   MeshTopology t = MeshTopology::build(mesh);
-  // A closed manifold vertex's faces form one fan: walking round it from any corner reaches all.
-  std::vector<char> seen(mesh.faceCorners.size(), 0);
+  // A manifold vertex's faces form one fan: walking round it across its edges from the first
+  // face (any face if it is interior; the one whose next edge is a boundary edge if it is on the
+  // boundary) reaches all of them. A vertex on two boundary fans, or a boundary fan and a closed
+  // one, is non-manifold.
+  std::vector<int> faces(mesh.points.size(), 0), start(mesh.points.size(), -1), fans(mesh.points.size(), 0);
   for (int f = 0; f < mesh.faceCount(); ++f)
     for (int c = 0; c < mesh.faceSizes[f]; ++c) {
-      if (seen[mesh.faceOffsets[f] + c]) continue;
-      const int p = mesh.corner(f, c);
-      int g = f, d = c, count = 0;
-      do {
-        seen[mesh.faceOffsets[g] + d] = 1;
-        ++count;
-        const auto& s = t.twin[mesh.faceOffsets[g] + (d + mesh.faceSizes[g] - 1) % mesh.faceSizes[g]];
-        g = s.face;
-        d = s.corner;
-      } while ((g != f || d != c) && count <= t.valence[p]);
-      if (count != t.valence[p])
-        fail(mesh, "vertex " + std::to_string(p) + " is non-manifold: its faces form more than one fan");
+      const int p = mesh.corner(f, c), slot = mesh.faceOffsets[f] + c;
+      ++faces[p];
+      if (t.twin[slot].face < 0) {  // the boundary edge leaving p: its face starts p's fan
+        ++fans[p];
+        start[p] = slot;
+      } else if (!t.boundary[p] && start[p] < 0) {
+        start[p] = slot;
+      }
     }
+  for (size_t p = 0; p < mesh.points.size(); ++p) {
+    if (faces[p] == 0) continue;
+    if (fans[p] > 1)
+      fail(mesh, "vertex " + std::to_string(p) + " is non-manifold: its faces form more than one fan");
+    if (start[p] < 0) fail(mesh, "vertex " + std::to_string(p) + " is non-manifold: its faces form more than one fan");
+    int slot = start[p], count = 0;
+    int g = static_cast<int>(std::upper_bound(mesh.faceOffsets.begin(), mesh.faceOffsets.end(), slot) -
+                             mesh.faceOffsets.begin()) - 1;
+    int d = slot - mesh.faceOffsets[g];
+    const int f0 = g, c0 = d;
+    do {
+      ++count;
+      const auto& s = t.twin[mesh.faceOffsets[g] + (d + mesh.faceSizes[g] - 1) % mesh.faceSizes[g]];
+      if (s.face < 0) break;  // the boundary edge entering p: the fan's other end
+      g = s.face;
+      d = s.corner;
+    } while ((g != f0 || d != c0) && count <= faces[p]);
+    if (count != faces[p])
+      fail(mesh, "vertex " + std::to_string(p) + " is non-manifold: its faces form more than one fan");
+  }
   return t;
 }
 
@@ -149,26 +172,42 @@ RefinedMesh catmullClarkStep(const PolyMesh& mesh, const MeshTopology& topology)
     for (int c = 0; c < mesh.faceSizes[f]; ++c) {
       const int slot = mesh.faceOffsets[f] + c;
       const auto& tw = topology.twin[slot];
-      const int twinSlot = mesh.faceOffsets[tw.face] + tw.corner;
       if (edgeOf[slot] >= 0) continue;
       const int a = mesh.corner(f, c), b = mesh.corner(f, (c + 1) % mesh.faceSizes[f]);
-      edgeOf[slot] = edgeOf[twinSlot] = static_cast<int>(edgePoint.size());
+      edgeOf[slot] = static_cast<int>(edgePoint.size());
+      if (tw.face < 0) {  // boundary edge: a sharp crease, its midpoint
+        edgePoint.push_back((mesh.points[a] + mesh.points[b]) * 0.5);
+        continue;
+      }
+      edgeOf[mesh.faceOffsets[tw.face] + tw.corner] = edgeOf[slot];
       edgePoint.push_back((mesh.points[a] + mesh.points[b] + facePoint[f] + facePoint[tw.face]) * 0.25);
     }
   // Vertex point (Q + 2R + (n - 3) S) / n: in a closed mesh every edge leaving p is the edge
   // after p in exactly one face, so one pass over the corners visits each face and edge once.
+  // Boundary vertices (Sdc VTX_BOUNDARY_EDGE_AND_CORNER): a corner (one face, valence 2) stays
+  // put; any other gets (1/8, 3/4, 1/8) of its two boundary neighbours and itself, so the
+  // boundary curve is the cubic B-spline of the boundary vertices.
   std::vector<glm::dvec3> q(mesh.points.size(), glm::dvec3(0.0)), r(mesh.points.size(), glm::dvec3(0.0));
+  std::vector<glm::dvec3> rim(mesh.points.size(), glm::dvec3(0.0));
   for (int f = 0; f < nf; ++f)
     for (int c = 0; c < mesh.faceSizes[f]; ++c) {
-      const int a = mesh.corner(f, c), b = mesh.corner(f, (c + 1) % mesh.faceSizes[f]);
+      const int m = mesh.faceSizes[f];
+      const int a = mesh.corner(f, c), b = mesh.corner(f, (c + 1) % m);
       q[a] += facePoint[f];
       r[a] += (mesh.points[a] + mesh.points[b]) * 0.5;
+      if (topology.twin[mesh.faceOffsets[f] + c].face < 0) {  // boundary edge a -> b
+        rim[a] += mesh.points[b];
+        rim[b] += mesh.points[a];
+      }
     }
   out.mesh.points.resize(nv + edgePoint.size() + nf);
   for (size_t p = 0; p < mesh.points.size(); ++p) {
     if (vertexIndex[p] < 0) continue;
     const double n = topology.valence[p];
-    out.mesh.points[vertexIndex[p]] = (q[p] / n + 2.0 * r[p] / n + (n - 3.0) * mesh.points[p]) / n;
+    if (topology.boundary[p])
+      out.mesh.points[vertexIndex[p]] = n == 2 ? mesh.points[p] : (rim[p] + 6.0 * mesh.points[p]) / 8.0;
+    else
+      out.mesh.points[vertexIndex[p]] = (q[p] / n + 2.0 * r[p] / n + (n - 3.0) * mesh.points[p]) / n;
   }
   std::copy(edgePoint.begin(), edgePoint.end(), out.mesh.points.begin() + nv);
   std::copy(facePoint.begin(), facePoint.end(), out.mesh.points.begin() + nv + edgePoint.size());
@@ -183,6 +222,10 @@ RefinedMesh catmullClarkStep(const PolyMesh& mesh, const MeshTopology& topology)
     }
   }
   return out;
+}
+
+bool regularVertex(const MeshTopology& t, int p) {
+  return t.boundary[p] ? t.valence[p] <= 3 : t.valence[p] == 4;
 }
 
 void childToParentQuad(int corner, double u, double v, double& pu, double& pv) {
@@ -203,7 +246,7 @@ ControlMesh buildControlMesh(const PolyMesh& input) {
   // Refinement keeps a vertex's valence, and Stam's eigenbasis needs at least 3 (a valence-2
   // vertex is a closed mesh's legal fold, but no Catmull-Clark patch layout fits it).
   for (size_t p = 0; p < topology.valence.size(); ++p)
-    if (topology.valence[p] > 0 && topology.valence[p] < 3)
+    if (topology.valence[p] > 0 && topology.valence[p] < 3 && !topology.boundary[p])
       fail(input, "vertex " + std::to_string(p) + " has valence " + std::to_string(topology.valence[p]) +
                       ": exact evaluation needs every vertex on at least 3 edges");
   PolyMesh mesh = input;
@@ -225,10 +268,11 @@ ControlMesh buildControlMesh(const PolyMesh& input) {
     mesh = std::move(r.mesh);
     topology = MeshTopology::build(mesh);
   }
-  // After these steps no quad has two extraordinary corners (Catmull-Clark separates them).
+  // After these steps no quad has two irregular corners (Catmull-Clark separates them); regular
+  // are interior vertices of valence 4, boundary vertices of valence 3 and corners (valence 2).
   for (int f = 0; f < mesh.faceCount(); ++f) {
     int extraordinary = 0;
-    for (int c = 0; c < 4; ++c) extraordinary += topology.valence[mesh.corner(f, c)] != 4;
+    for (int c = 0; c < 4; ++c) extraordinary += !regularVertex(topology, mesh.corner(f, c));
     if (extraordinary > 1) throw std::logic_error("buildControlMesh: a face kept two extraordinary vertices");
   }
   cm.mesh = std::move(mesh);

@@ -33,16 +33,17 @@ struct MeshTopology {
   struct Side {
     int face = -1, corner = -1;
   };
-  std::vector<Side> twin;    // indexed by faceOffsets[f] + c
+  std::vector<Side> twin;    // indexed by faceOffsets[f] + c; face -1 across a boundary edge
   std::vector<int> valence;  // edges per point (0 for points no face uses)
+  std::vector<char> boundary;  // per point: on a boundary edge
   static MeshTopology build(const PolyMesh& mesh);
 };
 
-// Throws InputError naming the mesh and the problem unless `mesh` is a closed, consistently
-// oriented, manifold polygon mesh with finite points: empty meshes, NaN or infinite points,
-// out-of-range indices, faces of fewer than three corners or with a repeated corner, edges shared
-// by more than two faces or twice in one direction, vertices whose faces form more than one fan,
-// and boundary edges (open meshes are refused: the standard boundary rules are not implemented).
+// Throws InputError naming the mesh and the problem unless `mesh` is a consistently oriented,
+// manifold polygon mesh (closed or with boundaries) with finite points: empty meshes, NaN or
+// infinite points, out-of-range indices, faces of fewer than three corners or with a repeated
+// corner, edges shared by more than two faces or twice in one direction, vertices whose faces form
+// more than one fan (two boundary fans, or a boundary fan and a closed one, meeting there).
 MeshTopology checkMesh(const PolyMesh& mesh);
 
 // One Catmull-Clark step of a checked mesh: every face of m corners becomes m quads. Child i of
@@ -53,7 +54,14 @@ struct RefinedMesh {
   PolyMesh mesh;
   std::vector<int> parent, parentCorner;
 };
+// Boundaries follow OpenSubdiv's Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER: boundary edges are
+// sharp (edge point the midpoint, boundary vertex (1/8, 3/4, 1/8) of its boundary neighbours),
+// and corners (boundary vertices of one face) are interpolated.
 RefinedMesh catmullClarkStep(const PolyMesh& mesh, const MeshTopology& topology);
+
+// A vertex round which the limit surface is a bicubic B-spline: interior of valence 4, boundary
+// of valence 3 (two faces) or a corner (one face; phantom points reflected across the boundary).
+bool regularVertex(const MeshTopology& topology, int point);
 
 // (u, v) of a child quad (as catmullClarkStep orders it) in its parent quad's (u, v).
 void childToParentQuad(int corner, double u, double v, double& pu, double& pv);
@@ -63,7 +71,7 @@ void childToParentQuad(int corner, double u, double v, double& pu, double& pv);
 // vertex and every extraordinary vertex's neighbourhood is regular. Per control face, which input
 // face it lies in and the chain of children down to it, so a point (face, u, v) maps back to the
 // input mesh's faces (the reference evaluator needs that). Throws InputError as checkMesh does,
-// and for vertices of valence 2 (legal in a closed mesh, but outside Stam's method).
+// and for interior vertices of valence 2 (legal in a closed mesh, but outside Stam's method).
 struct ControlMesh {
   PolyMesh mesh;
   MeshTopology topology;

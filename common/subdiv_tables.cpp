@@ -29,8 +29,12 @@ SubdivTables buildTables(const SubdivSurface& surface) {
       ++sets;
       continue;
     }
-    for (int n = 1; n <= kTableLevels; ++n)
-      for (int k = 1; k <= 3; ++k) append(f, n, k);
+    std::vector<std::array<glm::dvec3, 16>> positions, tangents;
+    surface.subPatches(f, kTableLevels, positions, tangents);
+    for (const auto& set : positions)
+      for (const glm::dvec3& p : set) t.positions.emplace_back(glm::vec3(p), 0.0f);
+    for (const auto& set : tangents)
+      for (const glm::dvec3& p : set) t.tangents.emplace_back(glm::vec3(p), 0.0f);
     sets += kTableLevels * 3;
   }
   t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -141,7 +141,7 @@ std::vector<SurfaceSpec> parseSurfaces(const YAML::Node& list, const std::filesy
       return v;
     };
     if (e["file"].IsDefined() == e["procedural"].IsDefined())
-      fail(name, "give exactly one of 'file' (an OBJ file) and 'procedural' (cube, torus, pole<N>, ...)", e);
+      fail(name, "give exactly one of 'file' (an OBJ file) and 'procedural' (cube, torus, pole<N>, fan<N>, ...)", e);
     PolyMesh mesh;
     const std::string source = e["file"] ? name + ".file" : name + ".procedural";
     try {

@@ -87,6 +87,9 @@ void SurfaceReference::render(const Camera& cam, int threads, SurfaceImage& surf
                 Hit& h = hits[size_t(y) * W + x];
                 for (int tri = 0; tri < 2; ++tri) {
                   const int a = 0, b = tri == 0 ? 1 : 2, c = tri == 0 ? 2 : 3;
+                  // One-sided, as the GL pass culls the coarse mesh's back faces: an open
+                  // surface's back side is not drawn (a closed one's is hidden anyway).
+                  if (glm::dot(glm::cross(p[b] - p[a], p[c] - p[a]), d) >= 0) continue;
                   double t, b1, b2;
                   if (!intersect(cam.position, d, p[a], p[b], p[c], t, b1, b2) || t >= h.t) continue;
                   const double w0 = 1.0 - b1 - b2;

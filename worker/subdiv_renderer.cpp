@@ -129,8 +129,9 @@ void main() {
       int across = neighbours[face][c];
       int d = across & 3;
       vec2 g = vec2(1.0 - ab.x, -ab.y);
-      next = d == 0 ? g : (d == 1 ? vec2(1.0 - g.y, g.x) : (d == 2 ? vec2(1.0 - g.x, 1.0 - g.y) : vec2(g.y, 1.0 - g.x)));
-      face = across >> 2;
+      // Across a boundary edge (an open mesh: -1) there is no face: stay on this one, clamped.
+      if (across >= 0) next = d == 0 ? g : (d == 1 ? vec2(1.0 - g.y, g.x) : (d == 2 ? vec2(1.0 - g.x, 1.0 - g.y) : vec2(g.y, 1.0 - g.x)));
+      if (across >= 0) face = across >> 2;
     }
     u = clamp(next.x, 0.0, 1.0);
     v = clamp(next.y, 0.0, 1.0);

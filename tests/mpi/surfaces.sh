@@ -8,6 +8,8 @@
 #   metaballs   a surface through a metaball splash (the two layers merged by depth per brick):
 #               against the reference, 1-4 ranks; the same inside a volume, 1 and 3 ranks
 #   reflection  reflection lines against the reference
+#   open        open surfaces (boundaries: a saddle, and a fan round a boundary vertex of 5 faces):
+#               against the reference (colour, depth, normals), 1-4 ranks, d = 1-3
 #   bad         bad meshes and keys through the CLI: clear message naming the key, exit 1, no hang
 #   serve       a resident session (`sortlast serve`, 2 ranks) serves the frames `render` makes, at
 #               two image sizes and cameras (the surfaces' targets resize; surfaces are fixed for
@@ -71,6 +73,16 @@ bricks: {per_axis: 2}
 camera: {position: [1.2, 1.6, 2.4]}
 surfaces:
   - {procedural: pole5, shading: reflection_lines, stripes: 8, stripe_width: 0.4, stripe_direction: [0.3, 1, 0.2]}
+YAML
+
+cat > "$WORK/open.yaml" <<'YAML'
+volume: {procedural: none}
+image: {width: 128, height: 128}
+bricks: {per_axis: 2}
+camera: {position: [0.3, -3.5, 6.0]}
+surfaces:
+  - {procedural: open_grid, color: [0.9, 0.6, 0.3], transform: {scale: 0.5, translate: [-1.0, 0, 0]}}
+  - {procedural: fan5, color: [0.4, 0.7, 0.9], transform: {scale: 0.6, translate: [0.6, -0.4, 0.1]}}
 YAML
 
 reference() { "$S" reference "$WORK/$1.yaml" -q -o "$WORK/ref.png" --surface-out "$WORK/ref.exr" || fail "reference $1"; }
@@ -141,6 +153,19 @@ metaballs)
   render 3 all_three many
   "$S" compare "$WORK/gl.png" "$WORK/many.png" --max-diff 1 | tail -1 || fail "all three: 3 ranks differ from 1"
   ;;
+open)
+  reference open
+  render 1 open gl
+  vs_reference gl 1
+  # Depth and normals of the fan alone (its irregular boundary vertex is in view).
+  one=(--set "surfaces=[{procedural: fan5}]")
+  "$S" reference "$WORK/open.yaml" -q -o "$WORK/ref.png" --surface-out "$WORK/ref.exr" "${one[@]}" || fail "reference fan5"
+  render 1 open gl "${one[@]}"
+  "$S" compare-surface "$WORK/ref.exr" "$WORK/gl.exr" --ignore-edges --max-depth-error 1e-3 \
+    --max-normal-deg 0.05 --max-holes 0 --max-extra 0 || fail "open: depth or normals"
+  ranks open
+  bricks open 0
+  ;;
 reflection)
   reference reflection
   render 1 reflection gl
@@ -167,13 +192,13 @@ bad)
   printf "v 0 0 0\nv 1 0 0\nv 0 1 0\nv nan 0 1\nf 1 3 2\nf 1 4 3\nf 1 2 4\nf 2 3 4\n" > "$WORK/nan.obj"
   printf "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 4 3\nf 1 2 4\nf 2 3 9\n" > "$WORK/range.obj"
   printf "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 1 1 1\nf 1 3 2\nf 1 4 3\nf 1 2 4\nf 2 3 4\nf 2 5 3\n" > "$WORK/nonmanifold.obj"
-  printf "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n" > "$WORK/open.obj"
+  printf "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv -1 0 0\nv -1 -1 0\nv 0 -1 0\nf 1 2 3 4\nf 1 5 6 7\n" > "$WORK/bowtie.obj"
   printf "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 4 3\nf 1 2 4\nf 2 3 4\nt crease 2/1/0 1 2 5.0\n" > "$WORK/crease.obj"
   expect_error 0 "surfaces\[0\].file'.*is empty" "surfaces=[{file: $WORK/empty.obj}]"
   expect_error 0 "surfaces\[0\].file'.*'nan' is not a finite number" "surfaces=[{file: $WORK/nan.obj}]"
   expect_error 0 "surfaces\[0\].file'.*out of range" "surfaces=[{file: $WORK/range.obj}]"
   expect_error 2 "surfaces\[0\].file'.*non-manifold" "surfaces=[{file: $WORK/nonmanifold.obj}]"
-  expect_error 0 "surfaces\[0\].file'.*open meshes are not supported" "surfaces=[{file: $WORK/open.obj}]"
+  expect_error 0 "surfaces\[0\].file'.*vertex 0 is non-manifold" "surfaces=[{file: $WORK/bowtie.obj}]"
   expect_error 0 "surfaces\[0\].file'.*t crease" "surfaces=[{file: $WORK/crease.obj}]"
   expect_error 2 "surfaces\[1\].file'.*no such file" "surfaces=[{procedural: cube}, {file: $WORK/missing.obj}]"
   expect_error 0 "surfaces\[0\].procedural'.*unknown procedural" "surfaces=[{procedural: pole2}]"

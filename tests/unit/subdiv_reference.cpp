@@ -31,7 +31,7 @@ std::unique_ptr<Far::TopologyRefiner> makeRefiner(const PolyMesh& input) {
   desc.numVertsPerFace = input.faceSizes.data();
   desc.vertIndicesPerFace = input.faceCorners.data();
   Sdc::Options sdc;
-  sdc.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
+  sdc.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
   using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
   std::unique_ptr<Far::TopologyRefiner> r(Factory::Create(desc, Factory::Options(Sdc::SCHEME_CATMARK, sdc)));
   if (!r) throw std::runtime_error("OpenSubdiv refused the mesh");

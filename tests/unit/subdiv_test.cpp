@@ -67,7 +67,19 @@ TEST(SubdivMesh, ChecksNameTheProblem) {
   for (const auto& f : {std::vector<int>{0, 6, 5}, {0, 5, 4}, {5, 6, 4}, {0, 4, 6}}) bowtie.addFace(f);
   EXPECT_NE(inputErrorOf([&] { checkMesh(bowtie); }).find("vertex 0 is non-manifold"), std::string::npos);
 
-  EXPECT_NE(inputErrorOf([&] { checkMesh(proceduralMesh("open_grid")); }).find("boundary edge"), std::string::npos);
+  // Boundaries are accepted, but two boundary fans meeting at a vertex are not: two quads
+  // touching at one corner.
+  EXPECT_NO_THROW(checkMesh(proceduralMesh("open_grid")));
+  PolyMesh hourglass;
+  hourglass.name = "hourglass";
+  hourglass.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {-1, 0, 0}, {-1, -1, 0}, {0, -1, 0}};
+  hourglass.addFace({0, 1, 2, 3});
+  hourglass.addFace({0, 4, 5, 6});
+  EXPECT_NE(inputErrorOf([&] { checkMesh(hourglass); }).find("vertex 0 is non-manifold"), std::string::npos);
+  PolyMesh fanAndCone = proceduralMesh("cube");  // a closed fan and an open one at vertex 0
+  fanAndCone.points.insert(fanAndCone.points.end(), {{-2, -2, -2}, {-3, -2, -2}, {-3, -3, -2}});
+  fanAndCone.addFace({0, 8, 9, 10});
+  EXPECT_NE(inputErrorOf([&] { checkMesh(fanAndCone); }).find("vertex 0 is non-manifold"), std::string::npos);
 
   PolyMesh pillow;  // two quads back to back: closed and manifold, every vertex of valence 2
   pillow.name = "pillow";
@@ -216,8 +228,11 @@ Errors compare(const std::string& name) {
 }
 
 TEST(SubdivEval, MatchesOpenSubdivOnEveryProceduralMesh) {
-  std::vector<std::string> meshes = {"cube", "torus", "octahedron", "prism3", "prism5", "prism8"};
+  std::vector<std::string> meshes = {"cube", "torus", "octahedron", "prism3", "prism5", "prism8", "open_grid"};
   for (int n = 3; n <= 12; ++n) meshes.push_back("pole" + std::to_string(n));
+  // Open meshes: boundary vertices of 1 (a corner) to 8 faces, under OpenSubdiv's
+  // VTX_BOUNDARY_EDGE_AND_CORNER.
+  for (int n = 1; n <= 8; ++n) meshes.push_back("fan" + std::to_string(n));
   for (const auto& name : meshes) {
     const Errors e = compare(name);
     EXPECT_LE(e.position, 1e-5) << name;
@@ -230,7 +245,7 @@ TEST(SubdivEval, MatchesOpenSubdivOnEveryProceduralMesh) {
 // reference: OpenSubdiv's end caps approximate, and the true normal still turns there, by about
 // (lambda_3 / lambda_sub)^j: 0.2 degrees 2^-30 from a valence-12 vertex.)
 TEST(SubdivEval, CornersAndTheLimitAtExtraordinaryVertices) {
-  std::vector<std::string> meshes = {"cube", "octahedron", "prism5"};
+  std::vector<std::string> meshes = {"cube", "octahedron", "prism5", "open_grid", "fan1", "fan3", "fan5", "fan8"};
   for (int n = 3; n <= 12; ++n) meshes.push_back("pole" + std::to_string(n));
   for (const auto& name : meshes) {
     const PolyMesh input = proceduralMesh(name);
@@ -245,7 +260,7 @@ TEST(SubdivEval, CornersAndTheLimitAtExtraordinaryVertices) {
     for (size_t i = 0; i < m.points.size(); ++i)
       for (size_t j = 0; j < refined.size(); ++j)
         if (glm::length(m.points[i] - refined[j]) < 1e-12 * input.size()) osd[i] = static_cast<int>(j);
-    double position = 0, normal = 0;
+    double position = 0, normal = 0, skipped = 0;
     for (int f = 0; f < m.faceCount(); ++f)
       for (int c = 0; c < 4; ++c) {
         ASSERT_GE(osd[m.corner(f, c)], 0) << name;
@@ -253,9 +268,16 @@ TEST(SubdivEval, CornersAndTheLimitAtExtraordinaryVertices) {
         const double u = c == 1 || c == 2 ? 1.0 : 0.0, v = c >= 2 ? 1.0 : 0.0;
         const LimitPoint ours = surface.evaluate(f, u, v);
         position = std::max(position, glm::length(ours.position - ref.position) / input.size());
-        normal = std::max(normal, degreesBetween(ours.normal, ref.normal));
+        // A boundary vertex of 4 or more faces has no limit normal to compare with: the normal of
+        // the exact surface (ours agrees with OpenSubdiv's to 1e-9 degrees down to 2^-9) still
+        // turns by degrees between 2^-30 and 2^-47 round fan5's and fan8's centres, so the
+        // level-48 sub-patch extrapolated to the vertex is no limit either. Positions are.
+        const int p = m.corner(f, c);
+        const bool noNormal = surface.control().topology.boundary[p] && surface.control().topology.valence[p] >= 5;
+        (noNormal ? skipped : normal) = std::max(noNormal ? skipped : normal, degreesBetween(ours.normal, ref.normal));
       }
-    std::printf("  %-10s corners: position %.2e of the size, normal %.2e deg\n", name.c_str(), position, normal);
+    std::printf("  %-10s corners: position %.2e of the size, normal %.2e deg (%.2e at boundary vertices of 4+ faces, "
+                "not checked)\n", name.c_str(), position, normal, skipped);
     EXPECT_LE(position, 1e-8) << name;
     EXPECT_LE(normal, 0.05) << name;
   }
@@ -300,7 +322,7 @@ TableErrors compareTables(const SubdivSurface& surface, const SubdivTables& tabl
 }
 
 TEST(SubdivTables, FloatTablesMatchTheExactEvaluation) {
-  std::vector<std::string> meshes = {"cube", "torus", "prism5"};
+  std::vector<std::string> meshes = {"cube", "torus", "prism5", "open_grid", "fan1", "fan3", "fan5", "fan8"};
   for (int n = 3; n <= 12; ++n) meshes.push_back("pole" + std::to_string(n));
   double worstPosition = 0, worstNormal = 0, deepPosition = 0, deepNormal = 0;
   for (const auto& name : meshes) {
@@ -317,7 +339,11 @@ TEST(SubdivTables, FloatTablesMatchTheExactEvaluation) {
     // paper's cap): bounded loosely, by what it measured (3.4e-5 and 0.79 degrees at valence 12).
     const TableErrors deep = compareTables(surface, tables, input.size(), kTableLevels + 1, 24, false);
     EXPECT_LE(deep.position, 1e-4) << name;
-    EXPECT_LE(deep.normalDegrees, 1.0) << name;
+    // Round a boundary vertex of 4+ faces (fan5, fan8) the exact normal itself still turns by
+    // degrees below 2^-15 (see CornersAndTheLimitAtExtraordinaryVertices): measured 3.7 and 13.4
+    // degrees there, 2^-15 of a control face or less from the vertex.
+    const bool turning = name == "fan5" || name == "fan8";
+    EXPECT_LE(deep.normalDegrees, turning ? 15.0 : 1.0) << name;
     deepPosition = std::max(deepPosition, deep.position);
     deepNormal = std::max(deepNormal, deep.normalDegrees);
   }
@@ -356,7 +382,8 @@ namespace {
 // ---- The coarse mesh pass 1 rasterises ----
 
 TEST(SubdivCoarse, VerticesLieOnTheLimitSurfaceAndDeviationShrinks) {
-  for (const std::string name : {"pole5", "prism6"}) {
+  // The open ones: the coarse mesh's boundary lies on the limit surface's boundary curve.
+  for (const std::string name : {"pole5", "prism6", "open_grid", "fan5"}) {
     const SubdivSurface surface(proceduralMesh(name));
     const int lowest = surface.control().levels;
     double previous = 1e30;
@@ -371,7 +398,8 @@ TEST(SubdivCoarse, VerticesLieOnTheLimitSurfaceAndDeviationShrinks) {
       }
       // Flat quads approach a smooth surface by a quarter per level; next to an extraordinary vertex
       // the parameterisation is not smooth and the gap shrinks only as lambda_sub^level (0.55 at
-      // valence 5, measured ratio 0.39 and 0.50; prism6: 0.55).
+      // valence 5, measured ratio 0.39 and 0.50; prism6: 0.55; open_grid 0.26, 0.26; fan5, next to
+      // its boundary vertex of 5 faces, 0.60 and 0.61).
       const double deviation = coarseDeviation(surface, level);
       std::printf("  %-8s coarse level %d: %zu triangles, deviation %.2e of the size\n", name.c_str(), level,
                   coarse.triangles.size() / 3, deviation);

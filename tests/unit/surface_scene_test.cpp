@@ -63,7 +63,7 @@ TEST(SurfaceScene, BadEntriesNameTheKey) {
   EXPECT_NE(message("[{procedural: cube, transform: [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 1, 1]]}]")
                 .find("last row"),
             std::string::npos);
-  EXPECT_NE(message("[{procedural: open_grid}]").find("surfaces[0].procedural"), std::string::npos);
+  EXPECT_NE(message("[{procedural: fan13}]").find("surfaces[0].procedural"), std::string::npos);
   EXPECT_NE(message("[{procedural: cube, transform: {translate: [1e300, 0, 0]}}]").find("surfaces[0].transform"),
             std::string::npos);
 }
