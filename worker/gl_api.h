@@ -26,6 +26,9 @@ using PfnDrawArrays = void(APIENTRYP)(GLenum, GLint, GLsizei);
   X(Scissor, PFNGLSCISSORPROC)                                  \
   X(Enable, PFNGLENABLEPROC)                                    \
   X(Disable, PFNGLDISABLEPROC)                                  \
+  X(StencilFunc, PFNGLSTENCILFUNCPROC)                          \
+  X(StencilOp, PFNGLSTENCILOPPROC)                              \
+  X(StencilMask, PFNGLSTENCILMASKPROC)                          \
   X(BlendFunc, PFNGLBLENDFUNCPROC)                              \
   X(ClearColor, PFNGLCLEARCOLORPROC)                            \
   X(Clear, PFNGLCLEARPROC)                                      \

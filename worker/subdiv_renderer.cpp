@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <vector>
 
@@ -14,16 +15,31 @@ namespace sortlast {
 
 namespace {
 
-const char* kVertex = R"(#version 450 core
+// Pass 1: the coarse mesh with an ordinary depth test; the fragment shader only passes on
+// (u, v, face, surface), so the depth test runs before it (no discard, no written depth).
+const char* kCoarseVertex = R"(#version 450 core
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 param;  // u, v, face
 uniform mat4 view_projection;
 out vec3 v_param;
-out vec3 v_world;
 void main() {
   v_param = param;
-  v_world = position;
   gl_Position = view_projection * vec4(position, 1.0);
+}
+)";
+
+const char* kCoarseFragment = R"(#version 450 core
+uniform int surface_index;
+in vec3 v_param;
+layout(location = 0) out vec4 out_coarse;
+void main() { out_coarse = vec4(v_param, float(surface_index)); }
+)";
+
+// Pass 2: one triangle over the whole viewport (scissored to the region), one fragment per pixel.
+const char* kScreenVertex = R"(#version 450 core
+void main() {
+  vec2 corner = vec2(float((gl_VertexID & 1) * 4 - 1), float((gl_VertexID & 2) * 2 - 1));
+  gl_Position = vec4(corner, 0.0, 1.0);
 }
 )";
 
@@ -33,16 +49,20 @@ layout(std430, binding = 0) readonly buffer Faces { ivec4 faces[]; };      // fi
 layout(std430, binding = 1) readonly buffer Positions { vec4 positions[]; };
 layout(std430, binding = 2) readonly buffer Tangents { vec4 tangents[]; };
 layout(std430, binding = 3) readonly buffer Neighbours { ivec4 neighbours[]; };  // across edge c: face * 4 + its edge
-uniform mat4 view_projection;
 uniform vec3 eye, clip_lo, clip_hi, colour, centre, light_dir, stripe_axis;
+// The pixel's ray, as Camera::rayDirection: forward + sx * right + sy * up (right and up scaled by
+// the half field of view), independent of the near and far planes, so every brick sees one ray.
+uniform vec3 ray_forward, ray_right, ray_up;
+uniform vec2 image_size;
+uniform int surface_index;
+// Pass 1's nearest coarse fragment per pixel: (u, v, face, surface), surface -1 on a miss.
+uniform sampler2D coarse;
 uniform float size, stripe_width;
 uniform int stripes, reflection_lines, newton_steps;
 // Another opaque layer already drawn in this brick (metaballs): nearer fragments of it win.
 uniform sampler2D under_surface;
 uniform int has_under;
 uniform ivec4 under_rect;  // x, y, w, h where under_surface is valid
-in vec3 v_param;
-in vec3 v_world;
 layout(location = 0) out vec4 out_colour;
 layout(location = 1) out vec4 out_surface;
 layout(location = 2) out vec4 out_param;
@@ -105,12 +125,16 @@ void evaluate(int face, float u, float v, out vec3 p, out vec3 tu, out vec3 tv, 
 }
 
 void main() {
-  int face = int(round(v_param.z));
-  float u = clamp(v_param.x, 0.0, 1.0), v = clamp(v_param.y, 0.0, 1.0);
+  ivec2 px = ivec2(gl_FragCoord.xy);
+  vec4 c0 = texelFetch(coarse, px, 0);
+  if (int(c0.w) != surface_index) discard;
+  int face = int(round(c0.z));
+  float u = clamp(c0.x, 0.0, 1.0), v = clamp(c0.y, 0.0, 1.0);
   vec3 p, ds, dt, su, sv;
-  // Newton steps move (u, v) until the limit point lies on this pixel's ray (through the coarse
-  // fragment), so the pixel shows the surface where its ray meets it, whatever the coarse level.
-  vec3 dir = normalize(v_world - eye);
+  // Newton steps move (u, v) until the limit point lies on this pixel's ray, so the pixel shows
+  // the surface where its ray meets it, whatever the coarse level.
+  vec2 ndc = 2.0 * gl_FragCoord.xy / image_size - 1.0;
+  vec3 dir = normalize(ray_forward + ndc.x * ray_right - ndc.y * ray_up);
   vec3 e1 = normalize(abs(dir.x) < 0.9 ? cross(dir, vec3(1, 0, 0)) : cross(dir, vec3(0, 1, 0)));
   vec3 e2 = cross(dir, e1);
   for (int i = 0; i < newton_steps; ++i) {
@@ -138,13 +162,10 @@ void main() {
   evaluate(face, u, v, p, ds, dt, su, sv);
   // The brick owns the fragment whose exact limit point it holds (half-open box).
   if (any(lessThan(p, clip_lo)) || any(greaterThanEqual(p, clip_hi))) discard;
-  ivec2 px = ivec2(gl_FragCoord.xy);
   if (has_under != 0 && all(greaterThanEqual(px, under_rect.xy)) && all(lessThan(px, under_rect.xy + under_rect.zw)) &&
       texelFetch(under_surface, px, 0).x <= length(p - eye))
     discard;
   vec3 n = normalize(cross(ds, dt));
-  vec4 clip = view_projection * vec4(p, 1.0);
-  gl_FragDepth = clamp(0.5 * clip.z / clip.w + 0.5, 0.0, 1.0);
   vec3 view = normalize(p - eye);
   vec3 rgb;
   if (reflection_lines == 1) {
@@ -180,8 +201,11 @@ void main() {
 
 SubdivRenderer::SubdivRenderer(const GlContext& ctx, int width, int height)
     : gl_(ctx.gl()), width_(width), height_(height) {
-  program_ = linkProgram(gl_, kVertex, kFragment);
+  coarse_program_ = linkProgram(gl_, kCoarseVertex, kCoarseFragment);
+  program_ = linkProgram(gl_, kScreenVertex, kFragment);
   gl_.GenFramebuffers(1, &fbo_);
+  gl_.GenFramebuffers(1, &coarse_fbo_);
+  gl_.GenVertexArrays(1, &screen_vao_);
   makeTargets();
 }
 
@@ -196,19 +220,35 @@ void SubdivRenderer::makeTargets() {
     gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_TEXTURE_2D, *targets[i], 0);
   }
+  if (gl_.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw std::runtime_error("SubdivRenderer: framebuffer incomplete");
+  // Pass 1's target: the nearest coarse fragment's (u, v, face, surface) and its depth.
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, coarse_fbo_);
+  gl_.GenTextures(1, &coarse_);
+  gl_.BindTexture(GL_TEXTURE_2D, coarse_);
+  gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width_, height_, 0, GL_RGBA, GL_FLOAT, nullptr);
+  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, coarse_, 0);
   gl_.GenTextures(1, &depth_);
   gl_.BindTexture(GL_TEXTURE_2D, depth_);
-  gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, width_, height_, 0, GL_DEPTH_COMPONENT, GL_FLOAT, nullptr);
+  gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH32F_STENCIL8, width_, height_, 0, GL_DEPTH_STENCIL,
+                 GL_FLOAT_32_UNSIGNED_INT_24_8_REV, nullptr);
   gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth_, 0);
+  gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, depth_, 0);
+  if (gl_.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw std::runtime_error("SubdivRenderer: coarse framebuffer incomplete");
+  // Pass 2 tests the same stencil (the surface pass 1 found per pixel), without depth.
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, depth_, 0);
   if (gl_.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     throw std::runtime_error("SubdivRenderer: framebuffer incomplete");
   gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
 void SubdivRenderer::dropTargets() {
-  unsigned textures[4] = {colour_, surface_, params_, depth_};
-  gl_.DeleteTextures(4, textures);
+  unsigned textures[5] = {colour_, surface_, params_, coarse_, depth_};
+  gl_.DeleteTextures(5, textures);
 }
 
 void SubdivRenderer::resize(int width, int height) {
@@ -223,7 +263,10 @@ SubdivRenderer::~SubdivRenderer() {
   clearSurfaces();
   dropTargets();
   gl_.DeleteFramebuffers(1, &fbo_);
+  gl_.DeleteFramebuffers(1, &coarse_fbo_);
+  gl_.DeleteVertexArrays(1, &screen_vao_);
   gl_.DeleteProgram(program_);
+  gl_.DeleteProgram(coarse_program_);
 }
 
 void SubdivRenderer::clearSurfaces() {
@@ -241,6 +284,8 @@ void SubdivRenderer::setSurface(const SubdivSurface& surface, int level, const S
 }
 
 void SubdivRenderer::addSurface(const SubdivSurface& surface, int level, const SubdivShading& shading) {
+  // Pass 1 marks each pixel's surface in an 8-bit stencil, 0 meaning none.
+  if (surfaces_.size() >= 255) throw std::runtime_error("SubdivRenderer: at most 255 surfaces");
   const SubdivTables tables = buildTables(surface);
   const CoarseMesh coarse = buildCoarseMesh(surface, level);
   GpuSurface g;
@@ -290,8 +335,6 @@ void SubdivRenderer::addSurface(const SubdivSurface& surface, int level, const S
 
 void SubdivRenderer::draw(const Camera& cam, const Box3& clip, double near_plane, double far_plane,
                           const SurfaceLayer* under, const Rect* region) {
-  gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
-  const unsigned buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
   gl_.Viewport(0, 0, width_, height_);
   gl_.Disable(GL_BLEND);
   // Clears and fragments outside `region` are skipped: a brick's fragments elsewhere would all be
@@ -302,6 +345,42 @@ void SubdivRenderer::draw(const Camera& cam, const Box3& clip, double near_plane
   } else {
     gl_.Disable(GL_SCISSOR_TEST);
   }
+  // Pass 1 (the paper's first pass): the nearest coarse fragment per pixel, by the coarse mesh's
+  // depth. Its fragment shader is a copy, so llvmpipe's early depth test and its 4 x 4 blocks
+  // wasted on small triangles' edges cost little; the exact evaluation runs once per pixel in
+  // pass 2. Every brick rasterises the whole coarse mesh, so every brick finds the same nearest
+  // coarse fragment and, in pass 2, the same limit point, which exactly one brick holds.
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, coarse_fbo_);
+  const float miss[4] = {0, 0, -1, -1};
+  gl_.ClearColor(miss[0], miss[1], miss[2], miss[3]);
+  gl_.StencilMask(0xff);
+  gl_.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+  gl_.Enable(GL_DEPTH_TEST);
+  // The stencil keeps the nearest coarse fragment's surface + 1 (0: none), for pass 2.
+  gl_.Enable(GL_STENCIL_TEST);
+  gl_.StencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+  // The coarse mesh is closed and counter-clockwise from outside: its back faces are hidden except
+  // within the coarse mesh's deviation of a silhouette. Camera::viewProjection mirrors y (window
+  // row 0 = image row 0), which turns counter-clockwise into clockwise on screen: the outside
+  // faces are the clockwise ones there.
+  gl_.Enable(GL_CULL_FACE);
+  gl_.FrontFace(GL_CW);
+  gl_.UseProgram(coarse_program_);
+  const glm::mat4 vp = cam.viewProjection(near_plane, far_plane);
+  gl_.UniformMatrix4fv(gl_.GetUniformLocation(coarse_program_, "view_projection"), 1, GL_FALSE, glm::value_ptr(vp));
+  for (size_t i = 0; i < surfaces_.size(); ++i) {
+    gl_.Uniform1i(gl_.GetUniformLocation(coarse_program_, "surface_index"), int(i));
+    gl_.StencilFunc(GL_ALWAYS, int(i) + 1, 0xff);
+    gl_.BindVertexArray(surfaces_[i].vao);
+    gl_.DrawArrays(GL_TRIANGLES, 0, surfaces_[i].vertex_count);
+  }
+  gl_.Disable(GL_DEPTH_TEST);
+  gl_.Disable(GL_CULL_FACE);
+  gl_.FrontFace(GL_CCW);
+
+  // Pass 2: the exact limit point per pixel of the nearest coarse fragment.
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  const unsigned buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
   // Misses: colour transparent, t = 1e30, face -1. Clear each target to its own value.
   const float clears[3][4] = {{0, 0, 0, 0}, {1e30f, 0, 0, 0}, {-1, 0, 0, 0}};
   for (int i = 0; i < 3; ++i) {
@@ -311,7 +390,8 @@ void SubdivRenderer::draw(const Camera& cam, const Box3& clip, double near_plane
     gl_.Clear(GL_COLOR_BUFFER_BIT);
   }
   gl_.DrawBuffers(3, buffers);
-  gl_.Clear(GL_DEPTH_BUFFER_BIT);
+  gl_.StencilMask(0);
+  gl_.StencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
   // The layer underneath starts in the targets; fragments nearer than it replace it (the shader
   // discards the others), so the targets end holding the nearer of the two per pixel.
   const bool has_under = under && !under->rect.empty();
@@ -322,32 +402,37 @@ void SubdivRenderer::draw(const Camera& cam, const Box3& clip, double near_plane
     gl_.CopyImageSubData(under->surface_texture, GL_TEXTURE_2D, 0, r.x, r.y, 0, surface_, GL_TEXTURE_2D, 0, r.x, r.y,
                          0, r.w, r.h, 1);
   }
-  gl_.Enable(GL_DEPTH_TEST);
-  // The coarse mesh is closed and counter-clockwise from outside: its back faces are hidden except
-  // within the coarse mesh's deviation of a silhouette, and would double the per-fragment
-  // evaluations (the shader writes its depth, so no early depth test saves them).
-  // Camera::viewProjection mirrors y (window row 0 = image row 0), which turns counter-clockwise
-  // into clockwise on screen: the outside faces are the clockwise ones there.
-  gl_.Enable(GL_CULL_FACE);
-  gl_.FrontFace(GL_CW);
   gl_.UseProgram(program_);
-  const glm::mat4 vp = cam.viewProjection(near_plane, far_plane);
   auto loc = [&](const char* name) { return gl_.GetUniformLocation(program_, name); };
   auto vec3 = [&](const char* name, const glm::dvec3& x) { gl_.Uniform3f(loc(name), float(x.x), float(x.y), float(x.z)); };
-  gl_.UniformMatrix4fv(loc("view_projection"), 1, GL_FALSE, glm::value_ptr(vp));
   vec3("eye", cam.position);
+  const double th = std::tan(0.5 * cam.fov_deg * std::numbers::pi / 180.0), aspect = double(cam.width) / cam.height;
+  vec3("ray_forward", cam.forward());
+  vec3("ray_right", cam.right() * (th * aspect));
+  vec3("ray_up", cam.trueUp() * th);
+  gl_.Uniform2f(loc("image_size"), float(cam.width), float(cam.height));
   vec3("clip_lo", clip.lo);
   vec3("clip_hi", clip.hi);
   gl_.Uniform1i(loc("has_under"), has_under ? 1 : 0);
   gl_.Uniform1i(loc("under_surface"), 0);
+  gl_.Uniform1i(loc("coarse"), 1);
+  gl_.ActiveTexture(GL_TEXTURE1);
+  gl_.BindTexture(GL_TEXTURE_2D, coarse_);
   gl_.ActiveTexture(GL_TEXTURE0);
   if (has_under) {
     const Rect& r = under->rect;
     gl_.Uniform4i(loc("under_rect"), r.x, r.y, r.w, r.h);
     gl_.BindTexture(GL_TEXTURE_2D, under->surface_texture);
   }
-  for (const GpuSurface& g : surfaces_) {
+  gl_.BindVertexArray(screen_vao_);
+  for (size_t i = 0; i < surfaces_.size(); ++i) {
+    const GpuSurface& g = surfaces_[i];
     const SubdivShading& sh = g.shading;
+    gl_.Uniform1i(loc("surface_index"), int(i));
+    // Only the pixels pass 1 gave this surface: llvmpipe tests the stencil before the fragment
+    // shader (it writes no depth or stencil) and skips blocks that none of them passes, where
+    // a discard in the shader would still run it for every pixel of the region.
+    gl_.StencilFunc(GL_EQUAL, int(i) + 1, 0xff);
     vec3("colour", sh.colour);
     vec3("centre", g.centre);
     vec3("light_dir", glm::normalize(sh.light_direction));
@@ -357,15 +442,13 @@ void SubdivRenderer::draw(const Camera& cam, const Box3& clip, double near_plane
     gl_.Uniform1i(loc("stripes"), sh.stripes);
     gl_.Uniform1i(loc("reflection_lines"), sh.mode == "reflection_lines" ? 1 : 0);
     gl_.Uniform1i(loc("newton_steps"), sh.newton_steps);
-    for (int i = 0; i < 4; ++i) gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, i, g.ssbo[i]);
-    gl_.BindVertexArray(g.vao);
-    gl_.DrawArrays(GL_TRIANGLES, 0, g.vertex_count);
+    for (int b = 0; b < 4; ++b) gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, b, g.ssbo[b]);
+    gl_.DrawArrays(GL_TRIANGLES, 0, 3);
   }
   gl_.BindVertexArray(0);
-  gl_.Disable(GL_DEPTH_TEST);
-  gl_.Disable(GL_CULL_FACE);
+  gl_.Disable(GL_STENCIL_TEST);
+  gl_.StencilMask(0xff);
   gl_.Disable(GL_SCISSOR_TEST);
-  gl_.FrontFace(GL_CCW);
   gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 

@@ -80,8 +80,9 @@ class SubdivRenderer {
   void dropTargets();
   const GlApi& gl_;
   int width_, height_;
-  unsigned fbo_ = 0, colour_ = 0, surface_ = 0, params_ = 0, depth_ = 0;
-  unsigned program_ = 0;
+  unsigned fbo_ = 0, colour_ = 0, surface_ = 0, params_ = 0;
+  unsigned coarse_fbo_ = 0, coarse_ = 0, depth_ = 0, screen_vao_ = 0;
+  unsigned program_ = 0, coarse_program_ = 0;
   std::vector<GpuSurface> surfaces_;
 };
 
