@@ -86,6 +86,7 @@ using PfnDrawArrays = void(APIENTRYP)(GLenum, GLint, GLsizei);
   X(TexStorage2D, PFNGLTEXSTORAGE2DPROC)                        \
   X(BindImageTexture, PFNGLBINDIMAGETEXTUREPROC)                \
   X(MemoryBarrier, PFNGLMEMORYBARRIERPROC)                      \
+  X(TextureBarrier, PFNGLTEXTUREBARRIERPROC)                    \
   X(GenQueries, PFNGLGENQUERIESPROC)                            \
   X(DeleteQueries, PFNGLDELETEQUERIESPROC)                      \
   X(BeginQuery, PFNGLBEGINQUERYPROC)                            \

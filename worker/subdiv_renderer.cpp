@@ -29,10 +29,9 @@ void main() {
 )";
 
 const char* kCoarseFragment = R"(#version 450 core
-uniform int surface_index;
 in vec3 v_param;
 layout(location = 0) out vec4 out_coarse;
-void main() { out_coarse = vec4(v_param, float(surface_index)); }
+void main() { out_coarse = vec4(v_param, 1.0); }
 )";
 
 // Pass 2: one triangle over the whole viewport (scissored to the region), one fragment per pixel.
@@ -54,15 +53,13 @@ uniform vec3 eye, clip_lo, clip_hi, colour, centre, light_dir, stripe_axis;
 // the half field of view), independent of the near and far planes, so every brick sees one ray.
 uniform vec3 ray_forward, ray_right, ray_up;
 uniform vec2 image_size;
-uniform int surface_index;
-// Pass 1's nearest coarse fragment per pixel: (u, v, face, surface), surface -1 on a miss.
+// Pass 1's nearest coarse fragment of this surface per pixel: (u, v, face, 1).
 uniform sampler2D coarse;
+// The (t, normal) target itself: the nearest of the layer underneath (metaballs) and the surfaces
+// drawn before this one, read at this fragment's own pixel only (after a texture barrier).
+uniform sampler2D nearest;
 uniform float size, stripe_width;
 uniform int stripes, reflection_lines, newton_steps;
-// Another opaque layer already drawn in this brick (metaballs): nearer fragments of it win.
-uniform sampler2D under_surface;
-uniform int has_under;
-uniform ivec4 under_rect;  // x, y, w, h where under_surface is valid
 layout(location = 0) out vec4 out_colour;
 layout(location = 1) out vec4 out_surface;
 layout(location = 2) out vec4 out_param;
@@ -73,16 +70,17 @@ void basis(float t, out vec4 b, out vec4 db) {
   db = vec4(-0.5 * s * s, 1.5 * t2 - 2.0 * t, -1.5 * t2 + t + 0.5, 0.5 * t2);
 }
 
-// Limit position, tangent-point derivatives (for the normal) and true derivatives in the face's
-// own (u, v) (for the Newton steps) at (face, u, v).
-void evaluate(int face, float u, float v, out vec3 p, out vec3 tu, out vec3 tv, out vec3 su, out vec3 sv) {
+// Where (face, u, v) is in the tables: the first of its 16 control points, the sub-patch's own
+// (s, t), the scale 2^n of its parameters, and the face's rotation.
+void locate(int face, float u, float v, out int set, out float s, out float t, out float scale, out int rotation) {
   ivec4 e = faces[face];
+  rotation = e.y;
   float pu = u, pv = v;
   if (e.y == 1) { pu = v; pv = 1.0 - u; }
   else if (e.y == 2) { pu = 1.0 - u; pv = 1.0 - v; }
   else if (e.y == 3) { pu = 1.0 - v; pv = u; }
-  int set = e.x;
-  float s = pu, t = pv, scale = 1.0;
+  set = e.x;
+  s = pu; t = pv; scale = 1.0;
   if (e.z == 0) {
     float m = max(pu, pv);
     int n = 15;
@@ -98,36 +96,61 @@ void evaluate(int face, float u, float v, out vec3 p, out vec3 tu, out vec3 tv, 
     set += (n - 1) * 3 + (k - 1);
     scale = ldexp(1.0, n);
   }
+}
+
+// The patch's derivatives, scaled back to the face's parameters and turned from the patch's
+// rotated frame to the face's (u, v).
+void toFace(int rotation, float scale, vec3 ps, vec3 pt, out vec3 su, out vec3 sv) {
+  ps *= scale;
+  pt *= scale;
+  if (rotation == 0) { su = ps; sv = pt; }
+  else if (rotation == 1) { su = -pt; sv = ps; }
+  else if (rotation == 2) { su = -ps; sv = -pt; }
+  else { su = pt; sv = -ps; }
+}
+
+// Limit position and its true derivatives in the face's own (u, v): all a Newton step needs (the
+// tangent points, 16 more fetches, are for the normal alone).
+void evaluatePoint(int face, float u, float v, out vec3 p, out vec3 su, out vec3 sv) {
+  int set, rotation;
+  float s, t, scale;
+  locate(face, u, v, set, s, t, scale, rotation);
   vec4 bs, dbs, bt, dbt;
   basis(s, bs, dbs);
   basis(t, bt, dbt);
   p = vec3(0.0);
-  vec3 ds = vec3(0.0), dt = vec3(0.0), ps = vec3(0.0), pt = vec3(0.0);
+  vec3 ps = vec3(0.0), pt = vec3(0.0);
   for (int b = 0; b < 4; ++b)
     for (int a = 0; a < 4; ++a) {
-      int i = set * 16 + b * 4 + a;
-      vec3 q = positions[i].xyz, r = tangents[i].xyz;
+      vec3 q = positions[set * 16 + b * 4 + a].xyz;
       p += bs[a] * bt[b] * q;
       ps += dbs[a] * bt[b] * q;
       pt += bs[a] * dbt[b] * q;
-      ds += dbs[a] * bt[b] * r;
-      dt += bs[a] * dbt[b] * r;
     }
-  tu = ds;
-  tv = dt;
-  ps *= scale;
-  pt *= scale;
-  // Back from the patch's rotated frame to the face's (u, v).
-  if (e.y == 0) { su = ps; sv = pt; }
-  else if (e.y == 1) { su = -pt; sv = ps; }
-  else if (e.y == 2) { su = -ps; sv = -pt; }
-  else { su = pt; sv = -ps; }
+  toFace(rotation, scale, ps, pt, su, sv);
+}
+
+// The tangent-point derivatives (for the normal) at (face, u, v).
+void evaluateTangents(int face, float u, float v, out vec3 tu, out vec3 tv) {
+  int set, rotation;
+  float s, t, scale;
+  locate(face, u, v, set, s, t, scale, rotation);
+  vec4 bs, dbs, bt, dbt;
+  basis(s, bs, dbs);
+  basis(t, bt, dbt);
+  tu = vec3(0.0);
+  tv = vec3(0.0);
+  for (int b = 0; b < 4; ++b)
+    for (int a = 0; a < 4; ++a) {
+      vec3 r = tangents[set * 16 + b * 4 + a].xyz;
+      tu += dbs[a] * bt[b] * r;
+      tv += bs[a] * dbt[b] * r;
+    }
 }
 
 void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
   vec4 c0 = texelFetch(coarse, px, 0);
-  if (int(c0.w) != surface_index) discard;
   int face = int(round(c0.z));
   float u = clamp(c0.x, 0.0, 1.0), v = clamp(c0.y, 0.0, 1.0);
   vec3 p, ds, dt, su, sv;
@@ -137,9 +160,14 @@ void main() {
   vec3 dir = normalize(ray_forward + ndc.x * ray_right - ndc.y * ray_up);
   vec3 e1 = normalize(abs(dir.x) < 0.9 ? cross(dir, vec3(1, 0, 0)) : cross(dir, vec3(0, 1, 0)));
   vec3 e2 = cross(dir, e1);
-  for (int i = 0; i < newton_steps; ++i) {
-    evaluate(face, u, v, p, ds, dt, su, sv);
+  // Each round evaluates the limit point at (u, v); the loop ends with p that of the final (u, v):
+  // after newton_steps steps, or earlier once p is within 1e-6 of the size of the ray (a few
+  // times float rounding there; a further step would move p by less), which saves the rest.
+  for (int i = 0; i <= newton_steps; ++i) {
+    evaluatePoint(face, u, v, p, su, sv);
+    if (i == newton_steps) break;
     vec2 f = vec2(dot(e1, p - eye), dot(e2, p - eye));
+    if (dot(f, f) <= 1e-12 * size * size) break;
     mat2 J = mat2(dot(e1, su), dot(e2, su), dot(e1, sv), dot(e2, sv));  // columns: d/du, d/dv
     if (abs(determinant(J)) < 1e-20) break;
     vec2 next = vec2(u, v) - inverse(J) * f;
@@ -159,12 +187,10 @@ void main() {
     u = clamp(next.x, 0.0, 1.0);
     v = clamp(next.y, 0.0, 1.0);
   }
-  evaluate(face, u, v, p, ds, dt, su, sv);
+  evaluateTangents(face, u, v, ds, dt);
   // The brick owns the fragment whose exact limit point it holds (half-open box).
   if (any(lessThan(p, clip_lo)) || any(greaterThanEqual(p, clip_hi))) discard;
-  if (has_under != 0 && all(greaterThanEqual(px, under_rect.xy)) && all(lessThan(px, under_rect.xy + under_rect.zw)) &&
-      texelFetch(under_surface, px, 0).x <= length(p - eye))
-    discard;
+  if (texelFetch(nearest, px, 0).x <= length(p - eye)) discard;
   vec3 n = normalize(cross(ds, dt));
   vec3 view = normalize(p - eye);
   vec3 rgb;
@@ -284,8 +310,6 @@ void SubdivRenderer::setSurface(const SubdivSurface& surface, int level, const S
 }
 
 void SubdivRenderer::addSurface(const SubdivSurface& surface, int level, const SubdivShading& shading) {
-  // Pass 1 marks each pixel's surface in an 8-bit stencil, 0 meaning none.
-  if (surfaces_.size() >= 255) throw std::runtime_error("SubdivRenderer: at most 255 surfaces");
   const SubdivTables tables = buildTables(surface);
   const CoarseMesh coarse = buildCoarseMesh(surface, level);
   GpuSurface g;
@@ -345,40 +369,6 @@ void SubdivRenderer::draw(const Camera& cam, const Box3& clip, double near_plane
   } else {
     gl_.Disable(GL_SCISSOR_TEST);
   }
-  // Pass 1 (the paper's first pass): the nearest coarse fragment per pixel, by the coarse mesh's
-  // depth. Its fragment shader is a copy, so llvmpipe's early depth test and its 4 x 4 blocks
-  // wasted on small triangles' edges cost little; the exact evaluation runs once per pixel in
-  // pass 2. Every brick rasterises the whole coarse mesh, so every brick finds the same nearest
-  // coarse fragment and, in pass 2, the same limit point, which exactly one brick holds.
-  gl_.BindFramebuffer(GL_FRAMEBUFFER, coarse_fbo_);
-  const float miss[4] = {0, 0, -1, -1};
-  gl_.ClearColor(miss[0], miss[1], miss[2], miss[3]);
-  gl_.StencilMask(0xff);
-  gl_.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
-  gl_.Enable(GL_DEPTH_TEST);
-  // The stencil keeps the nearest coarse fragment's surface + 1 (0: none), for pass 2.
-  gl_.Enable(GL_STENCIL_TEST);
-  gl_.StencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-  // The coarse mesh is closed and counter-clockwise from outside: its back faces are hidden except
-  // within the coarse mesh's deviation of a silhouette. Camera::viewProjection mirrors y (window
-  // row 0 = image row 0), which turns counter-clockwise into clockwise on screen: the outside
-  // faces are the clockwise ones there.
-  gl_.Enable(GL_CULL_FACE);
-  gl_.FrontFace(GL_CW);
-  gl_.UseProgram(coarse_program_);
-  const glm::mat4 vp = cam.viewProjection(near_plane, far_plane);
-  gl_.UniformMatrix4fv(gl_.GetUniformLocation(coarse_program_, "view_projection"), 1, GL_FALSE, glm::value_ptr(vp));
-  for (size_t i = 0; i < surfaces_.size(); ++i) {
-    gl_.Uniform1i(gl_.GetUniformLocation(coarse_program_, "surface_index"), int(i));
-    gl_.StencilFunc(GL_ALWAYS, int(i) + 1, 0xff);
-    gl_.BindVertexArray(surfaces_[i].vao);
-    gl_.DrawArrays(GL_TRIANGLES, 0, surfaces_[i].vertex_count);
-  }
-  gl_.Disable(GL_DEPTH_TEST);
-  gl_.Disable(GL_CULL_FACE);
-  gl_.FrontFace(GL_CCW);
-
-  // Pass 2: the exact limit point per pixel of the nearest coarse fragment.
   gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
   const unsigned buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
   // Misses: colour transparent, t = 1e30, face -1. Clear each target to its own value.
@@ -390,49 +380,75 @@ void SubdivRenderer::draw(const Camera& cam, const Box3& clip, double near_plane
     gl_.Clear(GL_COLOR_BUFFER_BIT);
   }
   gl_.DrawBuffers(3, buffers);
-  gl_.StencilMask(0);
-  gl_.StencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
   // The layer underneath starts in the targets; fragments nearer than it replace it (the shader
   // discards the others), so the targets end holding the nearer of the two per pixel.
-  const bool has_under = under && !under->rect.empty();
-  if (has_under) {
+  if (under && !under->rect.empty()) {
     const Rect& r = under->rect;
     gl_.CopyImageSubData(under->colour_texture, GL_TEXTURE_2D, 0, r.x, r.y, 0, colour_, GL_TEXTURE_2D, 0, r.x, r.y, 0,
                          r.w, r.h, 1);
     gl_.CopyImageSubData(under->surface_texture, GL_TEXTURE_2D, 0, r.x, r.y, 0, surface_, GL_TEXTURE_2D, 0, r.x, r.y,
                          0, r.w, r.h, 1);
   }
-  gl_.UseProgram(program_);
-  auto loc = [&](const char* name) { return gl_.GetUniformLocation(program_, name); };
-  auto vec3 = [&](const char* name, const glm::dvec3& x) { gl_.Uniform3f(loc(name), float(x.x), float(x.y), float(x.z)); };
-  vec3("eye", cam.position);
+  const glm::mat4 vp = cam.viewProjection(near_plane, far_plane);
   const double th = std::tan(0.5 * cam.fov_deg * std::numbers::pi / 180.0), aspect = double(cam.width) / cam.height;
-  vec3("ray_forward", cam.forward());
-  vec3("ray_right", cam.right() * (th * aspect));
-  vec3("ray_up", cam.trueUp() * th);
-  gl_.Uniform2f(loc("image_size"), float(cam.width), float(cam.height));
-  vec3("clip_lo", clip.lo);
-  vec3("clip_hi", clip.hi);
-  gl_.Uniform1i(loc("has_under"), has_under ? 1 : 0);
-  gl_.Uniform1i(loc("under_surface"), 0);
-  gl_.Uniform1i(loc("coarse"), 1);
-  gl_.ActiveTexture(GL_TEXTURE1);
-  gl_.BindTexture(GL_TEXTURE_2D, coarse_);
-  gl_.ActiveTexture(GL_TEXTURE0);
-  if (has_under) {
-    const Rect& r = under->rect;
-    gl_.Uniform4i(loc("under_rect"), r.x, r.y, r.w, r.h);
-    gl_.BindTexture(GL_TEXTURE_2D, under->surface_texture);
-  }
-  gl_.BindVertexArray(screen_vao_);
-  for (size_t i = 0; i < surfaces_.size(); ++i) {
-    const GpuSurface& g = surfaces_[i];
+  gl_.Enable(GL_STENCIL_TEST);
+  for (const GpuSurface& g : surfaces_) {
+    // Pass 1 (the paper's first pass): this surface's nearest coarse fragment per pixel, by the
+    // coarse mesh's depth, marked in the stencil. Its fragment shader is a copy, so llvmpipe's
+    // early depth test and the 4 x 4 blocks it shades whole on small triangles' edges cost
+    // little; the exact evaluation runs once per pixel in pass 2. Every brick rasterises the
+    // whole coarse mesh, so every brick finds the same nearest coarse fragment and, in pass 2, the
+    // same limit point, which exactly one brick holds. One surface at a time: which of two
+    // surfaces is nearer is decided by their limit points, not by their coarse meshes.
+    gl_.BindFramebuffer(GL_FRAMEBUFFER, coarse_fbo_);
+    gl_.StencilMask(0xff);
+    gl_.Clear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+    gl_.Enable(GL_DEPTH_TEST);
+    gl_.StencilFunc(GL_ALWAYS, 1, 0xff);
+    gl_.StencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+    // The coarse mesh is closed and counter-clockwise from outside: its back faces are hidden
+    // except within the coarse mesh's deviation of a silhouette. Camera::viewProjection mirrors y
+    // (window row 0 = image row 0), which turns counter-clockwise into clockwise on screen: the
+    // outside faces are the clockwise ones there.
+    gl_.Enable(GL_CULL_FACE);
+    gl_.FrontFace(GL_CW);
+    gl_.UseProgram(coarse_program_);
+    gl_.UniformMatrix4fv(gl_.GetUniformLocation(coarse_program_, "view_projection"), 1, GL_FALSE, glm::value_ptr(vp));
+    gl_.BindVertexArray(g.vao);
+    gl_.DrawArrays(GL_TRIANGLES, 0, g.vertex_count);
+    gl_.Disable(GL_DEPTH_TEST);
+    gl_.Disable(GL_CULL_FACE);
+    gl_.FrontFace(GL_CCW);
+
+    // Pass 2: the exact limit point per pixel of the nearest coarse fragment, only where pass 1
+    // drew: llvmpipe tests the stencil before the fragment shader (which writes no depth or
+    // stencil) and skips blocks that none of them passes, where a discard in the shader would
+    // still run it for every pixel of the region.
+    gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
+    gl_.StencilMask(0);
+    gl_.StencilFunc(GL_EQUAL, 1, 0xff);
+    gl_.StencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    // The shader reads the (t, normal) target at its own pixel and writes it once: defined
+    // after a texture barrier (what the surfaces before this one wrote).
+    gl_.TextureBarrier();
+    gl_.UseProgram(program_);
+    auto loc = [&](const char* name) { return gl_.GetUniformLocation(program_, name); };
+    auto vec3 = [&](const char* name, const glm::dvec3& x) { gl_.Uniform3f(loc(name), float(x.x), float(x.y), float(x.z)); };
+    vec3("eye", cam.position);
+    vec3("ray_forward", cam.forward());
+    vec3("ray_right", cam.right() * (th * aspect));
+    vec3("ray_up", cam.trueUp() * th);
+    gl_.Uniform2f(loc("image_size"), float(cam.width), float(cam.height));
+    vec3("clip_lo", clip.lo);
+    vec3("clip_hi", clip.hi);
+    gl_.Uniform1i(loc("coarse"), 0);
+    gl_.Uniform1i(loc("nearest"), 1);
+    gl_.ActiveTexture(GL_TEXTURE0);
+    gl_.BindTexture(GL_TEXTURE_2D, coarse_);
+    gl_.ActiveTexture(GL_TEXTURE1);
+    gl_.BindTexture(GL_TEXTURE_2D, surface_);
+    gl_.ActiveTexture(GL_TEXTURE0);
     const SubdivShading& sh = g.shading;
-    gl_.Uniform1i(loc("surface_index"), int(i));
-    // Only the pixels pass 1 gave this surface: llvmpipe tests the stencil before the fragment
-    // shader (it writes no depth or stencil) and skips blocks that none of them passes, where
-    // a discard in the shader would still run it for every pixel of the region.
-    gl_.StencilFunc(GL_EQUAL, int(i) + 1, 0xff);
     vec3("colour", sh.colour);
     vec3("centre", g.centre);
     vec3("light_dir", glm::normalize(sh.light_direction));
@@ -443,6 +459,7 @@ void SubdivRenderer::draw(const Camera& cam, const Box3& clip, double near_plane
     gl_.Uniform1i(loc("reflection_lines"), sh.mode == "reflection_lines" ? 1 : 0);
     gl_.Uniform1i(loc("newton_steps"), sh.newton_steps);
     for (int b = 0; b < 4; ++b) gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, b, g.ssbo[b]);
+    gl_.BindVertexArray(screen_vao_);
     gl_.DrawArrays(GL_TRIANGLES, 0, 3);
   }
   gl_.BindVertexArray(0);
