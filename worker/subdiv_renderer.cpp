@@ -370,10 +370,13 @@ void SubdivRenderer::draw(const Camera& cam, const Box3& clip, double near_plane
     gl_.Disable(GL_SCISSOR_TEST);
   }
   gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
-  const unsigned buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+  // The (face, u, v) target is cleared and written only when asked for (tests): a frame needs
+  // colour and (t, normal) alone.
+  const unsigned buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
+                               unsigned(write_parameters_ ? GL_COLOR_ATTACHMENT2 : GL_NONE)};
   // Misses: colour transparent, t = 1e30, face -1. Clear each target to its own value.
   const float clears[3][4] = {{0, 0, 0, 0}, {1e30f, 0, 0, 0}, {-1, 0, 0, 0}};
-  for (int i = 0; i < 3; ++i) {
+  for (int i = 0; i < (write_parameters_ ? 3 : 2); ++i) {
     const unsigned one = buffers[i];
     gl_.DrawBuffers(1, &one);
     gl_.ClearColor(clears[i][0], clears[i][1], clears[i][2], clears[i][3]);
@@ -484,7 +487,9 @@ void SubdivRenderer::read(const Rect& r, ImageRGBA8* pixels, std::vector<float>*
     std::vector<float> rgba;
     readTarget(0, rgba);
     *pixels = ImageRGBA8(r.w, r.h);
-    for (size_t i = 0; i < n * 4; ++i) pixels->px[i] = uint8_t(std::lround(std::clamp(rgba[i], 0.0f, 1.0f) * 255.0f));
+    // std::lround's rounding (half away from zero; exact in double), without a libm call per value.
+    for (size_t i = 0; i < n * 4; ++i)
+      pixels->px[i] = uint8_t(double(std::clamp(rgba[i], 0.0f, 1.0f) * 255.0f) + 0.5);
   }
   if (surface) readTarget(1, *surface);
   if (parameters) readTarget(2, *parameters);
@@ -493,7 +498,9 @@ void SubdivRenderer::read(const Rect& r, ImageRGBA8* pixels, std::vector<float>*
 
 SubdivFrame SubdivRenderer::render(const Camera& cam, const Box3& clip, double near_plane, double far_plane,
                                    bool want_parameters) {
+  write_parameters_ = want_parameters;
   draw(cam, clip, near_plane, far_plane, nullptr);
+  write_parameters_ = false;
   SubdivFrame out;
   read({0, 0, width_, height_}, &out.pixels, &out.surface, want_parameters ? &out.parameters : nullptr);
   return out;

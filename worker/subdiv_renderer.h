@@ -68,7 +68,8 @@ class SubdivRenderer {
   // per pixel (t = 1e30 on a miss), full-image textures with window row y = image row y.
   unsigned colourTexture() const { return colour_; }
   unsigned surfaceTexture() const { return surface_; }
-  // Reads `r` of the targets back (rows top first); null pointers: not wanted.
+  // Reads `r` of the targets back (rows top first); null pointers: not wanted. The (face, u, v)
+  // target is written by render(..., want_parameters = true) only.
   void read(const Rect& r, ImageRGBA8* pixels, std::vector<float>* surface, std::vector<float>* parameters = nullptr);
   // draw() without a layer underneath and the whole image read back.
   SubdivFrame render(const Camera& cam, const Box3& clip, double near_plane, double far_plane,
@@ -89,6 +90,7 @@ class SubdivRenderer {
   unsigned fbo_ = 0, colour_ = 0, surface_ = 0, params_ = 0;
   unsigned coarse_fbo_ = 0, coarse_ = 0, depth_ = 0, screen_vao_ = 0;
   unsigned program_ = 0, coarse_program_ = 0;
+  bool write_parameters_ = false;
   std::vector<GpuSurface> surfaces_;
 };
 
