@@ -1,8 +1,10 @@
 // The GL side of scripts/bench-subdivision: frames per second of worker/subdiv_renderer for a
 // mesh at an image size, over an orbit of F frames (frame 0, the warm-up, left out), with the
 // seconds for setSurface (tables, coarse mesh, upload), the seconds of the draw alone (to
-// glFinish; the rest of a frame is the read-back) and the overdraw (fragment shader invocations of
-// one frame per covered pixel). One CSV row on stdout.
+// glFinish; the rest of a frame is the read-back) and the fragment shader invocations of one frame
+// per covered pixel (llvmpipe counts whole 4 x 4 blocks: the overdraw the blocks on small
+// triangles' edges cause; it counts pass 2's blocks that the stencil test skips too). One CSV row
+// on stdout.
 //
 // Usage: subdiv_gl_bench MESH[@R] SIZE LEVEL FRAMES MODE NEWTON [BACKEND]   (MESH as subdiv_bench)
 #include <glm/geometric.hpp>
