@@ -2,6 +2,7 @@
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <glm/vector_relational.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -318,6 +319,10 @@ void SubdivRenderer::addSurface(const SubdivSurface& surface, int level, const S
   glm::dvec3 lo(1e300), hi(-1e300);
   for (const auto& p : surface.control().mesh.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
   g.centre = 0.5 * (lo + hi);
+  // The limit surface lies in the control points' bounds (convex combinations of them); grown by
+  // far more than the float tables' rounding, so no float limit point can lie outside.
+  g.lo = lo - 1e-5 * g.size;
+  g.hi = hi + 1e-5 * g.size;
   // Triangles unrolled (no index buffer): position, then (u, v, face); face ids are exact floats
   // below 2^24.
   std::vector<float> vertices;
@@ -396,6 +401,9 @@ void SubdivRenderer::draw(const Camera& cam, const Box3& clip, double near_plane
   const double th = std::tan(0.5 * cam.fov_deg * std::numbers::pi / 180.0), aspect = double(cam.width) / cam.height;
   gl_.Enable(GL_STENCIL_TEST);
   for (const GpuSurface& g : surfaces_) {
+    // A surface none of whose limit points the brick can hold draws nothing here: both passes
+    // skipped (each surface's passes are its own, so the others are unchanged).
+    if (glm::any(glm::lessThan(g.hi, clip.lo)) || glm::any(glm::greaterThanEqual(g.lo, clip.hi))) continue;
     // Pass 1 (the paper's first pass): this surface's nearest coarse fragment per pixel, by the
     // coarse mesh's depth, marked in the stencil. Its fragment shader is a copy, so llvmpipe's
     // early depth test and the 4 x 4 blocks it shades whole on small triangles' edges cost

@@ -80,6 +80,7 @@ class SubdivRenderer {
     unsigned vao = 0, vbo = 0, ssbo[4] = {0, 0, 0, 0};
     int vertex_count = 0;
     glm::dvec3 centre{0.0};
+    glm::dvec3 lo{0.0}, hi{0.0};  // bounds of its limit surface
     double size = 1.0;
     SubdivShading shading;
   };
