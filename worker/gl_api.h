@@ -26,6 +26,9 @@ using PfnDrawArrays = void(APIENTRYP)(GLenum, GLint, GLsizei);
   X(Scissor, PFNGLSCISSORPROC)                                  \
   X(Enable, PFNGLENABLEPROC)                                    \
   X(Disable, PFNGLDISABLEPROC)                                  \
+  X(StencilFunc, PFNGLSTENCILFUNCPROC)                          \
+  X(StencilOp, PFNGLSTENCILOPPROC)                              \
+  X(StencilMask, PFNGLSTENCILMASKPROC)                          \
   X(BlendFunc, PFNGLBLENDFUNCPROC)                              \
   X(ClearColor, PFNGLCLEARCOLORPROC)                            \
   X(Clear, PFNGLCLEARPROC)                                      \
@@ -83,6 +86,7 @@ using PfnDrawArrays = void(APIENTRYP)(GLenum, GLint, GLsizei);
   X(TexStorage2D, PFNGLTEXSTORAGE2DPROC)                        \
   X(BindImageTexture, PFNGLBINDIMAGETEXTUREPROC)                \
   X(MemoryBarrier, PFNGLMEMORYBARRIERPROC)                      \
+  X(TextureBarrier, PFNGLTEXTUREBARRIERPROC)                    \
   X(GenQueries, PFNGLGENQUERIESPROC)                            \
   X(DeleteQueries, PFNGLDELETEQUERIESPROC)                      \
   X(BeginQuery, PFNGLBEGINQUERYPROC)                            \

@@ -2,9 +2,11 @@
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <glm/vector_relational.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <vector>
 
@@ -14,16 +16,30 @@ namespace sortlast {
 
 namespace {
 
-const char* kVertex = R"(#version 450 core
+// Pass 1: the coarse mesh with an ordinary depth test; the fragment shader only passes on
+// (u, v, face, surface), so the depth test runs before it (no discard, no written depth).
+const char* kCoarseVertex = R"(#version 450 core
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 param;  // u, v, face
 uniform mat4 view_projection;
 out vec3 v_param;
-out vec3 v_world;
 void main() {
   v_param = param;
-  v_world = position;
   gl_Position = view_projection * vec4(position, 1.0);
+}
+)";
+
+const char* kCoarseFragment = R"(#version 450 core
+in vec3 v_param;
+layout(location = 0) out vec4 out_coarse;
+void main() { out_coarse = vec4(v_param, 1.0); }
+)";
+
+// Pass 2: one triangle over the whole viewport (scissored to the region), one fragment per pixel.
+const char* kScreenVertex = R"(#version 450 core
+void main() {
+  vec2 corner = vec2(float((gl_VertexID & 1) * 4 - 1), float((gl_VertexID & 2) * 2 - 1));
+  gl_Position = vec4(corner, 0.0, 1.0);
 }
 )";
 
@@ -33,16 +49,18 @@ layout(std430, binding = 0) readonly buffer Faces { ivec4 faces[]; };      // fi
 layout(std430, binding = 1) readonly buffer Positions { vec4 positions[]; };
 layout(std430, binding = 2) readonly buffer Tangents { vec4 tangents[]; };
 layout(std430, binding = 3) readonly buffer Neighbours { ivec4 neighbours[]; };  // across edge c: face * 4 + its edge
-uniform mat4 view_projection;
 uniform vec3 eye, clip_lo, clip_hi, colour, centre, light_dir, stripe_axis;
+// The pixel's ray, as Camera::rayDirection: forward + sx * right + sy * up (right and up scaled by
+// the half field of view), independent of the near and far planes, so every brick sees one ray.
+uniform vec3 ray_forward, ray_right, ray_up;
+uniform vec2 image_size;
+// Pass 1's nearest coarse fragment of this surface per pixel: (u, v, face, 1).
+uniform sampler2D coarse;
+// The (t, normal) target itself: the nearest of the layer underneath (metaballs) and the surfaces
+// drawn before this one, read at this fragment's own pixel only (after a texture barrier).
+uniform sampler2D nearest;
 uniform float size, stripe_width;
 uniform int stripes, reflection_lines, newton_steps;
-// Another opaque layer already drawn in this brick (metaballs): nearer fragments of it win.
-uniform sampler2D under_surface;
-uniform int has_under;
-uniform ivec4 under_rect;  // x, y, w, h where under_surface is valid
-in vec3 v_param;
-in vec3 v_world;
 layout(location = 0) out vec4 out_colour;
 layout(location = 1) out vec4 out_surface;
 layout(location = 2) out vec4 out_param;
@@ -53,16 +71,17 @@ void basis(float t, out vec4 b, out vec4 db) {
   db = vec4(-0.5 * s * s, 1.5 * t2 - 2.0 * t, -1.5 * t2 + t + 0.5, 0.5 * t2);
 }
 
-// Limit position, tangent-point derivatives (for the normal) and true derivatives in the face's
-// own (u, v) (for the Newton steps) at (face, u, v).
-void evaluate(int face, float u, float v, out vec3 p, out vec3 tu, out vec3 tv, out vec3 su, out vec3 sv) {
+// Where (face, u, v) is in the tables: the first of its 16 control points, the sub-patch's own
+// (s, t), the scale 2^n of its parameters, and the face's rotation.
+void locate(int face, float u, float v, out int set, out float s, out float t, out float scale, out int rotation) {
   ivec4 e = faces[face];
+  rotation = e.y;
   float pu = u, pv = v;
   if (e.y == 1) { pu = v; pv = 1.0 - u; }
   else if (e.y == 2) { pu = 1.0 - u; pv = 1.0 - v; }
   else if (e.y == 3) { pu = 1.0 - v; pv = u; }
-  int set = e.x;
-  float s = pu, t = pv, scale = 1.0;
+  set = e.x;
+  s = pu; t = pv; scale = 1.0;
   if (e.z == 0) {
     float m = max(pu, pv);
     int n = 15;
@@ -78,44 +97,78 @@ void evaluate(int face, float u, float v, out vec3 p, out vec3 tu, out vec3 tv, 
     set += (n - 1) * 3 + (k - 1);
     scale = ldexp(1.0, n);
   }
+}
+
+// The patch's derivatives, scaled back to the face's parameters and turned from the patch's
+// rotated frame to the face's (u, v).
+void toFace(int rotation, float scale, vec3 ps, vec3 pt, out vec3 su, out vec3 sv) {
+  ps *= scale;
+  pt *= scale;
+  if (rotation == 0) { su = ps; sv = pt; }
+  else if (rotation == 1) { su = -pt; sv = ps; }
+  else if (rotation == 2) { su = -ps; sv = -pt; }
+  else { su = pt; sv = -ps; }
+}
+
+// Limit position and its true derivatives in the face's own (u, v): all a Newton step needs (the
+// tangent points, 16 more fetches, are for the normal alone).
+void evaluatePoint(int face, float u, float v, out vec3 p, out vec3 su, out vec3 sv) {
+  int set, rotation;
+  float s, t, scale;
+  locate(face, u, v, set, s, t, scale, rotation);
   vec4 bs, dbs, bt, dbt;
   basis(s, bs, dbs);
   basis(t, bt, dbt);
   p = vec3(0.0);
-  vec3 ds = vec3(0.0), dt = vec3(0.0), ps = vec3(0.0), pt = vec3(0.0);
+  vec3 ps = vec3(0.0), pt = vec3(0.0);
   for (int b = 0; b < 4; ++b)
     for (int a = 0; a < 4; ++a) {
-      int i = set * 16 + b * 4 + a;
-      vec3 q = positions[i].xyz, r = tangents[i].xyz;
+      vec3 q = positions[set * 16 + b * 4 + a].xyz;
       p += bs[a] * bt[b] * q;
       ps += dbs[a] * bt[b] * q;
       pt += bs[a] * dbt[b] * q;
-      ds += dbs[a] * bt[b] * r;
-      dt += bs[a] * dbt[b] * r;
     }
-  tu = ds;
-  tv = dt;
-  ps *= scale;
-  pt *= scale;
-  // Back from the patch's rotated frame to the face's (u, v).
-  if (e.y == 0) { su = ps; sv = pt; }
-  else if (e.y == 1) { su = -pt; sv = ps; }
-  else if (e.y == 2) { su = -ps; sv = -pt; }
-  else { su = pt; sv = -ps; }
+  toFace(rotation, scale, ps, pt, su, sv);
+}
+
+// The tangent-point derivatives (for the normal) at (face, u, v).
+void evaluateTangents(int face, float u, float v, out vec3 tu, out vec3 tv) {
+  int set, rotation;
+  float s, t, scale;
+  locate(face, u, v, set, s, t, scale, rotation);
+  vec4 bs, dbs, bt, dbt;
+  basis(s, bs, dbs);
+  basis(t, bt, dbt);
+  tu = vec3(0.0);
+  tv = vec3(0.0);
+  for (int b = 0; b < 4; ++b)
+    for (int a = 0; a < 4; ++a) {
+      vec3 r = tangents[set * 16 + b * 4 + a].xyz;
+      tu += dbs[a] * bt[b] * r;
+      tv += bs[a] * dbt[b] * r;
+    }
 }
 
 void main() {
-  int face = int(round(v_param.z));
-  float u = clamp(v_param.x, 0.0, 1.0), v = clamp(v_param.y, 0.0, 1.0);
+  ivec2 px = ivec2(gl_FragCoord.xy);
+  vec4 c0 = texelFetch(coarse, px, 0);
+  int face = int(round(c0.z));
+  float u = clamp(c0.x, 0.0, 1.0), v = clamp(c0.y, 0.0, 1.0);
   vec3 p, ds, dt, su, sv;
-  // Newton steps move (u, v) until the limit point lies on this pixel's ray (through the coarse
-  // fragment), so the pixel shows the surface where its ray meets it, whatever the coarse level.
-  vec3 dir = normalize(v_world - eye);
+  // Newton steps move (u, v) until the limit point lies on this pixel's ray, so the pixel shows
+  // the surface where its ray meets it, whatever the coarse level.
+  vec2 ndc = 2.0 * gl_FragCoord.xy / image_size - 1.0;
+  vec3 dir = normalize(ray_forward + ndc.x * ray_right - ndc.y * ray_up);
   vec3 e1 = normalize(abs(dir.x) < 0.9 ? cross(dir, vec3(1, 0, 0)) : cross(dir, vec3(0, 1, 0)));
   vec3 e2 = cross(dir, e1);
-  for (int i = 0; i < newton_steps; ++i) {
-    evaluate(face, u, v, p, ds, dt, su, sv);
+  // Each round evaluates the limit point at (u, v); the loop ends with p that of the final (u, v):
+  // after newton_steps steps, or earlier once p is within 1e-6 of the size of the ray (a few
+  // times float rounding there; a further step would move p by less), which saves the rest.
+  for (int i = 0; i <= newton_steps; ++i) {
+    evaluatePoint(face, u, v, p, su, sv);
+    if (i == newton_steps) break;
     vec2 f = vec2(dot(e1, p - eye), dot(e2, p - eye));
+    if (dot(f, f) <= 1e-12 * size * size) break;
     mat2 J = mat2(dot(e1, su), dot(e2, su), dot(e1, sv), dot(e2, sv));  // columns: d/du, d/dv
     if (abs(determinant(J)) < 1e-20) break;
     vec2 next = vec2(u, v) - inverse(J) * f;
@@ -136,16 +189,11 @@ void main() {
     u = clamp(next.x, 0.0, 1.0);
     v = clamp(next.y, 0.0, 1.0);
   }
-  evaluate(face, u, v, p, ds, dt, su, sv);
+  evaluateTangents(face, u, v, ds, dt);
   // The brick owns the fragment whose exact limit point it holds (half-open box).
   if (any(lessThan(p, clip_lo)) || any(greaterThanEqual(p, clip_hi))) discard;
-  ivec2 px = ivec2(gl_FragCoord.xy);
-  if (has_under != 0 && all(greaterThanEqual(px, under_rect.xy)) && all(lessThan(px, under_rect.xy + under_rect.zw)) &&
-      texelFetch(under_surface, px, 0).x <= length(p - eye))
-    discard;
+  if (texelFetch(nearest, px, 0).x <= length(p - eye)) discard;
   vec3 n = normalize(cross(ds, dt));
-  vec4 clip = view_projection * vec4(p, 1.0);
-  gl_FragDepth = clamp(0.5 * clip.z / clip.w + 0.5, 0.0, 1.0);
   vec3 view = normalize(p - eye);
   vec3 rgb;
   if (reflection_lines == 1) {
@@ -181,8 +229,11 @@ void main() {
 
 SubdivRenderer::SubdivRenderer(const GlContext& ctx, int width, int height)
     : gl_(ctx.gl()), width_(width), height_(height) {
-  program_ = linkProgram(gl_, kVertex, kFragment);
+  coarse_program_ = linkProgram(gl_, kCoarseVertex, kCoarseFragment);
+  program_ = linkProgram(gl_, kScreenVertex, kFragment);
   gl_.GenFramebuffers(1, &fbo_);
+  gl_.GenFramebuffers(1, &coarse_fbo_);
+  gl_.GenVertexArrays(1, &screen_vao_);
   makeTargets();
 }
 
@@ -197,19 +248,35 @@ void SubdivRenderer::makeTargets() {
     gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_TEXTURE_2D, *targets[i], 0);
   }
+  if (gl_.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw std::runtime_error("SubdivRenderer: framebuffer incomplete");
+  // Pass 1's target: the nearest coarse fragment's (u, v, face, surface) and its depth.
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, coarse_fbo_);
+  gl_.GenTextures(1, &coarse_);
+  gl_.BindTexture(GL_TEXTURE_2D, coarse_);
+  gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width_, height_, 0, GL_RGBA, GL_FLOAT, nullptr);
+  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, coarse_, 0);
   gl_.GenTextures(1, &depth_);
   gl_.BindTexture(GL_TEXTURE_2D, depth_);
-  gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, width_, height_, 0, GL_DEPTH_COMPONENT, GL_FLOAT, nullptr);
+  gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH32F_STENCIL8, width_, height_, 0, GL_DEPTH_STENCIL,
+                 GL_FLOAT_32_UNSIGNED_INT_24_8_REV, nullptr);
   gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth_, 0);
+  gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, depth_, 0);
+  if (gl_.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw std::runtime_error("SubdivRenderer: coarse framebuffer incomplete");
+  // Pass 2 tests the same stencil (the surface pass 1 found per pixel), without depth.
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, depth_, 0);
   if (gl_.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     throw std::runtime_error("SubdivRenderer: framebuffer incomplete");
   gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
 void SubdivRenderer::dropTargets() {
-  unsigned textures[4] = {colour_, surface_, params_, depth_};
-  gl_.DeleteTextures(4, textures);
+  unsigned textures[5] = {colour_, surface_, params_, coarse_, depth_};
+  gl_.DeleteTextures(5, textures);
 }
 
 void SubdivRenderer::resize(int width, int height) {
@@ -224,7 +291,10 @@ SubdivRenderer::~SubdivRenderer() {
   clearSurfaces();
   dropTargets();
   gl_.DeleteFramebuffers(1, &fbo_);
+  gl_.DeleteFramebuffers(1, &coarse_fbo_);
+  gl_.DeleteVertexArrays(1, &screen_vao_);
   gl_.DeleteProgram(program_);
+  gl_.DeleteProgram(coarse_program_);
 }
 
 void SubdivRenderer::clearSurfaces() {
@@ -250,6 +320,10 @@ void SubdivRenderer::addSurface(const SubdivSurface& surface, int level, const S
   glm::dvec3 lo(1e300), hi(-1e300);
   for (const auto& p : surface.control().mesh.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
   g.centre = 0.5 * (lo + hi);
+  // The limit surface lies in the control points' bounds (convex combinations of them); grown by
+  // far more than the float tables' rounding, so no float limit point can lie outside.
+  g.lo = lo - 1e-5 * g.size;
+  g.hi = hi + 1e-5 * g.size;
   // Triangles unrolled (no index buffer): position, then (u, v, face); face ids are exact floats
   // below 2^24.
   std::vector<float> vertices;
@@ -291,8 +365,6 @@ void SubdivRenderer::addSurface(const SubdivSurface& surface, int level, const S
 
 void SubdivRenderer::draw(const Camera& cam, const Box3& clip, double near_plane, double far_plane,
                           const SurfaceLayer* under, const Rect* region) {
-  gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
-  const unsigned buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
   gl_.Viewport(0, 0, width_, height_);
   gl_.Disable(GL_BLEND);
   // Clears and fragments outside `region` are skipped: a brick's fragments elsewhere would all be
@@ -303,51 +375,91 @@ void SubdivRenderer::draw(const Camera& cam, const Box3& clip, double near_plane
   } else {
     gl_.Disable(GL_SCISSOR_TEST);
   }
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  // The (face, u, v) target is cleared and written only when asked for (tests): a frame needs
+  // colour and (t, normal) alone.
+  const unsigned buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
+                               unsigned(write_parameters_ ? GL_COLOR_ATTACHMENT2 : GL_NONE)};
   // Misses: colour transparent, t = 1e30, face -1. Clear each target to its own value.
   const float clears[3][4] = {{0, 0, 0, 0}, {1e30f, 0, 0, 0}, {-1, 0, 0, 0}};
-  for (int i = 0; i < 3; ++i) {
+  for (int i = 0; i < (write_parameters_ ? 3 : 2); ++i) {
     const unsigned one = buffers[i];
     gl_.DrawBuffers(1, &one);
     gl_.ClearColor(clears[i][0], clears[i][1], clears[i][2], clears[i][3]);
     gl_.Clear(GL_COLOR_BUFFER_BIT);
   }
   gl_.DrawBuffers(3, buffers);
-  gl_.Clear(GL_DEPTH_BUFFER_BIT);
   // The layer underneath starts in the targets; fragments nearer than it replace it (the shader
   // discards the others), so the targets end holding the nearer of the two per pixel.
-  const bool has_under = under && !under->rect.empty();
-  if (has_under) {
+  if (under && !under->rect.empty()) {
     const Rect& r = under->rect;
     gl_.CopyImageSubData(under->colour_texture, GL_TEXTURE_2D, 0, r.x, r.y, 0, colour_, GL_TEXTURE_2D, 0, r.x, r.y, 0,
                          r.w, r.h, 1);
     gl_.CopyImageSubData(under->surface_texture, GL_TEXTURE_2D, 0, r.x, r.y, 0, surface_, GL_TEXTURE_2D, 0, r.x, r.y,
                          0, r.w, r.h, 1);
   }
-  gl_.Enable(GL_DEPTH_TEST);
-  // The coarse mesh is closed and counter-clockwise from outside: its back faces are hidden except
-  // within the coarse mesh's deviation of a silhouette, and would double the per-fragment
-  // evaluations (the shader writes its depth, so no early depth test saves them).
-  // Camera::viewProjection mirrors y (window row 0 = image row 0), which turns counter-clockwise
-  // into clockwise on screen: the outside faces are the clockwise ones there.
-  gl_.Enable(GL_CULL_FACE);
-  gl_.FrontFace(GL_CW);
-  gl_.UseProgram(program_);
   const glm::mat4 vp = cam.viewProjection(near_plane, far_plane);
-  auto loc = [&](const char* name) { return gl_.GetUniformLocation(program_, name); };
-  auto vec3 = [&](const char* name, const glm::dvec3& x) { gl_.Uniform3f(loc(name), float(x.x), float(x.y), float(x.z)); };
-  gl_.UniformMatrix4fv(loc("view_projection"), 1, GL_FALSE, glm::value_ptr(vp));
-  vec3("eye", cam.position);
-  vec3("clip_lo", clip.lo);
-  vec3("clip_hi", clip.hi);
-  gl_.Uniform1i(loc("has_under"), has_under ? 1 : 0);
-  gl_.Uniform1i(loc("under_surface"), 0);
-  gl_.ActiveTexture(GL_TEXTURE0);
-  if (has_under) {
-    const Rect& r = under->rect;
-    gl_.Uniform4i(loc("under_rect"), r.x, r.y, r.w, r.h);
-    gl_.BindTexture(GL_TEXTURE_2D, under->surface_texture);
-  }
+  const double th = std::tan(0.5 * cam.fov_deg * std::numbers::pi / 180.0), aspect = double(cam.width) / cam.height;
+  gl_.Enable(GL_STENCIL_TEST);
   for (const GpuSurface& g : surfaces_) {
+    // A surface none of whose limit points the brick can hold draws nothing here: both passes
+    // skipped (each surface's passes are its own, so the others are unchanged).
+    if (glm::any(glm::lessThan(g.hi, clip.lo)) || glm::any(glm::greaterThanEqual(g.lo, clip.hi))) continue;
+    // Pass 1 (the paper's first pass): this surface's nearest coarse fragment per pixel, by the
+    // coarse mesh's depth, marked in the stencil. Its fragment shader is a copy, so llvmpipe's
+    // early depth test and the 4 x 4 blocks it shades whole on small triangles' edges cost
+    // little; the exact evaluation runs once per pixel in pass 2. Every brick rasterises the
+    // whole coarse mesh, so every brick finds the same nearest coarse fragment and, in pass 2, the
+    // same limit point, which exactly one brick holds. One surface at a time: which of two
+    // surfaces is nearer is decided by their limit points, not by their coarse meshes.
+    gl_.BindFramebuffer(GL_FRAMEBUFFER, coarse_fbo_);
+    gl_.StencilMask(0xff);
+    gl_.Clear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+    gl_.Enable(GL_DEPTH_TEST);
+    gl_.StencilFunc(GL_ALWAYS, 1, 0xff);
+    gl_.StencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+    // The coarse mesh is closed and counter-clockwise from outside: its back faces are hidden
+    // except within the coarse mesh's deviation of a silhouette. Camera::viewProjection mirrors y
+    // (window row 0 = image row 0), which turns counter-clockwise into clockwise on screen: the
+    // outside faces are the clockwise ones there.
+    gl_.Enable(GL_CULL_FACE);
+    gl_.FrontFace(GL_CW);
+    gl_.UseProgram(coarse_program_);
+    gl_.UniformMatrix4fv(gl_.GetUniformLocation(coarse_program_, "view_projection"), 1, GL_FALSE, glm::value_ptr(vp));
+    gl_.BindVertexArray(g.vao);
+    gl_.DrawArrays(GL_TRIANGLES, 0, g.vertex_count);
+    gl_.Disable(GL_DEPTH_TEST);
+    gl_.Disable(GL_CULL_FACE);
+    gl_.FrontFace(GL_CCW);
+
+    // Pass 2: the exact limit point per pixel of the nearest coarse fragment, only where pass 1
+    // drew: llvmpipe tests the stencil before the fragment shader (which writes no depth or
+    // stencil) and skips blocks that none of them passes, where a discard in the shader would
+    // still run it for every pixel of the region.
+    gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
+    gl_.StencilMask(0);
+    gl_.StencilFunc(GL_EQUAL, 1, 0xff);
+    gl_.StencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    // The shader reads the (t, normal) target at its own pixel and writes it once: defined
+    // after a texture barrier (what the surfaces before this one wrote).
+    gl_.TextureBarrier();
+    gl_.UseProgram(program_);
+    auto loc = [&](const char* name) { return gl_.GetUniformLocation(program_, name); };
+    auto vec3 = [&](const char* name, const glm::dvec3& x) { gl_.Uniform3f(loc(name), float(x.x), float(x.y), float(x.z)); };
+    vec3("eye", cam.position);
+    vec3("ray_forward", cam.forward());
+    vec3("ray_right", cam.right() * (th * aspect));
+    vec3("ray_up", cam.trueUp() * th);
+    gl_.Uniform2f(loc("image_size"), float(cam.width), float(cam.height));
+    vec3("clip_lo", clip.lo);
+    vec3("clip_hi", clip.hi);
+    gl_.Uniform1i(loc("coarse"), 0);
+    gl_.Uniform1i(loc("nearest"), 1);
+    gl_.ActiveTexture(GL_TEXTURE0);
+    gl_.BindTexture(GL_TEXTURE_2D, coarse_);
+    gl_.ActiveTexture(GL_TEXTURE1);
+    gl_.BindTexture(GL_TEXTURE_2D, surface_);
+    gl_.ActiveTexture(GL_TEXTURE0);
     const SubdivShading& sh = g.shading;
     vec3("colour", sh.colour);
     vec3("centre", g.centre);
@@ -358,15 +470,14 @@ void SubdivRenderer::draw(const Camera& cam, const Box3& clip, double near_plane
     gl_.Uniform1i(loc("stripes"), sh.stripes);
     gl_.Uniform1i(loc("reflection_lines"), sh.mode == "reflection_lines" ? 1 : 0);
     gl_.Uniform1i(loc("newton_steps"), sh.newton_steps);
-    for (int i = 0; i < 4; ++i) gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, i, g.ssbo[i]);
-    gl_.BindVertexArray(g.vao);
-    gl_.DrawArrays(GL_TRIANGLES, 0, g.vertex_count);
+    for (int b = 0; b < 4; ++b) gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, b, g.ssbo[b]);
+    gl_.BindVertexArray(screen_vao_);
+    gl_.DrawArrays(GL_TRIANGLES, 0, 3);
   }
   gl_.BindVertexArray(0);
-  gl_.Disable(GL_DEPTH_TEST);
-  gl_.Disable(GL_CULL_FACE);
+  gl_.Disable(GL_STENCIL_TEST);
+  gl_.StencilMask(0xff);
   gl_.Disable(GL_SCISSOR_TEST);
-  gl_.FrontFace(GL_CCW);
   gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
@@ -385,7 +496,9 @@ void SubdivRenderer::read(const Rect& r, ImageRGBA8* pixels, std::vector<float>*
     std::vector<float> rgba;
     readTarget(0, rgba);
     *pixels = ImageRGBA8(r.w, r.h);
-    for (size_t i = 0; i < n * 4; ++i) pixels->px[i] = uint8_t(std::lround(std::clamp(rgba[i], 0.0f, 1.0f) * 255.0f));
+    // std::lround's rounding (half away from zero; exact in double), without a libm call per value.
+    for (size_t i = 0; i < n * 4; ++i)
+      pixels->px[i] = uint8_t(double(std::clamp(rgba[i], 0.0f, 1.0f) * 255.0f) + 0.5);
   }
   if (surface) readTarget(1, *surface);
   if (parameters) readTarget(2, *parameters);
@@ -394,7 +507,9 @@ void SubdivRenderer::read(const Rect& r, ImageRGBA8* pixels, std::vector<float>*
 
 SubdivFrame SubdivRenderer::render(const Camera& cam, const Box3& clip, double near_plane, double far_plane,
                                    bool want_parameters) {
+  write_parameters_ = want_parameters;
   draw(cam, clip, near_plane, far_plane, nullptr);
+  write_parameters_ = false;
   SubdivFrame out;
   read({0, 0, width_, height_}, &out.pixels, &out.surface, want_parameters ? &out.parameters : nullptr);
   return out;

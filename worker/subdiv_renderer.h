@@ -1,19 +1,24 @@
 #pragma once
 // Exact Catmull-Clark limit surfaces per fragment (../shared/PAPERS.md §5, Kanai and Yasui), in
-// OpenGL 4.5 core, as the paper's MRT variant: one pass rasterises the coarse mesh
-// (common/subdiv_coarse.h), whose vertices carry (control face, u, v); each fragment evaluates the
-// exact limit position and normal from the precomputed control points (common/subdiv_tables.h, in
-// SSBOs; the GLSL mirrors evaluateTables), drops itself if that limit point lies outside the
-// brick's box, writes the limit point's depth, and shades.
+// OpenGL 4.5 core, in the paper's two passes, per surface: pass 1 rasterises the coarse mesh
+// (common/subdiv_coarse.h), whose vertices carry (control face, u, v), with an ordinary depth
+// test into (u, v, face) per pixel and a stencil mark; pass 2, one fragment per marked pixel,
+// evaluates the exact limit position and normal from the precomputed control points
+// (common/subdiv_tables.h, in SSBOs; the GLSL mirrors evaluateTables), drops itself if that
+// limit point lies outside the brick's box or behind what the pixel already holds (the layer
+// underneath, the surfaces drawn before), and shades.
 //
-// Optionally (SubdivShading::newton_steps) each fragment first moves its (u, v) by Newton steps
-// until the limit point lies on the pixel's ray, so the image does not depend on the coarse level.
+// Optionally (SubdivShading::newton_steps) pass 2 first moves (u, v) by Newton steps until the
+// limit point lies on the pixel's ray, so the image does not depend on the coarse level.
 //
-// Because a fragment's depth and its brick are both decided by its exact limit point, every
-// fragment belongs to exactly one brick and the nearest limit point wins per pixel in each: brick
-// images composite to the one-brick image exactly. Coverage is the coarse mesh's: at silhouettes
-// the surface is drawn out to the coarse mesh's outline, not the limit surface's (the distance is
-// coarseDeviation, e.g. 1e-2 of the size at level 1, 2e-3 at level 3 for pole5).
+// Every brick rasterises the whole coarse mesh, so every brick finds the same nearest coarse
+// fragment per pixel and the same limit point, which exactly one brick holds: brick images
+// composite to the one-brick image exactly (a brick leaves a pixel empty where another brick's
+// surface hides its own). Within one surface the nearest coarse fragment, not the nearest limit
+// point, decides a pixel: they differ only within the coarse mesh's deviation of a silhouette.
+// Coverage is the coarse mesh's: at silhouettes the surface is drawn out to the coarse mesh's
+// outline, not the limit surface's (the distance is coarseDeviation, e.g. 1e-2 of the size at
+// level 1, 2e-3 at level 3 for pole5).
 #include <string>
 #include <vector>
 
@@ -50,8 +55,9 @@ class SubdivRenderer {
   bool empty() const { return surfaces_.empty(); }
   void resize(int width, int height);
 
-  // Draws the fragments whose limit points lie in [clip.lo, clip.hi) (half-open, so a point on
-  // a face shared by two bricks belongs to one) into colourTexture() and surfaceTexture(). With
+  // Draws, per pixel, the limit point of the nearest coarse fragment if it lies in
+  // [clip.lo, clip.hi) (half-open, so a point on a face shared by two bricks belongs to one) into
+  // colourTexture() and surfaceTexture(). With
   // `under` (another opaque layer of the same brick: the metaballs'), the targets start as that
   // layer and a fragment replaces it only where it is nearer (smaller t): the two layers merged
   // by depth. [near_plane, far_plane] must hold the surface. With `region`, only that rectangle
@@ -62,7 +68,8 @@ class SubdivRenderer {
   // per pixel (t = 1e30 on a miss), full-image textures with window row y = image row y.
   unsigned colourTexture() const { return colour_; }
   unsigned surfaceTexture() const { return surface_; }
-  // Reads `r` of the targets back (rows top first); null pointers: not wanted.
+  // Reads `r` of the targets back (rows top first); null pointers: not wanted. The (face, u, v)
+  // target is written by render(..., want_parameters = true) only.
   void read(const Rect& r, ImageRGBA8* pixels, std::vector<float>* surface, std::vector<float>* parameters = nullptr);
   // draw() without a layer underneath and the whole image read back.
   SubdivFrame render(const Camera& cam, const Box3& clip, double near_plane, double far_plane,
@@ -73,6 +80,7 @@ class SubdivRenderer {
     unsigned vao = 0, vbo = 0, ssbo[4] = {0, 0, 0, 0};
     int vertex_count = 0;
     glm::dvec3 centre{0.0};
+    glm::dvec3 lo{0.0}, hi{0.0};  // bounds of its limit surface
     double size = 1.0;
     SubdivShading shading;
   };
@@ -80,8 +88,10 @@ class SubdivRenderer {
   void dropTargets();
   const GlApi& gl_;
   int width_, height_;
-  unsigned fbo_ = 0, colour_ = 0, surface_ = 0, params_ = 0, depth_ = 0;
-  unsigned program_ = 0;
+  unsigned fbo_ = 0, colour_ = 0, surface_ = 0, params_ = 0;
+  unsigned coarse_fbo_ = 0, coarse_ = 0, depth_ = 0, screen_vao_ = 0;
+  unsigned program_ = 0, coarse_program_ = 0;
+  bool write_parameters_ = false;
   std::vector<GpuSurface> surfaces_;
 };
 
