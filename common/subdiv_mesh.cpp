@@ -68,6 +68,12 @@ void checkFaces(const PolyMesh& mesh) {
 
 }  // namespace
 
+bool MeshTopology::open() const {
+  for (char b : boundary)
+    if (b) return true;
+  return false;
+}
+
 MeshTopology MeshTopology::build(const PolyMesh& mesh) {
   MeshTopology t;
   t.twin.assign(mesh.faceCorners.size(), {});

@@ -37,6 +37,9 @@ struct MeshTopology {
   std::vector<int> valence;  // edges per point (0 for points no face uses)
   std::vector<char> boundary;  // per point: on a boundary edge
   static MeshTopology build(const PolyMesh& mesh);
+  // An open mesh (some edge has one face): both sides of its surface can face a camera, so
+  // renderers draw it two-sided; a closed one's back side is always hidden.
+  bool open() const;
 };
 
 // Throws InputError naming the mesh and the problem unless `mesh` is a consistently oriented,

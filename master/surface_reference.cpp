@@ -61,6 +61,7 @@ void SurfaceReference::render(const Camera& cam, int threads, SurfaceImage& surf
     for (int k = 0; k < int(entries_.size()); ++k) {
       const Entry& e = entries_[size_t(k)];
       const int faces = e.surface.control().mesh.faceCount();
+      const bool open = e.surface.control().topology.open();
       for (int f = 0; f < faces; ++f)
         for (int j = 0; j < n_; ++j)
           for (int i = 0; i < n_; ++i) {
@@ -87,9 +88,9 @@ void SurfaceReference::render(const Camera& cam, int threads, SurfaceImage& surf
                 Hit& h = hits[size_t(y) * W + x];
                 for (int tri = 0; tri < 2; ++tri) {
                   const int a = 0, b = tri == 0 ? 1 : 2, c = tri == 0 ? 2 : 3;
-                  // One-sided, as the GL pass culls the coarse mesh's back faces: an open
-                  // surface's back side is not drawn (a closed one's is hidden anyway).
-                  if (glm::dot(glm::cross(p[b] - p[a], p[c] - p[a]), d) >= 0) continue;
+                  // Back faces skipped on closed surfaces, as the GL pass culls them there (they
+                  // are hidden anyway); an open surface is two-sided.
+                  if (!open && glm::dot(glm::cross(p[b] - p[a], p[c] - p[a]), d) >= 0) continue;
                   double t, b1, b2;
                   if (!intersect(cam.position, d, p[a], p[b], p[c], t, b1, b2) || t >= h.t) continue;
                   const double w0 = 1.0 - b1 - b2;

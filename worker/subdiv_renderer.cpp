@@ -317,6 +317,7 @@ void SubdivRenderer::addSurface(const SubdivSurface& surface, int level, const S
   GpuSurface g;
   g.shading = shading;
   g.size = surface.control().mesh.size();
+  g.two_sided = surface.control().topology.open();
   glm::dvec3 lo(1e300), hi(-1e300);
   for (const auto& p : surface.control().mesh.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
   g.centre = 0.5 * (lo + hi);
@@ -418,11 +419,13 @@ void SubdivRenderer::draw(const Camera& cam, const Box3& clip, double near_plane
     gl_.Enable(GL_DEPTH_TEST);
     gl_.StencilFunc(GL_ALWAYS, 1, 0xff);
     gl_.StencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-    // The coarse mesh is closed and counter-clockwise from outside: its back faces are hidden
-    // except within the coarse mesh's deviation of a silhouette. Camera::viewProjection mirrors y
-    // (window row 0 = image row 0), which turns counter-clockwise into clockwise on screen: the
-    // outside faces are the clockwise ones there.
-    gl_.Enable(GL_CULL_FACE);
+    // A closed coarse mesh is counter-clockwise from outside: its back faces are hidden except
+    // within the coarse mesh's deviation of a silhouette, so they are culled (half the fragments).
+    // Camera::viewProjection mirrors y (window row 0 = image row 0), which turns
+    // counter-clockwise into clockwise on screen: the outside faces are the clockwise ones there.
+    // An open mesh shows its back side where the camera looks at it from behind: both sides are
+    // drawn (the shading does not depend on the normal's sign: |n . view| and a reflection).
+    if (!g.two_sided) gl_.Enable(GL_CULL_FACE);
     gl_.FrontFace(GL_CW);
     gl_.UseProgram(coarse_program_);
     gl_.UniformMatrix4fv(gl_.GetUniformLocation(coarse_program_, "view_projection"), 1, GL_FALSE, glm::value_ptr(vp));

@@ -82,6 +82,7 @@ class SubdivRenderer {
     glm::dvec3 centre{0.0};
     glm::dvec3 lo{0.0}, hi{0.0};  // bounds of its limit surface
     double size = 1.0;
+    bool two_sided = false;  // an open mesh: its back faces are drawn too
     SubdivShading shading;
   };
   void makeTargets();

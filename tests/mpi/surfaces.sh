@@ -9,7 +9,8 @@
 #               against the reference, 1-4 ranks; the same inside a volume, 1 and 3 ranks
 #   reflection  reflection lines against the reference
 #   open        open surfaces (boundaries: a saddle, and a fan round a boundary vertex of 5 faces):
-#               against the reference (colour, depth, normals), 1-4 ranks, d = 1-3
+#               against the reference (colour, depth, normals), 1-4 ranks, d = 1-3, and seen
+#               from behind (two-sided)
 #   bad         bad meshes and keys through the CLI: clear message naming the key, exit 1, no hang
 #   serve       a resident session (`sortlast serve`, 2 ranks) serves the frames `render` makes, at
 #               two image sizes and cameras (the surfaces' targets resize; surfaces are fixed for
@@ -165,6 +166,13 @@ open)
     --max-normal-deg 0.05 --max-holes 0 --max-extra 0 || fail "open: depth or normals"
   ranks open
   bricks open 0
+  # From the other side: open surfaces are two-sided (both sides drawn, as the reference does).
+  back=(--set "camera.position=[-0.3, 3.5, -6.0]")
+  "$S" reference "$WORK/open.yaml" -q -o "$WORK/ref.png" --surface-out "$WORK/ref.exr" "${back[@]}" || fail "reference from behind"
+  render 3 open gl "${back[@]}"
+  vs_reference gl 1
+  "$S" compare-surface "$WORK/ref.exr" "$WORK/gl.exr" --ignore-edges --max-depth-error 1e-3 \
+    --max-normal-deg 0.05 --max-holes 0 --max-extra 0 || fail "open, from behind: depth or normals"
   ;;
 reflection)
   reference reflection
