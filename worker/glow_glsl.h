@@ -8,14 +8,15 @@ namespace sortlast::shaders {
 
 inline constexpr const char* kGlowSegment = R"(
 // log1p(y) / y, y >= 0: below 0.5 the series of 2 atanh(w) / y, w = y / (2 + y) (GLSL has no
-// log1p; log(1 + y) would lose everything to the rounding of 1 + y).
+// log1p; log(1 + y) would lose everything to the rounding of 1 + y). Both forms are computed and
+// one selected: llvmpipe runs both sides of a branch anyway (per SIMD lane mask), so straight-line
+// code is no slower and keeps the program small.
 float glowLog1pOverX(float y) {
-  if (y < 0.5) {
-    float w = y / (2.0 + y), w2 = w * w;
-    float series = 1.0 + w2 * (1.0 / 3.0 + w2 * (1.0 / 5.0 + w2 * (1.0 / 7.0 + w2 * (1.0 / 9.0))));
-    return 2.0 / (2.0 + y) * series;
-  }
-  return log(1.0 + y) / y;
+  float w = y / (2.0 + y), w2 = w * w;
+  float series = 1.0 + w2 * (1.0 / 3.0 + w2 * (1.0 / 5.0 + w2 * (1.0 / 7.0 + w2 * (1.0 / 9.0))));
+  float small = 2.0 / (2.0 + y) * series;
+  float large = log(1.0 + y) / max(y, 0.5);
+  return y < 0.5 ? small : large;
 }
 
 // One stretch moving away from the closest point: xi1 >= xi0 >= 0, r = R at its ends.
@@ -24,28 +25,39 @@ float glowStretch(float len, float xi0, float xi1, float r0, float r1, float spe
   return z * glowLog1pOverX(speed * z);
 }
 
-// int_0^len ds / sqrt(|p0 + s q|^2 + eps^2); len >= 0, eps > 0.
+// int_0^len ds / sqrt(|p0 + s q|^2 + eps^2); len >= 0, eps > 0. The three cases of
+// common/glow_integral.h (moving away from the closest point, towards it (mirrored), or passing
+// it (split in two)) select the inputs of two stretches (the second of length 0 unless split), so
+// the closed form is written once and evaluated twice, not in all four places of the branches.
 float glowInverseDistance(vec3 p0, vec3 q, float len, float eps) {
   float e2 = eps * eps;
   float speed = length(q);
-  vec3 qh = vec3(0.0);
-  if (speed > 1e-30) qh = q / speed;
-  else speed = 0.0;
+  bool moving = speed > 1e-30;
+  vec3 qh = moving ? q / max(speed, 1e-30) : vec3(0.0);
+  speed = moving ? speed : 0.0;
   vec3 p1 = p0 + len * q;
   float r0 = sqrt(dot(p0, p0) + e2), r1 = sqrt(dot(p1, p1) + e2);
   float xi0 = dot(qh, p0), xi1 = xi0 + speed * len;
-  if (xi0 >= 0.0) return glowStretch(len, xi0, xi1, r0, r1, speed);
-  if (xi1 <= 0.0) return glowStretch(len, -xi1, -xi0, r1, r0, speed);
   vec3 c = p0 - xi0 * qh;
   float h = sqrt(dot(c, c) + e2);
-  float before = min(-xi0 / speed, len), after = len - before;
+  float before = clamp(-xi0 / max(speed, 1e-30), 0.0, len), after = len - before;  // [0, len] in every case
   float xa = speed * before, xb = speed * after;
-  return glowStretch(before, 0.0, xa, h, sqrt(h * h + xa * xa), speed) +
-         glowStretch(after, 0.0, xb, h, sqrt(h * h + xb * xb), speed);
+  bool away = xi0 >= 0.0, towards = !away && xi1 <= 0.0, split = !away && !towards;
+  float la = split ? before : len;
+  float xa0 = split ? 0.0 : (away ? xi0 : -xi1);
+  float xa1 = split ? xa : (away ? xi1 : -xi0);
+  float ra0 = split ? h : (away ? r0 : r1);
+  float ra1 = split ? sqrt(h * h + xa * xa) : (away ? r1 : r0);
+  float lb = split ? after : 0.0;
+  return glowStretch(la, xa0, xa1, ra0, ra1, speed) +
+         glowStretch(lb, 0.0, xb, h, sqrt(h * h + xb * xb), speed);
 }
 
 // int_{s0}^{s1} E(o + s u) ds for one emitter (centre, unit dir, a, b), unit u, eps > 0; cut where
-// the segment crosses the plane through the centre with normal dir.
+// the segment crosses the plane through the centre with normal dir. The two parts (the second of
+// length 0 when the segment does not cross) go through one call site in a loop: each part picks
+// its term (cylinder where its side's height g >= 0, sphere below), so the closed form is inlined
+// once per glowSegment, which keeps the ray caster's GLOW variant quick to compile.
 float glowSegment(vec3 centre, vec3 dir, float a, float b, float eps, vec3 o, vec3 u, float s0, float s1) {
   if (!(s1 > s0)) return 0.0;
   float len = s1 - s0;
@@ -53,15 +65,16 @@ float glowSegment(vec3 centre, vec3 dir, float a, float b, float eps, vec3 o, ve
   float ud = dot(u, dir);
   vec3 qc = u - ud * dir;
   float g0 = dot(p0, dir), g1 = g0 + len * ud;
-  if (g0 >= 0.0 && g1 >= 0.0) return b * glowInverseDistance(p0 - dot(p0, dir) * dir, qc, len, eps);
-  if (g0 < 0.0 && g1 < 0.0) return a * glowInverseDistance(p0, u, len, eps);
-  float lc = len * clamp(g0 / (g0 - g1), 0.0, 1.0);
-  vec3 pc = p0 + lc * u;
-  if (g0 >= 0.0)
-    return b * glowInverseDistance(p0 - dot(p0, dir) * dir, qc, lc, eps) +
-           a * glowInverseDistance(pc, u, len - lc, eps);
-  return a * glowInverseDistance(p0, u, lc, eps) +
-         b * glowInverseDistance(pc - dot(pc, dir) * dir, qc, len - lc, eps);
+  bool up0 = g0 >= 0.0, up1 = g1 >= 0.0;
+  float lc = up0 == up1 ? len : len * clamp(g0 / (g0 - g1), 0.0, 1.0);
+  float sum = 0.0;
+  for (int k = 0; k < 2; ++k) {
+    bool up = k == 0 ? up0 : up1;
+    vec3 p = k == 0 ? p0 : p0 + lc * u;
+    float l = k == 0 ? lc : len - lc;
+    sum += (up ? b : a) * glowInverseDistance(up ? p - dot(p, dir) * dir : p, up ? qc : u, l, eps);
+  }
+  return sum;
 }
 )";
 
