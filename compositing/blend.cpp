@@ -44,13 +44,27 @@ void blendRectF(const float* src, const Rect& r, float* dst, int dst_width, int 
   }
 }
 
+// Emission pixels (8 bytes) decoded and blended in one pass, without an intermediate float
+// image: the same values and the same blends as fromEmission16 into a buffer and blendRectF.
+void blendRectEmission(const uint8_t* src, const Rect& r, float* dst, int dst_width, int ox, int oy) {
+  for (int y = 0; y < r.h; ++y) {
+    const uint8_t* s = src + size_t(y) * r.w * 8;
+    float* d = dst + (size_t(r.y - oy + y) * dst_width + size_t(r.x - ox)) * 4;
+    for (int x = 0; x < r.w; ++x) {
+      if (s[8 * x + 6] == 0 && s[8 * x + 7] == 0) continue;  // a transparent pixel (from a run)
+      float f[4];
+      fromEmission16(s + 8 * x, f);
+      if (shows(f)) overFloat(f, d + 4 * x);
+    }
+  }
+}
+
 // Decodes each brick image and blends it into `dst` (a frame or a rectangle image). Brick images
 // are RGBA8, or (glow scenes) WireFormat::Emission, blended in float.
 template <class Pixel>
 void blendBricks(const std::vector<const BrickImage*>& images, Pixel* dst, const Rect& dst_rect,
                  WireFormat format = WireFormat::RGBA8) {
   std::vector<uint8_t> pixels;
-  std::vector<float> floats;
   for (const BrickImage* b : images) {
     const Rect& r = b->rect;
     if (r.empty()) continue;
@@ -63,9 +77,7 @@ void blendBricks(const std::vector<const BrickImage*>& images, Pixel* dst, const
       blendRect8(pixels.data(), r, dst, dst_rect.w, dst_rect.x, dst_rect.y);
     } else if constexpr (std::is_same_v<Pixel, float>) {
       if (format != WireFormat::Emission) throw std::logic_error("brick images: RGBA8 or Emission");
-      floats.resize(size_t(r.area()) * 4);
-      for (size_t i = 0; i < size_t(r.area()); ++i) fromEmission16(&pixels[8 * i], &floats[4 * i]);
-      blendRectF(floats.data(), r, dst, dst_rect.w, dst_rect.x, dst_rect.y);
+      blendRectEmission(pixels.data(), r, dst, dst_rect.w, dst_rect.x, dst_rect.y);
     } else {
       throw std::logic_error("emission brick images blend in float only");
     }

@@ -7,6 +7,7 @@
 
 #include <glm/gtc/packing.hpp>
 
+#include "compositing/half.h"
 #include "compositing/rle.h"
 
 namespace sortlast {
@@ -35,14 +36,39 @@ void toEmission16(const float* in, uint8_t* out) {
   uint16_t v[4] = {0, 0, 0, 0};
   if (shows(in)) {
     // 65504: the largest finite half (radiance beyond it is far past any tone map's white).
-    for (int c = 0; c < 3; ++c) v[c] = glm::packHalf1x16(std::clamp(in[c], 0.0f, 65504.0f));
-    v[3] = glm::packHalf1x16(-std::clamp(1.0f - in[3], 0.0f, 1.0f)) | 0x8000u;  // -T, -0 included
+    for (int c = 0; c < 3; ++c) v[c] = halfBits(std::clamp(in[c], 0.0f, 65504.0f));
+    v[3] = halfBits(-std::clamp(1.0f - in[3], 0.0f, 1.0f)) | 0x8000u;  // -T, -0 included
   }
   for (int c = 0; c < 4; ++c) {
     out[2 * c] = uint8_t(v[c] & 0xff);
     out[2 * c + 1] = uint8_t(v[c] >> 8);
   }
 }
+
+namespace {
+
+// Every half's decoded value, as a colour and as an alpha word: glm's decoding with the
+// corrupt-stream rules applied once (NaN or Inf read as 0 / opaque, never passed on), so decoding
+// is a table look-up per channel instead of a branchy conversion.
+struct EmissionTables {
+  float colour[65536];
+  float alpha[65536];
+  EmissionTables() {
+    auto finite = [](float x, float fallback) { return std::isfinite(x) ? x : fallback; };
+    for (uint32_t h = 0; h < 65536; ++h) {
+      const float x = glm::unpackHalf1x16(uint16_t(h));
+      colour[h] = std::max(finite(x, 0.0f), 0.0f);
+      alpha[h] = 1.0f - std::clamp(-finite(x, -0.0f), 0.0f, 1.0f);
+    }
+  }
+};
+
+const EmissionTables& emissionTables() {
+  static const EmissionTables t;
+  return t;
+}
+
+}  // namespace
 
 void fromEmission16(const uint8_t* in, float* out) {
   uint16_t v[4];
@@ -51,10 +77,9 @@ void fromEmission16(const uint8_t* in, float* out) {
     for (int c = 0; c < 4; ++c) out[c] = 0.0f;
     return;
   }
-  // A corrupt stream may hold NaN or Inf halves: read as 0 / opaque, never passed on.
-  auto finite = [](float x, float fallback) { return std::isfinite(x) ? x : fallback; };
-  for (int c = 0; c < 3; ++c) out[c] = std::max(finite(glm::unpackHalf1x16(v[c]), 0.0f), 0.0f);
-  out[3] = 1.0f - std::clamp(-finite(glm::unpackHalf1x16(v[3]), -0.0f), 0.0f, 1.0f);
+  const EmissionTables& t = emissionTables();
+  for (int c = 0; c < 3; ++c) out[c] = t.colour[v[c]];
+  out[3] = t.alpha[v[3]];
 }
 
 Rect intersect(const Rect& a, const Rect& b) {
