@@ -68,6 +68,8 @@ class Compositor {
   virtual void progress() {}
   // Collective over the communicator. Returns the frame on rank 0 and an empty image elsewhere;
   // with options.float_frame, rank 0's `float_frame` (if given) gets the frame before rounding.
+  // With options.emission and a `float_frame`, the RGBA8 frame may be left transparent (direct
+  // send does: the caller tone-maps the float frame into its own).
   virtual ImageRGBA8 finish(CompositeStats& stats, ImageF* float_frame = nullptr) = 0;
   // The frame failed on some rank before finish(). Called on every rank: completes or drains the
   // messages already under way, so every rank can stop without a message left unmatched.

@@ -178,11 +178,14 @@ ImageRGBA8 DirectSend::finish(CompositeStats& stats, ImageF* float_frame) {
   ImageRGBA8 out;
   double t0 = MPI_Wtime();
   if (opt_.precision == Precision::Float) {
-    // Only the touched rectangle can hold anything but transparent pixels.
+    // Only the touched rectangle can hold anything but transparent pixels. Emission: the RGBA8
+    // frame (colour clamped to alpha) means nothing and the caller makes its own from the float
+    // frame, so it stays transparent rather than costing a rounding pass over the frame.
     out = ImageRGBA8(frame_f_.width, frame_f_.height);
-    for (int y = dirty_.y; y < dirty_.y + dirty_.h; ++y)
-      for (int x = dirty_.x; x < dirty_.x + dirty_.w; ++x)
-        toRGBA8(&frame_f_.px[(size_t(y) * frame_f_.width + size_t(x)) * 4], out.at(x, y));
+    if (!(opt_.emission && float_frame))
+      for (int y = dirty_.y; y < dirty_.y + dirty_.h; ++y)
+        for (int x = dirty_.x; x < dirty_.x + dirty_.w; ++x)
+          toRGBA8(&frame_f_.px[(size_t(y) * frame_f_.width + size_t(x)) * 4], out.at(x, y));
     if (float_frame) *float_frame = frame_f_;
   } else {
     if (float_frame) *float_frame = toFloat(frame_8_);

@@ -4,6 +4,7 @@
 // order.
 #include "master/render_session.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -88,15 +89,27 @@ void checkGlowScene(const Scene& sc) {
 }
 
 // The composited glow frame (rank 0, float, premultiplied): the tone map once, then an opaque
-// RGBA8 frame over the background, since premultiplied RGBA8 cannot hold colour above alpha.
+// RGBA8 frame over the background, since premultiplied RGBA8 cannot hold colour above alpha. One
+// pass over the frame, in float: 1 - exp(-e x) in float is within about 1e-7 of the double
+// (toneMap), far under 1/255, and the 8-bit rounding is x * 255 + 0.5 truncated (toRGBA8's
+// lround, without the call, except within a float ulp below k + 1/2), so a level can differ from
+// the double path only where a value lies within about 1e-7 of a rounding boundary. `f` keeps the tone-mapped colour (the float frame, an .exr).
 void finishGlowFrame(const GlowSpec& g, const glm::dvec3& background, ImageF& f, ImageRGBA8& out) {
-  for (size_t i = 0; i < f.px.size(); i += 4)
-    for (int k = 0; k < 3; ++k) f.px[i + k] = float(toneMap(g, f.px[i + k]));
-  const std::vector<float> rgb = overBackground(f, background);
+  const bool exponential = g.tone_map == "exponential";
+  const float exposure = float(g.exposure);
+  const float bg[3] = {float(background.x), float(background.y), float(background.z)};
   out = ImageRGBA8(f.width, f.height);
-  for (size_t p = 0; p < size_t(f.width) * f.height; ++p) {
-    const float px[4] = {rgb[3 * p], rgb[3 * p + 1], rgb[3 * p + 2], 1.0f};
-    toRGBA8(px, &out.px[4 * p]);
+  float* px = f.px.data();
+  uint8_t* o = out.px.data();
+  const size_t n = size_t(f.width) * f.height;
+  for (size_t p = 0; p < n; ++p, px += 4, o += 4) {
+    const float k = 1.0f - px[3];
+    for (int c = 0; c < 3; ++c) {
+      const float t = exponential ? -std::expm1(-exposure * px[c]) : px[c];
+      px[c] = t;
+      o[c] = uint8_t(std::clamp(t + k * bg[c], 0.0f, 1.0f) * 255.0f + 0.5f);
+    }
+    o[3] = 255;
   }
 }
 
