@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 
 #include <glm/gtc/packing.hpp>
@@ -80,6 +81,32 @@ void fromEmission16(const uint8_t* in, float* out) {
   const EmissionTables& t = emissionTables();
   for (int c = 0; c < 3; ++c) out[c] = t.colour[v[c]];
   out[3] = t.alpha[v[3]];
+}
+
+void encodeEmission(std::span<const float> px, std::vector<uint8_t>& out, uint32_t max_run) {
+  if (max_run < 1 || max_run > kMaxRun)
+    throw std::invalid_argument("RLE: max_run must be in [1, 2^24 - 1]");
+  const size_t n = px.size() / 4, start = out.size();
+  out.resize(start + n * 8);  // the most it can take: each pixel or run marker is 8 bytes
+  uint8_t* o = out.data() + start;
+  size_t i = 0;
+  while (i < n) {
+    if (shows(&px[4 * i])) {  // toEmission16 makes its alpha word non-zero: not a run
+      toEmission16(&px[4 * i], o);
+      o += 8;
+      ++i;
+      continue;
+    }
+    size_t j = i + 1;
+    while (j < n && !shows(&px[4 * j]) && j - i < max_run) ++j;
+    const uint32_t run = uint32_t(j - i);
+    const uint8_t marker[8] = {uint8_t(run & 0xff), uint8_t((run >> 8) & 0xff),
+                               uint8_t((run >> 16) & 0xff)};
+    std::memcpy(o, marker, 8);
+    o += 8;
+    i = j;
+  }
+  out.resize(size_t(o - out.data()));
 }
 
 Rect intersect(const Rect& a, const Rect& b) {

@@ -9,6 +9,7 @@
 // same RGBA8 value within 1 (RGBA8 partials would add up to half a step per round). The finished
 // parts sent to rank 0 are final values and travel as RGBA8.
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "common/camera.h"
@@ -55,6 +56,10 @@ inline bool shows(const float* p) { return p[3] > 0.0f || p[0] > 0.0f || p[1] > 
 // One premultiplied float pixel to / from the Emission wire format (8 bytes).
 void toEmission16(const float* in, uint8_t* out);
 void fromEmission16(const uint8_t* in, float* out);
+// Float pixels (RGBA, premultiplied) to the Emission format and RLE in one pass, appended to
+// `out`: the same bytes as toEmission16 on each pixel and then rleEncode(..., 8, max_run), without
+// the intermediate buffer (a transparent pixel is one that does not show).
+void encodeEmission(std::span<const float> px, std::vector<uint8_t>& out, uint32_t max_run);
 
 // `img`'s pixels inside `part`, shrunk to their active rectangle, rounded to `format` and
 // RLE-encoded (`rle` false: with runs of 1, as long as the raw pixels); `id` goes into the brick

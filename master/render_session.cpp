@@ -501,9 +501,7 @@ FrameResult RenderSession::render(const FrameRequest& request) {
         BrickImage img{mine[i], bf.rect, {}};
         const int pixel_bytes = glow ? 8 : 4;  // glow: WireFormat::Emission
         if (!bf.rect.empty() && glow) {
-          std::vector<uint8_t> px(size_t(bf.rect.area()) * 8);
-          for (size_t p = 0; p < size_t(bf.rect.area()); ++p) toEmission16(&bf.pixels_f[4 * p], &px[8 * p]);
-          rleEncode(px, img.rle, 8, sc.rle ? kMaxRun : 1);
+          encodeEmission(bf.pixels_f, img.rle, sc.rle ? kMaxRun : 1);
         } else if (!bf.rect.empty()) {
           rleEncode(bf.pixels.px, img.rle, 4, sc.rle ? kMaxRun : 1);
         }

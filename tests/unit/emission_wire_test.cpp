@@ -8,6 +8,7 @@
 
 #include "compositing/blend.h"
 #include "compositing/rect_image.h"
+#include "compositing/rle.h"
 
 namespace sortlast {
 namespace {
@@ -54,6 +55,26 @@ TEST(EmissionWire, CorruptHalvesAreNeverPassedOn) {
   float out[4];
   fromEmission16(in, out);
   for (float v : out) EXPECT_TRUE(std::isfinite(v));
+}
+
+TEST(EmissionWire, FusedEncodeIsToEmission16ThenRle) {
+  // Runs at both ends, a run longer than max_run = 3, glow without opacity, an opaque pixel and
+  // NaN / Inf (which toEmission16 clamps or passes to glm): the same bytes either way.
+  const float px[][4] = {{0, 0, 0, 0}, {0, 0, 0, 0},     {2.5f, 0, 1e-6f, 0}, {0, 0, 0, 0},
+                         {0, 0, 0, 0}, {0, 0, 0, 0},     {0, 0, 0, 0},        {0, 0, 0, 0},
+                         {0.1f, 0.2f, 0.3f, 1}, {NAN, 1, 1e9f, 0.5f}, {0, 0, INFINITY, 0},
+                         {0, 0, 0, 0}};
+  const size_t n = sizeof(px) / sizeof(px[0]);
+  std::vector<float> flat(&px[0][0], &px[0][0] + 4 * n);
+  std::vector<uint8_t> raw(8 * n);
+  for (size_t i = 0; i < n; ++i) toEmission16(px[i], &raw[8 * i]);
+  for (uint32_t max_run : {1u, 3u, kMaxRun}) {
+    std::vector<uint8_t> fused = {7};  // appends, as rleEncode does
+    encodeEmission(flat, fused, max_run);
+    std::vector<uint8_t> want = {7};
+    rleEncode(raw, want, 8, max_run);
+    EXPECT_EQ(fused, want) << max_run;
+  }
 }
 
 }  // namespace
