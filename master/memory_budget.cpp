@@ -125,13 +125,17 @@ MemoryNeed imageNeed(const Scene& scene, int width, int height, int rank, int br
         px * (16 + 16 + 4 + 4));
   if (scene.particles.enabled())  // metaball state, hit, potential, colour and surface images
     n.add("metaball image targets", px * (scene.particles.method == "grid" ? 16 : 6 * 16 + 4));
+  // Glow scenes: the glow pass's own RGBA32F target and its float read-back.
+  if (scene.glow.enabled()) n.add("glow image targets", px * (16 + 16));
   // Compositing: the brick images this rank holds, a float frame, and on rank 0 the brick images
   // received and the final frame in RGBA8 and float. A brick image covers only its brick's screen
   // rectangle, and a ray crosses at most about 2 d of the d^3 bricks, so the images held sum to
-  // at most about 2 d frames (RGBA8, RLE no larger).
+  // at most about 2 d frames (RLE no larger): 4 bytes a pixel in RGBA8, 8 in the half-float
+  // Emission format of glow scenes (docs/glow.md).
   const int d = scene.bricks_per_axis;
-  double comp = px * (4.0 * std::min(bricks_here, 2 * d) + 16.0);
-  if (rank == 0) comp += px * (4.0 * std::min(bricks_all, 2 * d) + 16 + 16 + 4);
+  const double image_px = scene.glow.enabled() ? 8.0 : 4.0;
+  double comp = px * (image_px * std::min(bricks_here, 2 * d) + 16.0);
+  if (rank == 0) comp += px * (image_px * std::min(bricks_all, 2 * d) + 16 + 16 + 4);
   n.add("compositing buffers", comp);
   return n;
 }

@@ -92,6 +92,13 @@ TEST(MemoryBudget, RefusesWhatCannotFitNamingTheParts) {
   // Images: a 32768^2 frame alone needs > 40 GiB on rank 0.
   Scene big = loadScene("", {"image.width=32768", "image.height=32768"});
   EXPECT_GT(imageNeed(big, 32768, 32768, 0, 4, 8).total(), 40.0 * 1024 * 1024 * 1024);
+  // Glow scenes hold their brick images in half floats (8 bytes a pixel, not 4) and a float
+  // glow target with its read-back (32): rank 0 holding 2 of 8 bricks (d = 2) and receiving at
+  // most 2 d = 4 adds (4 x (2 + 4) + 32) bytes a pixel.
+  Scene glow = loadScene("", {"glow.emitters=[{center: [0, 0, 0], direction: [0, 0, 1], a: 1, b: 1, "
+                              "color: [1, 1, 1]}]"});
+  const double plain = imageNeed(loadScene("", {}), 1024, 1024, 0, 2, 8).total();
+  EXPECT_DOUBLE_EQ(imageNeed(glow, 1024, 1024, 0, 2, 8).total() - plain, 1024.0 * 1024 * (4 * (2 + 4) + 32));
   // The default scene fits in 1 GiB.
   Scene small = loadScene("", {});
   SessionLayout sl = makeLayout(small, Box3{glm::dvec3(1), glm::dvec3(-1)}, 0, 1);
