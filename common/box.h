@@ -29,6 +29,17 @@ struct Box3 {
   }
 };
 
+// Box algebra, as closed boxes: a box holds its faces, so lo > hi on some axis is empty and a box
+// of zero thickness (lo == hi: two boxes that only touch) is not. `Box3{glm::dvec3(1),
+// glm::dvec3(-1)}` is the project's "no box". Exact: min and max round nothing, so a brick face
+// shared by two bricks stays bit-identical.
+inline Box3 intersect(const Box3& a, const Box3& b) { return {glm::max(a.lo, b.lo), glm::min(a.hi, b.hi)}; }
+inline Box3 unite(const Box3& a, const Box3& b) { return {glm::min(a.lo, b.lo), glm::max(a.hi, b.hi)}; }
+inline bool isEmpty(const Box3& b) { return b.lo.x > b.hi.x || b.lo.y > b.hi.y || b.lo.z > b.hi.z; }
+// The half-open view: the box holds a positive volume (lo < hi on every axis), so a share of zero
+// thickness, where two boxes only touch, counts as nothing.
+inline bool hasVolume(const Box3& b) { return b.lo.x < b.hi.x && b.lo.y < b.hi.y && b.lo.z < b.hi.z; }
+
 // Inclusive range of sample indices [lo, hi] on each axis.
 struct IndexBox {
   glm::ivec3 lo{0}, hi{-1};

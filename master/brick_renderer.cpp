@@ -78,8 +78,7 @@ void BrickRenderer::enableSurfaces(const std::vector<SurfaceSpec>& surfaces) {
 
 int BrickRenderer::addHandles(Handles h, const Box3& clip) {
   h.clip = clip;
-  h.surfaces = subdiv_ && glm::all(glm::lessThanEqual(glm::max(clip.lo, surface_bounds_.lo),
-                                                        glm::min(clip.hi, surface_bounds_.hi)));
+  h.surfaces = subdiv_ && !isEmpty(intersect(clip, surface_bounds_));  // closed: a touching face counts
   bricks_.push_back(h);
   return int(bricks_.size()) - 1;
 }
@@ -175,7 +174,7 @@ SurfaceLayer BrickRenderer::mergeSurfaceLayers(const Handles& h, const Camera& c
   // Where this brick's part of the surfaces can show: the limit surface lies in the control
   // points' bounds. A pixel whose Newton steps stop short of its ray (within the coarse mesh's
   // deviation of a silhouette) may show a limit point just outside that projection: 2 pixels more.
-  const Box3 part{glm::max(h.clip.lo, surface_bounds_.lo), glm::min(h.clip.hi, surface_bounds_.hi)};
+  const Box3 part = intersect(h.clip, surface_bounds_);
   Rect r = screenRectOf(cam, part);
   if (r.empty()) return under;
   const int x0 = std::max(0, r.x - 2), y0 = std::max(0, r.y - 2);

@@ -7,8 +7,6 @@
 namespace sortlast {
 
 Box3 grow(const Box3& b, double by) { return {b.lo - by, b.hi + by}; }
-Box3 unite(const Box3& a, const Box3& b) { return {glm::min(a.lo, b.lo), glm::max(a.hi, b.hi)}; }
-bool isEmpty(const Box3& b) { return b.lo.x > b.hi.x; }
 
 SessionLayout makeLayout(const Scene& scene, const Box3& particle_centres, int rank, int size) {
   SessionLayout L;

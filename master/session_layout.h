@@ -39,7 +39,5 @@ void checkCameraOutside(const Camera& cam, const Box3& box, const std::string& w
 std::pair<double, double> depthRange(const Camera& cam, const Box3& box);
 
 Box3 grow(const Box3& b, double by);
-Box3 unite(const Box3& a, const Box3& b);
-bool isEmpty(const Box3& b);
 
 }  // namespace sortlast
