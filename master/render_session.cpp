@@ -391,8 +391,8 @@ void RenderSession::State::uploadBricks(const Scene& scene, StepData& d) {
                                          vb && adaptive ? &d.adaptive.bricks[i] : nullptr));
     // The brick's share of the glow box: brick boxes tile it, so the shares add up to the whole.
     if (scene.glow.enabled()) {
-      const Box3 g{glm::max(clip.lo, layout.glow_box.lo), glm::min(clip.hi, layout.glow_box.hi)};
-      if (g.lo.x < g.hi.x && g.lo.y < g.hi.y && g.lo.z < g.hi.z) renderer->setBrickGlow(handles.back(), g, layout.glow_box);
+      const Box3 g = intersect(clip, layout.glow_box);
+      if (hasVolume(g)) renderer->setBrickGlow(handles.back(), g, layout.glow_box);
     }
   }
 }
