@@ -202,7 +202,7 @@ std::vector<SurfaceSpec> parseSurfaces(const YAML::Node& list, const std::filesy
 }
 
 Box3 surfacesBounds(const std::vector<SurfaceSpec>& surfaces) {
-  Box3 b{glm::dvec3(1), glm::dvec3(-1)};
+  Box3 b = noBox();
   for (const SurfaceSpec& s : surfaces)
     b = isEmpty(b) ? s.bounds : unite(b, s.bounds);
   return b;

@@ -170,8 +170,8 @@ void InSitu::Impl::prepareStep(const std::vector<size_t>& firing) {
   ext.data_max = range[1];
   SessionLayout& L = ext.layout;
   L.particle_h = h;
-  L.particle_domain = has_particles ? grow(pe.bounds, h) : Box3{glm::dvec3(1), glm::dvec3(-1)};
-  std::vector<Box3> regions(size_t(size), Box3{glm::dvec3(1), glm::dvec3(-1)});
+  L.particle_domain = has_particles ? grow(pe.bounds, h) : noBox();
+  std::vector<Box3> regions(size_t(size), noBox());
   if (has_grid) {
     // One brick per rank with cells; brick ids count those ranks (the compositors want 0 ... n-1).
     L.grid = grid.grid;

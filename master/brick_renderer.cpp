@@ -241,7 +241,7 @@ BrickFrame BrickRenderer::render(int handle, const Camera& cam, double slice_spa
   }
   // Glow in a volume brick: the ray caster integrates it (the session refuses slicing).
   std::optional<GlowPass> glow;
-  if (glow_) glow = glow_->pass(h.glow ? h.glow_box : Box3{glm::dvec3(1), glm::dvec3(-1)}, h.glow_whole);
+  if (glow_) glow = glow_->pass(h.glow ? h.glow_box : noBox(), h.glow_whole);
   RenderedBrick rb;
   if (auto* ray = std::get_if<std::unique_ptr<RaycastRenderer>>(&volume_); ray && *ray)
     rb = (*ray)->render(h.volume, cam, slice_spacing, near_plane, far_plane, opaque, glow ? &*glow : nullptr);

@@ -214,7 +214,7 @@ RenderSession::RenderSession(SessionOptions options, MPI_Comm comm) : s_(std::ma
   // Particles: rank 0 loads the current step; the brick grid and the camera frame the centres of
   // every step of a series (read once here, then dropped).
   RootParticles first;
-  Box3 centres{glm::dvec3(1), glm::dvec3(-1)};
+  Box3 centres = noBox();
   if (scene.particles.enabled()) {
     first = loadParticlesOnRoot(scene.particles, comm);
     if (first.total > 0) centres = first.bounds;
