@@ -78,7 +78,8 @@ void BrickRenderer::enableSurfaces(const std::vector<SurfaceSpec>& surfaces) {
 
 int BrickRenderer::addHandles(Handles h, const Box3& clip) {
   h.clip = clip;
-  h.surfaces = subdiv_ && !isEmpty(intersect(clip, surface_bounds_));  // closed: a touching face counts
+  // Closed boxes: surfaces that only touch the brick's face are the brick's too.
+  h.surfaces = subdiv_ && !isEmpty(intersect(clip, surface_bounds_));
   bricks_.push_back(h);
   return int(bricks_.size()) - 1;
 }

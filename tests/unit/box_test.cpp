@@ -42,7 +42,8 @@ TEST(Box, UniteAndIntersectAreExact) {
 
 TEST(Box, IndexBoxesAreInclusive) {
   const IndexBox a{{0, 0, 0}, {4, 4, 4}};
-  EXPECT_EQ(intersect(a, IndexBox{{4, 2, 0}, {9, 9, 9}}).count(), 1LL * 1 * 3 * 5);  // one shared sample layer
+  // One shared layer of samples (x = 4), 3 by 5 of them.
+  EXPECT_EQ(intersect(a, IndexBox{{4, 2, 0}, {9, 9, 9}}).count(), 1LL * 1 * 3 * 5);
   EXPECT_EQ(intersect(a, IndexBox{{5, 0, 0}, {9, 4, 4}}).count(), 0);
 }
 
