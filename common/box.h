@@ -29,6 +29,26 @@ struct Box3 {
   }
 };
 
+// Box algebra, as closed boxes: a box holds its faces, so lo > hi on some axis is empty and a box
+// of zero thickness (lo == hi: two boxes that only touch) is not. Exact: min and max round
+// nothing, so a brick face shared by two bricks stays bit-identical.
+//
+// "No box": empty on every axis. Uniting with it would not give the other box (its lo and hi
+// would join the result), so callers unite only boxes that are not empty.
+inline Box3 noBox() { return {glm::dvec3(1.0), glm::dvec3(-1.0)}; }
+inline Box3 intersect(const Box3& a, const Box3& b) {
+  return {glm::max(a.lo, b.lo), glm::min(a.hi, b.hi)};
+}
+inline Box3 unite(const Box3& a, const Box3& b) {
+  return {glm::min(a.lo, b.lo), glm::max(a.hi, b.hi)};
+}
+inline bool isEmpty(const Box3& b) { return b.lo.x > b.hi.x || b.lo.y > b.hi.y || b.lo.z > b.hi.z; }
+// The half-open view: the box holds a positive volume (lo < hi on every axis), so a share of zero
+// thickness, where two boxes only touch, counts as nothing.
+inline bool hasVolume(const Box3& b) {
+  return b.lo.x < b.hi.x && b.lo.y < b.hi.y && b.lo.z < b.hi.z;
+}
+
 // Inclusive range of sample indices [lo, hi] on each axis.
 struct IndexBox {
   glm::ivec3 lo{0}, hi{-1};
@@ -39,6 +59,11 @@ struct IndexBox {
     return (s.x <= 0 || s.y <= 0 || s.z <= 0) ? 0 : 1LL * s.x * s.y * s.z;
   }
 };
+
+// The samples both hold (inclusive, so count() == 0 when they share none).
+inline IndexBox intersect(const IndexBox& a, const IndexBox& b) {
+  return {glm::max(a.lo, b.lo), glm::min(a.hi, b.hi)};
+}
 
 // Ray-box slab test. Returns false if the ray misses; otherwise [t0, t1] is the parametric overlap
 // (t0 may be negative if the origin is inside).

@@ -228,7 +228,7 @@ Box3 fieldBoundInside(const Box3& clip, const std::vector<glm::vec3>& particles,
     lo = glm::min(lo, glm::dvec3(p));
     hi = glm::max(hi, glm::dvec3(p));
   }
-  return {glm::max(clip.lo, lo - h), glm::min(clip.hi, hi + h)};
+  return intersect(clip, Box3{lo - h, hi + h});
 }
 
 std::vector<glm::vec3> particlesNear(const std::vector<glm::vec3>& all, const Box3& box,

@@ -332,7 +332,7 @@ std::vector<Camera> Scene::frameCameras(const Box3& bounds) const {
   Camera base = camera;
   // No volume and no particles leaves an empty box; one particle, a point: any camera that looks
   // at where the (absent) data would be will do.
-  bool empty = bounds.lo.x > bounds.hi.x || bounds.lo.y > bounds.hi.y || bounds.lo.z > bounds.hi.z;
+  const bool empty = isEmpty(bounds);
   glm::dvec3 e = bounds.extent();
   double largest = glm::max(e.x, glm::max(e.y, e.z));
   double extent = empty || !(largest > 0.0) ? 1.0 : largest;

@@ -202,15 +202,15 @@ std::vector<SurfaceSpec> parseSurfaces(const YAML::Node& list, const std::filesy
 }
 
 Box3 surfacesBounds(const std::vector<SurfaceSpec>& surfaces) {
-  Box3 b{glm::dvec3(1), glm::dvec3(-1)};
+  Box3 b = noBox();
   for (const SurfaceSpec& s : surfaces)
-    b = b.lo.x > b.hi.x ? s.bounds : Box3{glm::min(b.lo, s.bounds.lo), glm::max(b.hi, s.bounds.hi)};
+    b = isEmpty(b) ? s.bounds : unite(b, s.bounds);
   return b;
 }
 
 Box3 surfacesDomain(const std::vector<SurfaceSpec>& surfaces) {
   Box3 b = surfacesBounds(surfaces);
-  if (b.lo.x > b.hi.x) return b;
+  if (isEmpty(b)) return b;
   const double by = 0.01 * glm::length(b.hi - b.lo);
   return {b.lo - by, b.hi + by};
 }

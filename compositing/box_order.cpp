@@ -8,8 +8,6 @@ namespace sortlast {
 
 namespace {
 
-bool isEmptyBox(const Box3& b) { return b.lo.x > b.hi.x || b.lo.y > b.hi.y || b.lo.z > b.hi.z; }
-
 bool overlapsOn(const Box3& a, const Box3& b, int axis) {
   return std::min(a.hi[axis], b.hi[axis]) > std::max(a.lo[axis], b.lo[axis]);
 }
@@ -23,7 +21,7 @@ std::vector<int> backToFrontBoxes(const std::vector<Box3>& boxes, const glm::dve
   for (int i = 0; i < n; ++i)
     for (int j = i + 1; j < n; ++j) {
       const Box3 &a = boxes[size_t(i)], &b = boxes[size_t(j)];
-      if (isEmptyBox(a) || isEmptyBox(b)) continue;
+      if (isEmpty(a) || isEmpty(b)) continue;
       for (int axis = 0; axis < 3; ++axis) {
         const int u = (axis + 1) % 3, v = (axis + 2) % 3;
         if (!overlapsOn(a, b, u) || !overlapsOn(a, b, v)) continue;
@@ -42,10 +40,10 @@ std::vector<int> backToFrontBoxes(const std::vector<Box3>& boxes, const glm::dve
     }
   std::vector<int> order;
   for (int i = 0; i < n; ++i)
-    if (isEmptyBox(boxes[size_t(i)])) order.push_back(i);
+    if (isEmpty(boxes[size_t(i)])) order.push_back(i);
   std::priority_queue<int, std::vector<int>, std::greater<int>> ready;
   for (int i = 0; i < n; ++i)
-    if (!isEmptyBox(boxes[size_t(i)]) && before_count[size_t(i)] == 0) ready.push(i);
+    if (!isEmpty(boxes[size_t(i)]) && before_count[size_t(i)] == 0) ready.push(i);
   while (!ready.empty()) {
     int i = ready.top();
     ready.pop();

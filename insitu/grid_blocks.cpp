@@ -23,10 +23,6 @@ glm::ivec3 ownedDims(const GridBlock& b) { return ivec(b.dims) - ivec(b.ghost_lo
 
 bool emptyBox(const IndexBox& b) { return b.count() == 0; }
 
-IndexBox intersect(const IndexBox& a, const IndexBox& b) {
-  return {glm::max(a.lo, b.lo), glm::min(a.hi, b.hi)};
-}
-
 // Element strides of the block's array: as given, or dense x fastest.
 glm::i64vec3 stridesOf(const GridBlock& b) {
   if (b.strides[0] == 0 && b.strides[1] == 0 && b.strides[2] == 0)
@@ -170,7 +166,7 @@ GridLayout gatherGridLayout(const GridBlock& mine, MPI_Comm comm) {
       b.stored = {glm::max(b.domain.lo - 1, glm::ivec3(0)), glm::min(b.domain.hi + 1, dims - 1)};
       b.world = L.grid.worldBoxOf(b.domain);
     } else {
-      b.world = {glm::dvec3(1), glm::dvec3(-1)};
+      b.world = noBox();
     }
     L.bricks.push_back(b);
   }

@@ -170,8 +170,8 @@ void InSitu::Impl::prepareStep(const std::vector<size_t>& firing) {
   ext.data_max = range[1];
   SessionLayout& L = ext.layout;
   L.particle_h = h;
-  L.particle_domain = has_particles ? grow(pe.bounds, h) : Box3{glm::dvec3(1), glm::dvec3(-1)};
-  std::vector<Box3> regions(size_t(size), Box3{glm::dvec3(1), glm::dvec3(-1)});
+  L.particle_domain = has_particles ? grow(pe.bounds, h) : noBox();
+  std::vector<Box3> regions(size_t(size), noBox());
   if (has_grid) {
     // One brick per rank with cells; brick ids count those ranks (the compositors want 0 ... n-1).
     L.grid = grid.grid;
@@ -236,10 +236,14 @@ void InSitu::Impl::prepareStep(const std::vector<size_t>& firing) {
 void InSitu::Impl::renderAction(const RenderAction& ra, size_t index, ExecuteReport& report) {
   FrameRequest base;
   base.overrides = shiftCamera(ra.overrides, shift);
+  // The render's scene is checked as a request's is: one it refuses (glow emitters, say) is this
+  // step's error on every rank, reported or aborting as on_error says, not an exception that ends
+  // the simulation.
+  Scene sc;
+  collectively(comm, [&] { sc = session->check(base); });
   // The images of this render: the output pattern's (one, or an orbit's), and the Cinema sweep's.
   std::vector<std::pair<FrameRequest, std::string>> views;
   if (!ra.output.empty()) {
-    Scene sc = session->check(base);
     const int frames = std::max(1, sc.orbit_frames);
     for (int f = 0; f < frames; ++f) {
       FrameRequest r = base;

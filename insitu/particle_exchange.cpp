@@ -60,7 +60,7 @@ std::vector<glm::vec3> exchangeParticles(const ParticleBlock& mine, const glm::d
     glm::dvec3 p = positionOf(mine, i) - shift;
     for (int r = 0; r < size; ++r) {
       const Box3& box = regions[size_t(r)];
-      if (box.lo.x > box.hi.x || distanceToBox(p, box) > margin) continue;
+      if (isEmpty(box) || distanceToBox(p, box) > margin) continue;
       to[size_t(r)].insert(to[size_t(r)].end(), {float(p.x), float(p.y), float(p.z)});
     }
   }

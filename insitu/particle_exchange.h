@@ -18,7 +18,7 @@ namespace sortlast {
 // Collective. Bounds of every rank's particle centres (in sortlast's world) and their total count;
 // throws InputError naming the rank and index of a NaN or infinite position.
 struct ParticleExtent {
-  Box3 bounds{glm::dvec3(1), glm::dvec3(-1)};  // lo > hi: no particle anywhere
+  Box3 bounds = noBox();  // lo > hi: no particle anywhere
   long long total = 0;
 };
 ParticleExtent gatherParticleExtent(const ParticleBlock& mine, const glm::dvec3& shift, MPI_Comm comm);

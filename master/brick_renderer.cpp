@@ -78,8 +78,8 @@ void BrickRenderer::enableSurfaces(const std::vector<SurfaceSpec>& surfaces) {
 
 int BrickRenderer::addHandles(Handles h, const Box3& clip) {
   h.clip = clip;
-  h.surfaces = subdiv_ && glm::all(glm::lessThanEqual(glm::max(clip.lo, surface_bounds_.lo),
-                                                        glm::min(clip.hi, surface_bounds_.hi)));
+  // Closed boxes: surfaces that only touch the brick's face are the brick's too.
+  h.surfaces = subdiv_ && !isEmpty(intersect(clip, surface_bounds_));
   bricks_.push_back(h);
   return int(bricks_.size()) - 1;
 }
@@ -175,7 +175,7 @@ SurfaceLayer BrickRenderer::mergeSurfaceLayers(const Handles& h, const Camera& c
   // Where this brick's part of the surfaces can show: the limit surface lies in the control
   // points' bounds. A pixel whose Newton steps stop short of its ray (within the coarse mesh's
   // deviation of a silhouette) may show a limit point just outside that projection: 2 pixels more.
-  const Box3 part{glm::max(h.clip.lo, surface_bounds_.lo), glm::min(h.clip.hi, surface_bounds_.hi)};
+  const Box3 part = intersect(h.clip, surface_bounds_);
   Rect r = screenRectOf(cam, part);
   if (r.empty()) return under;
   const int x0 = std::max(0, r.x - 2), y0 = std::max(0, r.y - 2);
@@ -242,7 +242,7 @@ BrickFrame BrickRenderer::render(int handle, const Camera& cam, double slice_spa
   }
   // Glow in a volume brick: the ray caster integrates it (the session refuses slicing).
   std::optional<GlowPass> glow;
-  if (glow_) glow = glow_->pass(h.glow ? h.glow_box : Box3{glm::dvec3(1), glm::dvec3(-1)}, h.glow_whole);
+  if (glow_) glow = glow_->pass(h.glow ? h.glow_box : noBox(), h.glow_whole);
   RenderedBrick rb;
   if (auto* ray = std::get_if<std::unique_ptr<RaycastRenderer>>(&volume_); ray && *ray)
     rb = (*ray)->render(h.volume, cam, slice_spacing, near_plane, far_plane, opaque, glow ? &*glow : nullptr);

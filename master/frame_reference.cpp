@@ -79,20 +79,19 @@ FrameReference::FrameReference(Scene scene, int threads)
     in.tf = scene.transfer.build(*lo, *hi, scene.volume.grid.minSpacing());
     in.step = scene.reference_step * scene.volume.grid.minSpacing();
     in.shading = scene.shading;
-    Box3 v = in.vol.grid.worldBox();
-    bounds_ = {glm::min(bounds_.lo, v.lo), glm::max(bounds_.hi, v.hi)};
+    bounds_ = unite(bounds_, in.vol.grid.worldBox());
     volume_ = std::move(in);
   }
   if (!scene.surfaces.empty()) {
     subdiv_.emplace(scene.surfaces);
     const Box3 s = surfacesDomain(scene.surfaces);  // as the render session's layout takes it
-    bounds_ = {glm::min(bounds_.lo, s.lo), glm::max(bounds_.hi, s.hi)};
+    bounds_ = unite(bounds_, s);
   }
   glow_ = scene.glow;
   if (glow_.enabled()) {
     // The scene refuses emitters alone without a box, so one of the two exists.
     glow_box_ = glow_.box.value_or(bounds_);
-    bounds_ = {glm::min(bounds_.lo, glow_box_.lo), glm::max(bounds_.hi, glow_box_.hi)};
+    bounds_ = unite(bounds_, glow_box_);
   }
 }
 

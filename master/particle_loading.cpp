@@ -34,7 +34,7 @@ std::vector<glm::vec3> scatterParticles(const RootParticles& root, const std::ve
     for (int r = 0; r < size; ++r) {
       const Box3& box = region[size_t(r)];
       std::vector<glm::vec3> part;
-      if (box.lo.x <= box.hi.x) part = particlesNear(root.set.positions, box, margin);
+      if (!isEmpty(box)) part = particlesNear(root.set.positions, box, margin);
       displs[size_t(r)] = int(packed.size());
       counts[size_t(r)] = int(part.size() * 3);
       for (const glm::vec3& p : part) packed.insert(packed.end(), {p.x, p.y, p.z});

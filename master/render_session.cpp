@@ -74,8 +74,13 @@ void dumpLayer(const std::string& dir, const BrickImage& img) {
 }
 
 // What the GL path draws with glow emitters (docs/glow.md), checked at start and per request.
-void checkGlowScene(const Scene& sc) {
+// In situ (external) none: the simulation's bricks have no glow boxes, so glow is refused rather
+// than drawn without them.
+void checkGlowScene(const Scene& sc, bool external) {
   if (!sc.glow.enabled()) return;
+  if (external)
+    throw InputError("scene key 'glow.emitters': in situ sessions do not draw glow emitters; "
+                     "remove them (`sortlast render` and `serve` draw them)");
   if (sc.precision == "rgba8")
     throw InputError("scene keys 'glow.emitters' and 'compositing.precision: rgba8' cannot go "
                      "together: glow is light above 1 until the final tone map, which 8-bit "
@@ -198,7 +203,7 @@ RenderSession::RenderSession(SessionOptions options, MPI_Comm comm) : s_(std::ma
     S.base = parseScene(S.opts.scene, S.opts.overrides);
     S.adaptive = usesAdaptiveBlocks(S.base);
     if (S.base.hasVolume()) validateVolume(S.base.volume);
-    checkGlowScene(S.base);
+    checkGlowScene(S.base, false);
   });
   const Scene& scene = S.base;
   S.budget = memoryBudget(scene, comm);
@@ -209,7 +214,7 @@ RenderSession::RenderSession(SessionOptions options, MPI_Comm comm) : s_(std::ma
   // Particles: rank 0 loads the current step; the brick grid and the camera frame the centres of
   // every step of a series (read once here, then dropped).
   RootParticles first;
-  Box3 centres{glm::dvec3(1), glm::dvec3(-1)};
+  Box3 centres = noBox();
   if (scene.particles.enabled()) {
     first = loadParticlesOnRoot(scene.particles, comm);
     if (first.total > 0) centres = first.bounds;
@@ -265,10 +270,7 @@ std::unique_ptr<RenderSession> RenderSession::external(SessionOptions options, M
     if (!S->base.surfaces.empty())
       throw InputError("scene key 'surfaces': subdivision surfaces are not drawn in situ (the "
                        "simulation's bricks need not hold them); use `sortlast render` or `serve`");
-    // The simulation's bricks have no glow boxes (docs/glow.md): refused, not drawn without it.
-    if (S->base.glow.enabled())
-      throw InputError("scene key 'glow.emitters': in situ sessions do not draw glow emitters; "
-                       "remove them (`sortlast render` and `serve` draw them)");
+    checkGlowScene(S->base, true);
     S->renderer = std::make_unique<BrickRenderer>(S->base.backend, S->base.camera.width, S->base.camera.height);
   });
   S->budget = memoryBudget(S->base, comm);  // requests' image sizes are checked against it
@@ -324,11 +326,9 @@ Scene RenderSession::State::resolve(const FrameRequest& request) const {
     sc.adaptive_tolerance = 0.0;
   }
   usesAdaptiveBlocks(sc);  // adaptive blocks need the ray caster: refuse slicing
-  checkGlowScene(sc);
+  checkGlowScene(sc, external);
   // The layout and the renderers were made with or without glow (the bricks reach out to
   // glow.box, the images travel in float): a request may change the emitters, not their presence.
-  if (external && sc.glow.enabled())
-    throw InputError("scene key 'glow.emitters': in situ sessions do not draw glow emitters");
   if (sc.glow.enabled() != base.glow.enabled())
     throw InputError(base.glow.enabled()
                          ? "scene key 'glow.emitters': this session draws glow and a request cannot remove "
@@ -391,8 +391,8 @@ void RenderSession::State::uploadBricks(const Scene& scene, StepData& d) {
                                          vb && adaptive ? &d.adaptive.bricks[i] : nullptr));
     // The brick's share of the glow box: brick boxes tile it, so the shares add up to the whole.
     if (scene.glow.enabled()) {
-      const Box3 g{glm::max(clip.lo, layout.glow_box.lo), glm::min(clip.hi, layout.glow_box.hi)};
-      if (g.lo.x < g.hi.x && g.lo.y < g.hi.y && g.lo.z < g.hi.z) renderer->setBrickGlow(handles.back(), g, layout.glow_box);
+      const Box3 g = intersect(clip, layout.glow_box);
+      if (hasVolume(g)) renderer->setBrickGlow(handles.back(), g, layout.glow_box);
     }
   }
 }

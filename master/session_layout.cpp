@@ -7,8 +7,6 @@
 namespace sortlast {
 
 Box3 grow(const Box3& b, double by) { return {b.lo - by, b.hi + by}; }
-Box3 unite(const Box3& a, const Box3& b) { return {glm::min(a.lo, b.lo), glm::max(a.hi, b.hi)}; }
-bool isEmpty(const Box3& b) { return b.lo.x > b.hi.x; }
 
 SessionLayout makeLayout(const Scene& scene, const Box3& particle_centres, int rank, int size) {
   SessionLayout L;
@@ -17,7 +15,7 @@ SessionLayout makeLayout(const Scene& scene, const Box3& particle_centres, int r
   if (scene.hasVolume()) L.volume_bricks = makeBricks(scene.volume.grid, d);
   // The domain holds every particle's field: h, or the anisotropic ellipsoids' reach.
   L.particle_h = scene.particles.enabled() ? scene.particles.reach() : 0.0;
-  L.particle_domain = isEmpty(particle_centres) ? Box3{glm::dvec3(1), glm::dvec3(-1)}
+  L.particle_domain = isEmpty(particle_centres) ? noBox()
                                                 : grow(particle_centres, L.particle_h);
   // Subdivision surfaces join the particles' domain (common/surface_scene.h: surfacesDomain).
   const Box3 surfaces = surfacesDomain(scene.surfaces);

@@ -22,7 +22,7 @@ struct SessionLayout {
   Box3 bounds;            // the scene's box
   Box3 particle_domain;   // particle centres (of every step) grown by h (lo > hi: no particles)
   double particle_h = 0;  // the h the domain was grown by
-  Box3 glow_box{glm::dvec3(1), glm::dvec3(-1)};  // glow.box, or the scene's bounds (lo > hi: no glow)
+  Box3 glow_box = noBox();  // glow.box, or the scene's bounds (lo > hi: no glow)
   std::vector<int> mine;  // this rank's brick ids
 };
 
@@ -39,7 +39,5 @@ void checkCameraOutside(const Camera& cam, const Box3& box, const std::string& w
 std::pair<double, double> depthRange(const Camera& cam, const Box3& box);
 
 Box3 grow(const Box3& b, double by);
-Box3 unite(const Box3& a, const Box3& b);
-bool isEmpty(const Box3& b);
 
 }  // namespace sortlast

@@ -97,8 +97,8 @@ void MetaballSlicesRenderer::splat(GpuBrick& g, const SliceLattice& L,
   g.voxel_lo = L.voxel_lo;
   g.dims = L.dims;
   g.slots = L.slots();
-  g.bound = {glm::max(g.clip.lo, glm::dvec3(glm::vec3(L.voxel_lo) * edge)),
-             glm::min(g.clip.hi, glm::dvec3(glm::vec3(L.voxel_lo + L.dims) * edge))};
+  g.bound = intersect(g.clip, Box3{glm::dvec3(glm::vec3(L.voxel_lo) * edge),
+                                   glm::dvec3(glm::vec3(L.voxel_lo + L.dims) * edge)});
   // The lists hold the centres and, in w, the particle's number (for a per-particle kernel).
   std::vector<glm::vec4> items(L.items.size());
   for (size_t i = 0; i < items.size(); ++i) {

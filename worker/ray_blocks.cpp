@@ -46,7 +46,7 @@ BrickBlocks cutBrickBlocks(const Brick& brick, const GridGeometry& grid, const B
         IndexBox cut{{cuts[0][x], cuts[1][y], cuts[2][z]}, {cuts[0][x + 1], cuts[1][y + 1], cuts[2][z + 1]}};
         std::tie(b.vmin[i], b.vmax[i]) = samples.range(cut);
         const glm::ivec3 c = b.first + glm::ivec3(x, y, z);
-        IndexBox grown{glm::max(c * B - 1, brick.stored.lo), glm::min((c + 1) * B + 1, brick.stored.hi)};
+        const IndexBox grown = intersect(IndexBox{c * B - 1, (c + 1) * B + 1}, brick.stored);
         std::tie(b.grown_min[i], b.grown_max[i]) = samples.range(grown);
       }
   return b;

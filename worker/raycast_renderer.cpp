@@ -229,8 +229,7 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
   classify(g, float(spacing));
   Rect r = g.any ? screenRectOf(cam, g.bound) : Rect{};
   // Glow: the whole of the brick's part of the glow box, empty blocks and all.
-  const bool glowing = glow && glow->count > 0 && glow->box.lo.x < glow->box.hi.x &&
-                       glow->box.lo.y < glow->box.hi.y && glow->box.lo.z < glow->box.hi.z;
+  const bool glowing = glow && glow->count > 0 && hasVolume(glow->box);
   if (glowing) {
     if (g.adaptive) throw std::logic_error("ray caster: glow in an adaptive brick");
     const Rect gr = screenRectOf(cam, glow->box);

@@ -110,42 +110,48 @@ void toFace(int rotation, float scale, vec3 ps, vec3 pt, out vec3 su, out vec3 s
   else { su = pt; sv = -ps; }
 }
 
+// (face, u, v) on its patch: locate's answer and the B-spline bases (and their derivatives) at
+// the sub-patch's (s, t), which a point and its tangents both weigh their 16 control points by.
+struct PatchPoint {
+  int set, rotation;
+  float s, t, scale;
+  vec4 bs, dbs, bt, dbt;
+};
+
+PatchPoint patchPoint(int face, float u, float v) {
+  PatchPoint q;
+  locate(face, u, v, q.set, q.s, q.t, q.scale, q.rotation);
+  basis(q.s, q.bs, q.dbs);
+  basis(q.t, q.bt, q.dbt);
+  return q;
+}
+
 // Limit position and its true derivatives in the face's own (u, v): all a Newton step needs (the
 // tangent points, 16 more fetches, are for the normal alone).
 void evaluatePoint(int face, float u, float v, out vec3 p, out vec3 su, out vec3 sv) {
-  int set, rotation;
-  float s, t, scale;
-  locate(face, u, v, set, s, t, scale, rotation);
-  vec4 bs, dbs, bt, dbt;
-  basis(s, bs, dbs);
-  basis(t, bt, dbt);
+  PatchPoint q = patchPoint(face, u, v);
   p = vec3(0.0);
   vec3 ps = vec3(0.0), pt = vec3(0.0);
   for (int b = 0; b < 4; ++b)
     for (int a = 0; a < 4; ++a) {
-      vec3 q = positions[set * 16 + b * 4 + a].xyz;
-      p += bs[a] * bt[b] * q;
-      ps += dbs[a] * bt[b] * q;
-      pt += bs[a] * dbt[b] * q;
+      vec3 c = positions[q.set * 16 + b * 4 + a].xyz;
+      p += q.bs[a] * q.bt[b] * c;
+      ps += q.dbs[a] * q.bt[b] * c;
+      pt += q.bs[a] * q.dbt[b] * c;
     }
-  toFace(rotation, scale, ps, pt, su, sv);
+  toFace(q.rotation, q.scale, ps, pt, su, sv);
 }
 
 // The tangent-point derivatives (for the normal) at (face, u, v).
 void evaluateTangents(int face, float u, float v, out vec3 tu, out vec3 tv) {
-  int set, rotation;
-  float s, t, scale;
-  locate(face, u, v, set, s, t, scale, rotation);
-  vec4 bs, dbs, bt, dbt;
-  basis(s, bs, dbs);
-  basis(t, bt, dbt);
+  PatchPoint q = patchPoint(face, u, v);
   tu = vec3(0.0);
   tv = vec3(0.0);
   for (int b = 0; b < 4; ++b)
     for (int a = 0; a < 4; ++a) {
-      vec3 r = tangents[set * 16 + b * 4 + a].xyz;
-      tu += dbs[a] * bt[b] * r;
-      tv += bs[a] * dbt[b] * r;
+      vec3 r = tangents[q.set * 16 + b * 4 + a].xyz;
+      tu += q.dbs[a] * q.bt[b] * r;
+      tv += q.bs[a] * q.dbt[b] * r;
     }
 }
 

@@ -57,7 +57,7 @@ VolumeBrick uploadVolumeBrick(const GlApi& gl, const Brick& brick, const GridGeo
         IndexBox box{{cuts[0][bx], cuts[1][by], cuts[2][bz]},
                      {cuts[0][bx + 1], cuts[1][by + 1], cuts[2][bz + 1]}};
         auto [vmin, vmax] = samples.range(box);
-        IndexBox grown{glm::max(box.lo - 1, brick.stored.lo), glm::min(box.hi + 1, brick.stored.hi)};
+        const IndexBox grown = intersect(IndexBox{box.lo - 1, box.hi + 1}, brick.stored);
         auto [gmin, gmax] = samples.range(grown);
         g.blocks.push_back(VolumeBlock{grid.worldBoxOf(box), vmin, vmax, gmin, gmax});
       }

@@ -6,7 +6,8 @@
 #   types           float64 and uint8 fields render as their float32 copy (1/255)
 #   particles       particles spread over the ranks render as the same set from a file
 #   errors          NaN data: that step is skipped and reported, the next renders; on_error: abort
-#                   ends every rank with the message; bad actions fail at construction
+#                   ends every rank with the message; glow emitters refused per step (reported or
+#                   aborting); bad actions fail at construction
 # Usage: insitu.sh SORTLAST DRIVER MODE
 source "$(dirname "$0")/../mpi/lib.sh" "$1"
 DRIVER=$2
@@ -103,6 +104,19 @@ case "$MODE" in
     fi
     grep -q "InSituError: sortlast in situ: step 1: rank 1: the published field 'field' holds NaN" "$WORK/log" ||
       { cat "$WORK/log"; fail "abort message"; }
+    # Glow emitters in a render's scene: refused in situ (the simulation's bricks have no glow box),
+    # as that step's error on every rank, not a crash; with on_error: abort, the run ends with it.
+    actions "g" report ", glow: {emitters: [{center: [0, 0, 0]}]}"
+    run_driver 2 --size 16 --steps 2 --actions "$WORK/actions.yaml" > "$WORK/log" 2>&1 ||
+      { cat "$WORK/log"; fail "refused glow must not end the simulation"; }
+    grep -q "step 1 rendered 0 images 0 error 'step 1: scene key 'glow.emitters': in situ sessions" "$WORK/log" ||
+      { cat "$WORK/log"; fail "glow in situ: the step's error does not say in situ"; }
+    actions "g" abort ", glow: {emitters: [{center: [0, 0, 0]}]}"
+    if run_driver 2 --size 16 --steps 2 --actions "$WORK/actions.yaml" > "$WORK/log" 2>&1; then
+      fail "glow in situ with on_error: abort must end the run"
+    fi
+    grep -q "InSituError: sortlast in situ: step 0: scene key 'glow.emitters': in situ sessions" "$WORK/log" ||
+      { cat "$WORK/log"; fail "glow in situ: abort message"; }
     printf 'renders:\n  - name: v\n    output: out.png\n' > "$WORK/bad.yaml"
     if run_driver 2 --size $size --actions "$WORK/bad.yaml" > "$WORK/log" 2>&1; then fail "bad actions accepted"; fi
     grep -q "InSituError: sortlast in situ: .*{step}" "$WORK/log" || { cat "$WORK/log"; fail "bad actions message"; }

@@ -11,8 +11,8 @@ trap 'rm -rf "$WORK"' EXIT
 run_np() { local np=$1; shift; timeout 120 "${MPIRUN[@]}" -np "$np" "$SORTLAST" "$@"; }
 fail() { echo "FAIL: $*"; exit 1; }
 
-# The particle tests (particles.sh, particles_slices.sh): the CPU reference of scene $1 (options
-# after it) into $WORK/ref.png and $WORK/ref.exr.
+# The particle and surface tests (particles.sh, particles_slices.sh, surfaces.sh): the CPU
+# reference of scene $1 (options after it) into $WORK/ref.png and $WORK/ref.exr.
 reference() {
   "$SORTLAST" reference "$1" -q -o "$WORK/ref.png" --surface-out "$WORK/ref.exr" "${@:2}" ||
     fail "reference $1"

@@ -86,16 +86,25 @@ surfaces:
   - {procedural: fan5, color: [0.4, 0.7, 0.9], transform: {scale: 0.6, translate: [0.6, -0.4, 0.1]}}
 YAML
 
-reference() { "$S" reference "$WORK/$1.yaml" -q -o "$WORK/ref.png" --surface-out "$WORK/ref.exr" || fail "reference $1"; }
 render() {  # render NP SCENE OUT [--set ...] (one rank: without mpirun, which costs seconds)
   local np=$1 scene=$2 out=$3; shift 3
   local args=(render "$WORK/$scene.yaml" -q -o "$WORK/$out.png" --surface-out "$WORK/$out.exr" "$@")
   if [ "$np" = 1 ]; then timeout 120 "$S" "${args[@]}"; else run_np "$np" "${args[@]}"; fi \
     || fail "render $scene on $np rank(s)"
 }
-vs_reference() {  # vs_reference IMAGE MAX_DIFF: colour away from silhouettes
-  "$S" compare "$WORK/ref.png" "$WORK/$1.png" --max-diff "$2" \
-    --mask-silhouettes "$WORK/ref.exr" --mask-silhouettes "$WORK/$1.exr" || fail "$1 against the reference"
+# vs_reference_scene NP SCENE MAX_DIFF [--set ...]: SCENE, with the same settings, in the
+# reference (ref.png, ref.exr: lib.sh) and on NP ranks (gl.png, gl.exr); colour within MAX_DIFF
+# away from silhouettes. Leaves the images for depth_normals.
+vs_reference_scene() {
+  local np=$1 scene=$2 max_diff=$3; shift 3
+  reference "$WORK/$scene.yaml" "$@"
+  render "$np" "$scene" gl "$@"
+  "$S" compare "$WORK/ref.png" "$WORK/gl.png" --max-diff "$max_diff" --mask-silhouettes "$WORK/ref.exr" \
+    --mask-silhouettes "$WORK/gl.exr" || fail "$scene${*:+ $*} against the reference"
+}
+depth_normals() {  # depth_normals WHAT: the last vs_reference_scene's depth and normals
+  "$S" compare-surface "$WORK/ref.exr" "$WORK/gl.exr" --ignore-edges --max-depth-error 1e-3 \
+    --max-normal-deg 0.05 --max-holes 0 --max-extra 0 || fail "$1: depth or normals"
 }
 ranks() {  # ranks SCENE: 2-4 ranks give the 1-rank image within 1/255
   render 1 "$1" one
@@ -114,71 +123,49 @@ bricks() {  # bricks SCENE MAX_DIFF: d = 2, 3 against d = 1
 
 case $2 in
 alone)
-  reference alone
-  render 1 alone gl
   # Measured: 0/255 away from silhouettes.
-  vs_reference gl 1
+  vs_reference_scene 1 alone 1
   # Depth and normals of one surface (two overlap, and compare-surface's --ignore-edges leaves out
   # hit/miss edges only, not where one surface's outline lies over the other). pole5 is 2.9 across:
   # measured depth 7.7e-5, normals 0.009 degrees.
-  one=(--set "surfaces=[{procedural: pole5}]")
-  "$S" reference "$WORK/alone.yaml" -q -o "$WORK/ref.png" --surface-out "$WORK/ref.exr" "${one[@]}" || fail "reference pole5"
-  render 1 alone gl "${one[@]}"
-  "$S" compare-surface "$WORK/ref.exr" "$WORK/gl.exr" --ignore-edges --max-depth-error 1e-3 \
-    --max-normal-deg 0.05 --max-holes 0 --max-extra 0 || fail "alone: depth or normals"
+  vs_reference_scene 1 alone 1 --set "surfaces=[{procedural: pole5}]"
+  depth_normals alone
   ranks alone
   # Each fragment belongs to the brick holding its exact limit point: bricks compose exactly.
   bricks alone 0
   ;;
 volume)
-  reference volume
-  render 1 volume gl
   # Measured 2/255 (the volume's own ray-casting error), 63 dB away from silhouettes.
-  vs_reference gl 3
+  vs_reference_scene 1 volume 3
   "$S" compare "$WORK/ref.png" "$WORK/gl.png" --min-psnr 55 --mask-silhouettes "$WORK/ref.exr" \
     --mask-silhouettes "$WORK/gl.exr" >/dev/null || fail "volume: PSNR against the reference"
   ranks volume
   bricks volume 2
   ;;
 metaballs)
-  reference metaballs
-  render 1 metaballs gl
   # Measured 0/255 away from silhouettes and the seams where the two surfaces cross.
-  vs_reference gl 1
+  vs_reference_scene 1 metaballs 1
   ranks metaballs
   # The merged layer inside a volume too (and its surface image re-cut to the volume's rectangle):
   # measured 2/255, 61 dB.
-  reference all_three
-  render 1 all_three gl
-  vs_reference gl 3
+  vs_reference_scene 1 all_three 3
   render 3 all_three many
   "$S" compare "$WORK/gl.png" "$WORK/many.png" --max-diff 1 | tail -1 || fail "all three: 3 ranks differ from 1"
   ;;
 open)
-  reference open
-  render 1 open gl
-  vs_reference gl 1
+  vs_reference_scene 1 open 1
   # Depth and normals of the fan alone (its irregular boundary vertex is in view).
-  one=(--set "surfaces=[{procedural: fan5}]")
-  "$S" reference "$WORK/open.yaml" -q -o "$WORK/ref.png" --surface-out "$WORK/ref.exr" "${one[@]}" || fail "reference fan5"
-  render 1 open gl "${one[@]}"
-  "$S" compare-surface "$WORK/ref.exr" "$WORK/gl.exr" --ignore-edges --max-depth-error 1e-3 \
-    --max-normal-deg 0.05 --max-holes 0 --max-extra 0 || fail "open: depth or normals"
+  vs_reference_scene 1 open 1 --set "surfaces=[{procedural: fan5}]"
+  depth_normals open
   ranks open
   bricks open 0
   # From the other side: open surfaces are two-sided (both sides drawn, as the reference does).
-  back=(--set "camera.position=[-0.3, 3.5, -6.0]")
-  "$S" reference "$WORK/open.yaml" -q -o "$WORK/ref.png" --surface-out "$WORK/ref.exr" "${back[@]}" || fail "reference from behind"
-  render 3 open gl "${back[@]}"
-  vs_reference gl 1
-  "$S" compare-surface "$WORK/ref.exr" "$WORK/gl.exr" --ignore-edges --max-depth-error 1e-3 \
-    --max-normal-deg 0.05 --max-holes 0 --max-extra 0 || fail "open, from behind: depth or normals"
+  vs_reference_scene 3 open 1 --set "camera.position=[-0.3, 3.5, -6.0]"
+  depth_normals "open, from behind"
   ;;
 reflection)
-  reference reflection
-  render 1 reflection gl
   # Measured 1/255 (stripe edges, where the colour changes fastest).
-  vs_reference gl 2
+  vs_reference_scene 1 reflection 2
   ;;
 bad)
   # expect_error NP PATTERN SET...: exit 1 on NP ranks (0: the binary alone, for key errors that

@@ -184,8 +184,8 @@ TEST(Assignment, EveryBrickOneOwnerAndConvexDisjointRegions) {
         for (int s = r + 1; s < P; ++s) {
           const IndexBox &A = as.region[r], &B = as.region[s];
           if (A.count() == 0 || B.count() == 0) continue;
-          IndexBox I{glm::max(A.lo, B.lo), glm::min(A.hi, B.hi)};
-          EXPECT_EQ(I.count(), 0) << "regions of ranks " << r << " and " << s << " overlap";
+          EXPECT_EQ(intersect(A, B).count(), 0)
+              << "regions of ranks " << r << " and " << s << " overlap";
         }
       // Only ranks beyond the number of bricks own nothing.
       EXPECT_EQ(ranks_with_bricks, std::min(P, n));

@@ -75,7 +75,7 @@ TEST(MemoryBudget, RefusesWhatCannotFitNamingTheParts) {
   // issue 15's case: a 2000^3 procedural volume on 2 ranks: 4e9 samples with ghosts per rank,
   // 4 bytes on the host and 4 in the texture: > 30 GiB.
   Scene s = loadScene("", {"volume.procedural=sphere", "volume.dims=[2000,2000,2000]"});
-  SessionLayout layout = makeLayout(s, Box3{glm::dvec3(1), glm::dvec3(-1)}, 0, 2);
+  SessionLayout layout = makeLayout(s, noBox(), 0, 2);
   MemoryNeed need = sessionNeed(s, layout, 0, 0, false);
   const double samples = 0.5 * 2001.0 * 2001.0 * 2001.0;  // half the bricks, ghosts included
   EXPECT_GT(need.total(), 8.0 * samples * 0.99);
@@ -87,7 +87,7 @@ TEST(MemoryBudget, RefusesWhatCannotFitNamingTheParts) {
       << msg;
   // Sizes beyond 2^32 samples per brick do not wrap around (size_t and double arithmetic).
   Scene huge = loadScene("", {"volume.dims=[1048576,1048576,1048576]"});
-  SessionLayout hl = makeLayout(huge, Box3{glm::dvec3(1), glm::dvec3(-1)}, 0, 1);
+  SessionLayout hl = makeLayout(huge, noBox(), 0, 1);
   EXPECT_GT(sessionNeed(huge, hl, 0, 0, false).total(), 8.0 * 1.1e18);
   // Images: a 32768^2 frame alone needs > 40 GiB on rank 0.
   Scene big = loadScene("", {"image.width=32768", "image.height=32768"});
@@ -101,7 +101,7 @@ TEST(MemoryBudget, RefusesWhatCannotFitNamingTheParts) {
   EXPECT_DOUBLE_EQ(imageNeed(glow, 1024, 1024, 0, 2, 8).total() - plain, 1024.0 * 1024 * (4 * (2 + 4) + 32));
   // The default scene fits in 1 GiB.
   Scene small = loadScene("", {});
-  SessionLayout sl = makeLayout(small, Box3{glm::dvec3(1), glm::dvec3(-1)}, 0, 1);
+  SessionLayout sl = makeLayout(small, noBox(), 0, 1);
   EXPECT_NO_THROW(checkMemory(sessionNeed(small, sl, 0, 0, false),
                               MemoryBudget{1024.0 * 1024 * 1024, "1 GiB"}, 0, "x"));
 }
