@@ -25,26 +25,29 @@ namespace sortlast {
 // log1p(y) / y for y >= 0. Float: below 0.5 the series of 2 atanh(w) / y with w = y / (2 + y)
 // (w <= 0.2, five terms: truncation below 1e-8); above, log(1 + y) whose argument is >= 1.5, so
 // rounding 1 + y costs at most 1.5e-7 relative. GLSL has no log1p, and log(1 + y) for small y would
-// lose everything to the rounding of 1 + y.
+// lose everything to the rounding of 1 + y. One reciprocal of 2 + y serves w and 2 / (2 + y).
 template <class T>
 T log1pOverX(T y) {
   if constexpr (std::is_same_v<T, double>) {
     return y > 0.0 ? std::log1p(y) / y : 1.0;
   } else {
     if (y < T(0.5)) {
-      const T w = y / (T(2) + y), w2 = w * w;
+      const T inv = T(1) / (T(2) + y), w = y * inv, w2 = w * w;
       const T series = T(1) + w2 * (T(1) / 3 + w2 * (T(1) / 5 + w2 * (T(1) / 7 + w2 * (T(1) / 9))));
-      return T(2) / (T(2) + y) * series;
+      return T(2) * inv * series;
     }
     return std::log(T(1) + y) / y;
   }
 }
 
-// One stretch moving away from the closest point: xi1 >= xi0 >= 0, r = R at its ends.
+// One stretch moving away from the closest point (xi1 >= xi0 >= 0, r = R at its ends): its
+// integral is z log1p(speed z) / (speed z) with
+//   z = len (1 + (xi0 + xi1) / (r0 + r1)) / (xi0 + r0) = len (r0 + r1 + xi0 + xi1) / ((r0 + r1) (xi0 + r0)),
+// the second form with one division (positive terms only; the product is >= 2 eps^2, so it
+// underflows only where eps^2 itself does).
 template <class T>
-T glowStretch(T len, T xi0, T xi1, T r0, T r1, T speed) {
-  const T z = len * (T(1) + (xi0 + xi1) / (r0 + r1)) / (xi0 + r0);
-  return z * log1pOverX(speed * z);
+T glowStretchZ(T len, T xi0, T xi1, T r0, T r1) {
+  return len * (r0 + r1 + xi0 + xi1) / ((r0 + r1) * (xi0 + r0));
 }
 
 // Smallest |q| taken as moving: below it the projected ray counts as standing still (|q| len is
@@ -56,27 +59,38 @@ constexpr T kGlowStill = std::is_same_v<T, double> ? T(1e-300) : T(1e-30);
 template <class T>
 T inverseDistanceIntegral(glm::vec<3, T> p0, glm::vec<3, T> q, T len, T eps) {
   const T e2 = eps * eps;
-  T speed = glm::length(q);
+  T speed = glm::length(q), inv = T(0);
   glm::vec<3, T> qh(T(0));
-  if (speed > kGlowStill<T>)
-    qh = q / speed;
-  else
+  if (speed > kGlowStill<T>) {
+    inv = T(1) / speed;
+    qh = q * inv;
+  } else {
     speed = T(0);
+  }
   const glm::vec<3, T> p1 = p0 + len * q;
   const T r0 = std::sqrt(glm::dot(p0, p0) + e2), r1 = std::sqrt(glm::dot(p1, p1) + e2);
   const T xi0 = glm::dot(qh, p0), xi1 = xi0 + speed * len;
-  if (xi0 >= T(0)) return glowStretch(len, xi0, xi1, r0, r1, speed);
-  if (xi1 <= T(0)) return glowStretch(len, -xi1, -xi0, r1, r0, speed);
-  // Passes the closest point (speed > 0 here, as xi1 > xi0): split there. The two lengths sum to
-  // len exactly and each stretch is built from h and its own length, consistent with itself: the
-  // split point's position carries the rounding of xi0 (absolute, ~ulp(|p0|)), which on a short
-  // segment would otherwise change its length (measured: 10 % in float on a 1e-6 segment).
-  const glm::vec<3, T> c = p0 - xi0 * qh;
-  const T h = std::sqrt(glm::dot(c, c) + e2);
-  const T before = glm::min(-xi0 / speed, len), after = len - before;
-  const T xa = speed * before, xb = speed * after;
-  return glowStretch(before, T(0), xa, h, std::sqrt(h * h + xa * xa), speed) +
-         glowStretch(after, T(0), xb, h, std::sqrt(h * h + xb * xb), speed);
+  T z;
+  if (xi0 >= T(0)) {
+    z = glowStretchZ(len, xi0, xi1, r0, r1);
+  } else if (xi1 <= T(0)) {
+    z = glowStretchZ(len, -xi1, -xi0, r1, r0);
+  } else {
+    // Passes the closest point (speed > 0 here, as xi1 > xi0): split there. The two lengths sum
+    // to len exactly and each stretch is built from h and its own length, consistent with itself:
+    // the split point's position carries the rounding of xi0 (absolute, ~ulp(|p0|)), which on a
+    // short segment would otherwise change its length (measured: 10 % in float on a 1e-6 segment).
+    const glm::vec<3, T> c = p0 - xi0 * qh;
+    const T h = std::sqrt(glm::dot(c, c) + e2);
+    const T before = glm::min(-xi0 * inv, len), after = len - before;
+    const T xa = speed * before, xb = speed * after;
+    const T za = glowStretchZ(before, T(0), xa, h, std::sqrt(h * h + xa * xa));
+    const T zb = glowStretchZ(after, T(0), xb, h, std::sqrt(h * h + xb * xb));
+    // The two stretches' logs as one: log1p(speed za) + log1p(speed zb) = log1p(speed z) with
+    // speed z = (1 + speed za)(1 + speed zb) - 1, all terms >= 0 (no cancellation).
+    z = za + zb + speed * za * zb;
+  }
+  return z * log1pOverX(speed * z);
 }
 
 // int_{s0}^{s1} E(o + s u) ds for one emitter (without its colour); u of unit length, eps > 0.

@@ -12,35 +12,36 @@ inline constexpr const char* kGlowSegment = R"(
 // one selected: llvmpipe runs both sides of a branch anyway (per SIMD lane mask), so straight-line
 // code is no slower and keeps the program small.
 float glowLog1pOverX(float y) {
-  float w = y / (2.0 + y), w2 = w * w;
+  float inv = 1.0 / (2.0 + y), w = y * inv, w2 = w * w;
   float series = 1.0 + w2 * (1.0 / 3.0 + w2 * (1.0 / 5.0 + w2 * (1.0 / 7.0 + w2 * (1.0 / 9.0))));
-  float small = 2.0 / (2.0 + y) * series;
+  float small = 2.0 * inv * series;
   float large = log(1.0 + y) / max(y, 0.5);
   return y < 0.5 ? small : large;
 }
 
-// One stretch moving away from the closest point: xi1 >= xi0 >= 0, r = R at its ends.
-float glowStretch(float len, float xi0, float xi1, float r0, float r1, float speed) {
-  float z = len * (1.0 + (xi0 + xi1) / (r0 + r1)) / (xi0 + r0);
-  return z * glowLog1pOverX(speed * z);
+// z of one stretch moving away from the closest point (xi1 >= xi0 >= 0, r = R at its ends): its
+// integral is z log1p(speed z) / (speed z).
+float glowStretchZ(float len, float xi0, float xi1, float r0, float r1) {
+  return len * (r0 + r1 + xi0 + xi1) / ((r0 + r1) * (xi0 + r0));
 }
 
 // int_0^len ds / sqrt(|p0 + s q|^2 + eps^2); len >= 0, eps > 0. The three cases of
 // common/glow_integral.h (moving away from the closest point, towards it (mirrored), or passing
-// it (split in two)) select the inputs of two stretches (the second of length 0 unless split), so
-// the closed form is written once and evaluated twice, not in all four places of the branches.
+// it (split in two)) select the inputs of two stretches (the second of length 0, so z = 0, unless
+// split); their z combine into one (z = za exactly when zb = 0), so one log per call.
 float glowInverseDistance(vec3 p0, vec3 q, float len, float eps) {
   float e2 = eps * eps;
   float speed = length(q);
   bool moving = speed > 1e-30;
-  vec3 qh = moving ? q / max(speed, 1e-30) : vec3(0.0);
+  float inv = moving ? 1.0 / max(speed, 1e-30) : 0.0;
+  vec3 qh = q * inv;
   speed = moving ? speed : 0.0;
   vec3 p1 = p0 + len * q;
   float r0 = sqrt(dot(p0, p0) + e2), r1 = sqrt(dot(p1, p1) + e2);
   float xi0 = dot(qh, p0), xi1 = xi0 + speed * len;
   vec3 c = p0 - xi0 * qh;
   float h = sqrt(dot(c, c) + e2);
-  float before = clamp(-xi0 / max(speed, 1e-30), 0.0, len), after = len - before;  // [0, len] in every case
+  float before = clamp(-xi0 * inv, 0.0, len), after = len - before;  // [0, len] in every case
   float xa = speed * before, xb = speed * after;
   bool away = xi0 >= 0.0, towards = !away && xi1 <= 0.0, split = !away && !towards;
   float la = split ? before : len;
@@ -49,8 +50,10 @@ float glowInverseDistance(vec3 p0, vec3 q, float len, float eps) {
   float ra0 = split ? h : (away ? r0 : r1);
   float ra1 = split ? sqrt(h * h + xa * xa) : (away ? r1 : r0);
   float lb = split ? after : 0.0;
-  return glowStretch(la, xa0, xa1, ra0, ra1, speed) +
-         glowStretch(lb, 0.0, xb, h, sqrt(h * h + xb * xb), speed);
+  float za = glowStretchZ(la, xa0, xa1, ra0, ra1);
+  float zb = glowStretchZ(lb, 0.0, xb, h, sqrt(h * h + xb * xb));
+  float z = za + zb + speed * za * zb;
+  return z * glowLog1pOverX(speed * z);
 }
 
 // int_{s0}^{s1} E(o + s u) ds for one emitter (centre, unit dir, a, b), unit u, eps > 0; cut where
