@@ -101,7 +101,7 @@ void finishGlowFrame(const GlowSpec& g, const glm::dvec3& background, ImageF& f,
   const bool exponential = g.tone_map == "exponential";
   const float exposure = float(g.exposure);
   const float bg[3] = {float(background.x), float(background.y), float(background.z)};
-  out = ImageRGBA8(f.width, f.height);
+  if (out.width != f.width || out.height != f.height) out = ImageRGBA8(f.width, f.height);  // every pixel written
   float* px = f.px.data();
   uint8_t* o = out.px.data();
   const size_t n = size_t(f.width) * f.height;
@@ -167,6 +167,9 @@ struct RenderSession::State {
   double particles_held = 0;
   std::unique_ptr<Compositor> compositor;
   CompositorKey compositor_key;
+  // Rank 0's float frame of a glow scene whose caller wants no float frame, kept from frame to
+  // frame: the compositor copies into its memory instead of a fresh 16 bytes a pixel.
+  ImageF glow_frame;
   int frames_rendered = 0;
   MemoryBudget budget;            // what this rank may use (memory_budget.h)
   long long particles_total = 0;  // of the first step, for the memory estimates of requests
@@ -527,11 +530,9 @@ FrameResult RenderSession::render(const FrameRequest& request) {
   FrameResult out;
   CompositeStats cs;
   collectively(S.comm, [&] {
-    out.image = S.compositor->finish(cs, request.float_frame || glow ? &out.image_f : nullptr);
-    if (glow && rank == 0) {
-      finishGlowFrame(sc.glow, sc.background, out.image_f, out.image);
-      if (!request.float_frame) out.image_f = ImageF();
-    }
+    ImageF* float_frame = request.float_frame ? &out.image_f : glow ? &S.glow_frame : nullptr;
+    out.image = S.compositor->finish(cs, float_frame);
+    if (glow && rank == 0) finishGlowFrame(sc.glow, sc.background, *float_frame, out.image);
   });
   if (want_surface) out.surface = gatherSurface(surfaces, cam.width, cam.height, S.comm);
   st.transfer_s = cs.transfer_s;
