@@ -11,9 +11,9 @@
 // so I = z log1p(|q| z) / (|q| z): no difference of two asinh values, no division by |q| (the ray
 // parallel to the axis gives |q| = 0 and I = len / R exactly), nothing divided by a value that can
 // be 0 (R >= eps > 0). Stretches with xi <= 0 are mirrored; a stretch that passes the closest point
-// is split there. The template is instantiated for double (the reference path, log1p from libm) and
-// for float with the expressions of the GLSL in worker/glow_glsl.h, so its float error can be
-// tested on the CPU.
+// is split there, and its two halves' logarithms combined into one. The template is instantiated
+// for double (the reference path, log1p from libm) and for float with the expressions of the GLSL
+// in worker/glow_glsl.h, so its float error can be tested on the CPU.
 #include <cmath>
 #include <glm/glm.hpp>
 #include <type_traits>

@@ -463,7 +463,7 @@ FrameResult RenderSession::render(const FrameRequest& request) {
       S.renderer->setVolumeMethodSettings(volumeMethod(sc));
     }
     if (has_particles) S.renderer->setMetaballSettings(metaballSettings(sc.particles));
-    // An orbit moves the emitters: this frame's go up (a few texels).
+    // An orbit moves the emitters: this frame's (the renderer uploads them when they change).
     if (glow)
       S.renderer->setGlowEmitters(sc.glow.emittersAt(std::max(0, request.orbit_frame)),
                                   sc.glow.core_radius, sc.glow.intensity);
