@@ -506,7 +506,10 @@ FrameResult RenderSession::render(const FrameRequest& request) {
         double t1 = MPI_Wtime();
         BrickImage img{mine[i], bf.rect, {}};
         const int pixel_bytes = glow ? 8 : 4;  // glow: WireFormat::Emission
-        if (!bf.rect.empty() && glow) {
+        const bool local = glow && S.compositor->takesLocalEmission() && request.dump_layers.empty();
+        if (!bf.rect.empty() && local) {
+          img.emission = std::move(bf.pixels_f);  // blended on this rank: not encoded
+        } else if (!bf.rect.empty() && glow) {
           encodeEmission(bf.pixels_f, img.rle, sc.rle ? kMaxRun : 1);
         } else if (!bf.rect.empty()) {
           rleEncode(bf.pixels.px, img.rle, 4, sc.rle ? kMaxRun : 1);
@@ -514,7 +517,7 @@ FrameResult RenderSession::render(const FrameRequest& request) {
         st.render_s += t1 - t0;
         st.encode_s += MPI_Wtime() - t1;
         st.bytes_raw += double(bf.rect.area()) * pixel_bytes;
-        st.bytes_rle += double(img.rle.size());
+        st.bytes_rle += local ? double(bf.rect.area()) * pixel_bytes : double(img.rle.size());
         st.particle_rounds = std::max(st.particle_rounds, double(bf.particle_rounds));
         (bf.rect.empty() ? st.bricks_skipped : st.bricks_rendered) += 1;
         if (!request.dump_layers.empty()) dumpLayer(request.dump_layers, img);
