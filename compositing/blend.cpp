@@ -70,6 +70,15 @@ void blendBricks(const std::vector<const BrickImage*>& images, Pixel* dst, const
     if (r.empty()) continue;
     if (!contains(dst_rect, r))
       throw RleError("brick " + std::to_string(b->brick_id) + ": rectangle outside the frame");
+    if (!b->emission.empty()) {
+      if (format != WireFormat::Emission || b->emission.size() != size_t(r.area()) * 4)
+        throw std::logic_error("brick " + std::to_string(b->brick_id) + ": unencoded pixels");
+      if constexpr (std::is_same_v<Pixel, float>)
+        blendEmissionFloats(b->emission.data(), r, dst, dst_rect.w, dst_rect.x, dst_rect.y);
+      else
+        throw std::logic_error("emission brick images blend in float only");
+      continue;
+    }
     const int bytes = pixelBytes(format);
     pixels.resize(size_t(r.area()) * size_t(bytes));
     rleDecode(b->rle, size_t(r.area()), pixels, bytes);

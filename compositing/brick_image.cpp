@@ -1,12 +1,14 @@
 #include "compositing/brick_image.h"
 
 #include <cstring>
+#include <stdexcept>
 
 #include "compositing/rle.h"
 
 namespace sortlast {
 
 std::vector<uint8_t> packBrickImage(const BrickImage& b) {
+  if (!b.emission.empty()) throw std::logic_error("brick image: unencoded pixels are never sent");
   int32_t head[6] = {b.brick_id, b.rect.x, b.rect.y, b.rect.w, b.rect.h, int32_t(b.rle.size())};
   std::vector<uint8_t> out(sizeof head + b.rle.size());
   std::memcpy(out.data(), head, sizeof head);

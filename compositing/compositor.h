@@ -63,6 +63,10 @@ class Compositor {
   virtual void begin(const FrameSetup& setup) = 0;
   // One of this rank's brick images, in any order.
   virtual void add(BrickImage image) = 0;
+  // Whether add() takes this rank's images of an Emission frame unencoded (BrickImage::emission):
+  // where they are blended here without being sent (direct send's rank 0), which spares the
+  // half-float encoding and its decoding.
+  virtual bool takesLocalEmission() const { return false; }
   // Called over and over while this rank waits for the others to finish rendering: a chance to
   // take and blend what has arrived. Never throws (errors are reported by finish()).
   virtual void progress() {}

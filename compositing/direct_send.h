@@ -22,6 +22,9 @@ class DirectSend final : public Compositor {
   ~DirectSend() override;
   void begin(const FrameSetup& setup) override;
   void add(BrickImage image) override;
+  bool takesLocalEmission() const override {
+    return rank_ == 0 && opt_.emission && opt_.precision == Precision::Float;
+  }
   void progress() override;
   ImageRGBA8 finish(CompositeStats& stats, ImageF* float_frame) override;
   void abandon() override;

@@ -9,6 +9,7 @@
 #include <glm/gtc/packing.hpp>
 
 #include "compositing/half.h"
+#include "compositing/over.h"
 #include "compositing/rle.h"
 
 namespace sortlast {
@@ -81,6 +82,24 @@ void fromEmission16(const uint8_t* in, float* out) {
   const EmissionTables& t = emissionTables();
   for (int c = 0; c < 3; ++c) out[c] = t.colour[v[c]];
   out[3] = t.alpha[v[3]];
+}
+
+void blendEmissionFloats(const float* src, const Rect& r, float* dst, int dst_width, int ox, int oy) {
+  const EmissionTables& t = emissionTables();
+  for (int y = 0; y < r.h; ++y) {
+    const float* s = src + size_t(y) * r.w * 4;
+    float* d = dst + (size_t(r.y - oy + y) * dst_width + size_t(r.x - ox)) * 4;
+    for (int x = 0; x < r.w; ++x) {
+      const float* p = s + 4 * x;
+      if (!shows(p)) continue;
+      // toEmission16's halves of a pixel that shows, then fromEmission16's tables (its alpha word
+      // is non-zero: never read as a run).
+      float f[4];
+      for (int c = 0; c < 3; ++c) f[c] = t.colour[halfBits(std::clamp(p[c], 0.0f, 65504.0f))];
+      f[3] = t.alpha[halfBits(-std::clamp(1.0f - p[3], 0.0f, 1.0f)) | 0x8000u];
+      if (shows(f)) overFloat(f, d + 4 * x);
+    }
+  }
 }
 
 void encodeEmission(std::span<const float> px, std::vector<uint8_t>& out, uint32_t max_run) {

@@ -60,6 +60,11 @@ void fromEmission16(const uint8_t* in, float* out);
 // `out`: the same bytes as toEmission16 on each pixel and then rleEncode(..., 8, max_run), without
 // the intermediate buffer (a transparent pixel is one that does not show).
 void encodeEmission(std::span<const float> px, std::vector<uint8_t>& out, uint32_t max_run);
+// Float pixels of rectangle `r` (RGBA, premultiplied, row 0 first) blended over `dst` (a float
+// image dst_width wide whose pixel (0, 0) is at (ox, oy)) as their encoding would be: a pixel
+// that does not show is a run (skipped); one that shows is rounded to the Emission format's halves
+// and back (toEmission16 then fromEmission16, the same bits) and, if it still shows, blended over.
+void blendEmissionFloats(const float* src, const Rect& r, float* dst, int dst_width, int ox, int oy);
 
 // `img`'s pixels inside `part`, shrunk to their active rectangle, rounded to `format` and
 // RLE-encoded (`rle` false: with runs of 1, as long as the raw pixels); `id` goes into the brick

@@ -106,7 +106,7 @@ void finishGlowFrame(const GlowSpec& g, const glm::dvec3& background, ImageF& f,
   const bool exponential = g.tone_map == "exponential";
   const float exposure = float(g.exposure);
   const float bg[3] = {float(background.x), float(background.y), float(background.z)};
-  out = ImageRGBA8(f.width, f.height);
+  if (out.width != f.width || out.height != f.height) out = ImageRGBA8(f.width, f.height);  // every pixel written
   float* px = f.px.data();
   uint8_t* o = out.px.data();
   const size_t n = size_t(f.width) * f.height;
@@ -172,6 +172,9 @@ struct RenderSession::State {
   double particles_held = 0;
   std::unique_ptr<Compositor> compositor;
   CompositorKey compositor_key;
+  // Rank 0's float frame of a glow scene whose caller wants no float frame, kept from frame to
+  // frame: the compositor copies into its memory instead of a fresh 16 bytes a pixel.
+  ImageF glow_frame;
   int frames_rendered = 0;
   MemoryBudget budget;            // what this rank may use (memory_budget.h)
   long long particles_total = 0;  // of the first step, for the memory estimates of requests
@@ -460,7 +463,7 @@ FrameResult RenderSession::render(const FrameRequest& request) {
       S.renderer->setVolumeMethodSettings(volumeMethod(sc));
     }
     if (has_particles) S.renderer->setMetaballSettings(metaballSettings(sc.particles));
-    // An orbit moves the emitters: this frame's go up (a few texels).
+    // An orbit moves the emitters: this frame's (the renderer uploads them when they change).
     if (glow)
       S.renderer->setGlowEmitters(sc.glow.emittersAt(std::max(0, request.orbit_frame)),
                                   sc.glow.core_radius, sc.glow.intensity);
@@ -503,7 +506,10 @@ FrameResult RenderSession::render(const FrameRequest& request) {
         double t1 = MPI_Wtime();
         BrickImage img{mine[i], bf.rect, {}};
         const int pixel_bytes = glow ? 8 : 4;  // glow: WireFormat::Emission
-        if (!bf.rect.empty() && glow) {
+        const bool local = glow && S.compositor->takesLocalEmission() && request.dump_layers.empty();
+        if (!bf.rect.empty() && local) {
+          img.emission = std::move(bf.pixels_f);  // blended on this rank: not encoded
+        } else if (!bf.rect.empty() && glow) {
           encodeEmission(bf.pixels_f, img.rle, sc.rle ? kMaxRun : 1);
         } else if (!bf.rect.empty()) {
           rleEncode(bf.pixels.px, img.rle, 4, sc.rle ? kMaxRun : 1);
@@ -511,7 +517,7 @@ FrameResult RenderSession::render(const FrameRequest& request) {
         st.render_s += t1 - t0;
         st.encode_s += MPI_Wtime() - t1;
         st.bytes_raw += double(bf.rect.area()) * pixel_bytes;
-        st.bytes_rle += double(img.rle.size());
+        st.bytes_rle += local ? double(bf.rect.area()) * pixel_bytes : double(img.rle.size());
         st.particle_rounds = std::max(st.particle_rounds, double(bf.particle_rounds));
         (bf.rect.empty() ? st.bricks_skipped : st.bricks_rendered) += 1;
         if (!request.dump_layers.empty()) dumpLayer(request.dump_layers, img);
@@ -527,11 +533,9 @@ FrameResult RenderSession::render(const FrameRequest& request) {
   FrameResult out;
   CompositeStats cs;
   collectively(S.comm, [&] {
-    out.image = S.compositor->finish(cs, request.float_frame || glow ? &out.image_f : nullptr);
-    if (glow && rank == 0) {
-      finishGlowFrame(sc.glow, sc.background, out.image_f, out.image);
-      if (!request.float_frame) out.image_f = ImageF();
-    }
+    ImageF* float_frame = request.float_frame ? &out.image_f : glow ? &S.glow_frame : nullptr;
+    out.image = S.compositor->finish(cs, float_frame);
+    if (glow && rank == 0) finishGlowFrame(sc.glow, sc.background, *float_frame, out.image);
   });
   if (want_surface) out.surface = gatherSurface(surfaces, cam.width, cam.height, S.comm);
   st.transfer_s = cs.transfer_s;

@@ -26,21 +26,12 @@ using namespace sortlast;
 
 namespace {
 
-const char* kVertex = R"(#version 450 core
-void main() {
-  vec2 p = vec2((gl_VertexID & 1) * 4 - 1, (gl_VertexID & 2) * 2 - 1);
-  gl_Position = vec4(p, 0.0, 1.0);
-}
-)";
-
 const char* kMain = R"(
-uniform vec3 u_eye, u_forward, u_right, u_up, u_box_lo, u_box_hi;
-uniform vec2 u_pixel_scale;
+uniform vec3 u_box_lo, u_box_hi;
 uniform float u_intensity, u_exposure;
 out vec4 frag;
 void main() {
-  vec2 s = vec2(gl_FragCoord.x * u_pixel_scale.x - 1.0, 1.0 - gl_FragCoord.y * u_pixel_scale.y);
-  vec3 dir = normalize(u_forward + s.x * u_right + s.y * u_up);
+  vec3 dir = glowPixelRay();
   float t0, t1;
   vec3 sum = vec3(0.0);
   if (glowSpan(u_eye, dir, u_box_lo, u_box_hi, vec3(0.0), t0, t1)) sum = glowAlong(u_eye, dir, t0, t1);
@@ -85,29 +76,22 @@ int main(int argc, char** argv) {
 
   auto ctx = createGlContext("osmesa");
   const GlApi& gl = ctx->gl();
-  std::string fragment =
-      std::string("#version 450 core\n") + shaders::kGlowSegment + shaders::kGlowAlong + kMain;
-  unsigned program = linkProgram(gl, kVertex, fragment.c_str());
+  std::string fragment = std::string("#version 450 core\n") + shaders::kGlowSegment +
+                         shaders::kGlowAlong + shaders::kGlowPixelRay + kMain;
+  unsigned program = linkProgram(gl, shaders::kGlowFullscreenVertex, fragment.c_str());
   unsigned vao = 0;
   const unsigned target = makeFloatTexture(gl, size, size, nullptr);
   makeFramebuffer(gl, target);
-  makeFloatTexture(gl, 3, count, texels.data());  // bound to unit 0 last
+  const unsigned emitters = makeFloatTexture(gl, 3, count, texels.data());
   gl.UseProgram(program);
   auto loc = [&](const char* name) { return gl.GetUniformLocation(program, name); };
   auto u3 = [&](const char* name, glm::dvec3 v) {
     gl.Uniform3f(loc(name), float(v.x), float(v.y), float(v.z));
   };
-  const double th = std::tan(0.5 * cam.fov_deg * 3.14159265358979323846 / 180.0);
-  gl.Uniform1i(loc("u_glow_emitters"), 0);
-  gl.Uniform1i(loc("u_glow_count"), count);
-  u3("u_eye", cam.position);
-  u3("u_forward", cam.forward());
-  u3("u_right", cam.right() * th);
-  u3("u_up", cam.trueUp() * th);
+  bindGlowEmitters(gl, program, GlowPass{emitters, count, eps, intensity, {}, {}}, 0);
+  setGlowPixelRay(gl, program, cam);
   u3("u_box_lo", glm::dvec3(lo));
   u3("u_box_hi", glm::dvec3(hi));
-  gl.Uniform2f(loc("u_pixel_scale"), 2.0f / size, 2.0f / size);
-  gl.Uniform1f(loc("u_glow_eps"), eps);
   gl.Uniform1f(loc("u_intensity"), intensity);
   gl.Uniform1f(loc("u_exposure"), exposure);
   gl.GenVertexArrays(1, &vao);

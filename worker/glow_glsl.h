@@ -7,50 +7,61 @@
 namespace sortlast::shaders {
 
 inline constexpr const char* kGlowSegment = R"(
-// log1p(y) / y, y >= 0: below 0.5 the series of 2 atanh(w) / y, w = y / (2 + y) (GLSL has no
-// log1p; log(1 + y) would lose everything to the rounding of 1 + y). Both forms are computed and
-// one selected: llvmpipe runs both sides of a branch anyway (per SIMD lane mask), so straight-line
-// code is no slower and keeps the program small.
-float glowLog1pOverX(float y) {
-  float w = y / (2.0 + y), w2 = w * w;
+// z log1p(y) / y, y = speed z >= 0, inv = 1 / speed (0 when speed = 0): below y = 0.5 the series
+// of 2 atanh(w) / y, w = y / (2 + y) (GLSL has no log1p; log(1 + y) would lose everything to the
+// rounding of 1 + y), above log(1 + y) inv. Both forms are computed and one selected: llvmpipe
+// runs both sides of a branch anyway (per SIMD lane mask), so straight-line code is no slower and
+// keeps the program small.
+float glowLogTerm(float z, float speed, float inv) {
+  float y = speed * z;
+  float inv2 = 1.0 / (2.0 + y), w = y * inv2, w2 = w * w;
   float series = 1.0 + w2 * (1.0 / 3.0 + w2 * (1.0 / 5.0 + w2 * (1.0 / 7.0 + w2 * (1.0 / 9.0))));
-  float small = 2.0 / (2.0 + y) * series;
-  float large = log(1.0 + y) / max(y, 0.5);
+  float small = z * (2.0 * inv2 * series);
+  float large = log(1.0 + y) * inv;
   return y < 0.5 ? small : large;
 }
 
-// One stretch moving away from the closest point: xi1 >= xi0 >= 0, r = R at its ends.
-float glowStretch(float len, float xi0, float xi1, float r0, float r1, float speed) {
-  float z = len * (1.0 + (xi0 + xi1) / (r0 + r1)) / (xi0 + r0);
-  return z * glowLog1pOverX(speed * z);
+// z of one stretch moving away from the closest point (xi1 >= xi0 >= 0, r = R at its ends): its
+// integral is z log1p(speed z) / (speed z).
+float glowStretchZ(float len, float xi0, float xi1, float r0, float r1) {
+  return len * (r0 + r1 + xi0 + xi1) / ((r0 + r1) * (xi0 + r0));
 }
 
-// int_0^len ds / sqrt(|p0 + s q|^2 + eps^2); len >= 0, eps > 0. The three cases of
-// common/glow_integral.h (moving away from the closest point, towards it (mirrored), or passing
-// it (split in two)) select the inputs of two stretches (the second of length 0 unless split), so
-// the closed form is written once and evaluated twice, not in all four places of the branches.
-float glowInverseDistance(vec3 p0, vec3 q, float len, float eps) {
-  float e2 = eps * eps;
-  float speed = length(q);
+// speed = |q|, inv = 1 / speed, both 0 below 1e-30 (standing still).
+void glowSpeed(vec3 q, out float speed, out float inv) {
+  speed = length(q);
   bool moving = speed > 1e-30;
-  vec3 qh = moving ? q / max(speed, 1e-30) : vec3(0.0);
+  inv = moving ? 1.0 / max(speed, 1e-30) : 0.0;
   speed = moving ? speed : 0.0;
+}
+
+// int_0^len ds / sqrt(|p0 + s q|^2 + eps^2); len >= 0, eps > 0; speed and inv from glowSpeed(q).
+// The three cases of common/glow_integral.h (moving away from the closest point, towards it
+// (mirrored), or passing it (split in two)) select the inputs of two stretches (the second of
+// length 0, so z = 0, unless split; its r0 is then any positive value) before the square roots,
+// so three of them serve every case; the two z combine into one (z = za exactly when zb = 0), so
+// one log per call.
+float glowInverseDistance(vec3 p0, vec3 q, float speed, float inv, float len, float eps) {
+  float e2 = eps * eps;
+  vec3 qh = q * inv;
   vec3 p1 = p0 + len * q;
-  float r0 = sqrt(dot(p0, p0) + e2), r1 = sqrt(dot(p1, p1) + e2);
+  float d0 = dot(p0, p0) + e2, d1 = dot(p1, p1) + e2;
   float xi0 = dot(qh, p0), xi1 = xi0 + speed * len;
   vec3 c = p0 - xi0 * qh;
-  float h = sqrt(dot(c, c) + e2);
-  float before = clamp(-xi0 / max(speed, 1e-30), 0.0, len), after = len - before;  // [0, len] in every case
+  float h2 = dot(c, c) + e2;
+  float before = clamp(-xi0 * inv, 0.0, len), after = len - before;  // [0, len] in every case
   float xa = speed * before, xb = speed * after;
   bool away = xi0 >= 0.0, towards = !away && xi1 <= 0.0, split = !away && !towards;
   float la = split ? before : len;
   float xa0 = split ? 0.0 : (away ? xi0 : -xi1);
   float xa1 = split ? xa : (away ? xi1 : -xi0);
-  float ra0 = split ? h : (away ? r0 : r1);
-  float ra1 = split ? sqrt(h * h + xa * xa) : (away ? r1 : r0);
+  float ra0 = sqrt(split ? h2 : (away ? d0 : d1));  // h when split
+  float ra1 = sqrt(split ? h2 + xa * xa : (away ? d1 : d0));
   float lb = split ? after : 0.0;
-  return glowStretch(la, xa0, xa1, ra0, ra1, speed) +
-         glowStretch(lb, 0.0, xb, h, sqrt(h * h + xb * xb), speed);
+  float za = glowStretchZ(la, xa0, xa1, ra0, ra1);
+  float zb = glowStretchZ(lb, 0.0, xb, ra0, sqrt(h2 + xb * xb));
+  float z = za + zb + speed * za * zb;
+  return glowLogTerm(z, speed, inv);
 }
 
 // int_{s0}^{s1} E(o + s u) ds for one emitter (centre, unit dir, a, b), unit u, eps > 0; cut where
@@ -67,12 +78,16 @@ float glowSegment(vec3 centre, vec3 dir, float a, float b, float eps, vec3 o, ve
   float g0 = dot(p0, dir), g1 = g0 + len * ud;
   bool up0 = g0 >= 0.0, up1 = g1 >= 0.0;
   float lc = up0 == up1 ? len : len * clamp(g0 / (g0 - g1), 0.0, 1.0);
+  float speed_c, inv_c, speed_u, inv_u;  // the sphere's is the same for every emitter: hoisted
+  glowSpeed(qc, speed_c, inv_c);
+  glowSpeed(u, speed_u, inv_u);
   float sum = 0.0;
   for (int k = 0; k < 2; ++k) {
     bool up = k == 0 ? up0 : up1;
     vec3 p = k == 0 ? p0 : p0 + lc * u;
     float l = k == 0 ? lc : len - lc;
-    sum += (up ? b : a) * glowInverseDistance(up ? p - dot(p, dir) * dir : p, up ? qc : u, l, eps);
+    sum += (up ? b : a) * glowInverseDistance(up ? p - dot(p, dir) * dir : p, up ? qc : u,
+                                              up ? speed_c : speed_u, up ? inv_c : inv_u, l, eps);
   }
   return sum;
 }

@@ -1,6 +1,5 @@
 #include "worker/glow_renderer.h"
 
-#include <cmath>
 #include <string>
 
 #include "worker/gl_program.h"
@@ -11,25 +10,15 @@ namespace sortlast {
 
 namespace {
 
-const char* kVertex = R"(#version 450 core
-void main() {
-  vec2 p = vec2((gl_VertexID & 1) * 4 - 1, (gl_VertexID & 2) * 2 - 1);
-  gl_Position = vec4(p, 0.0, 1.0);
-}
-)";
-
-// The ray as the ray caster makes it (raycast_shaders.h), so t is the surface layer's t.
 const char* kMain = R"(
-uniform vec3 u_eye, u_forward, u_right, u_up, u_box_lo, u_box_hi, u_box_hi_open;
-uniform vec2 u_pixel_scale;
+uniform vec3 u_box_lo, u_box_hi, u_box_hi_open;
 uniform float u_intensity;
 uniform sampler2D u_surface;
 uniform int u_has_surface;
 uniform ivec4 u_surface_rect;
 out vec4 frag;
 void main() {
-  vec2 s = vec2(gl_FragCoord.x * u_pixel_scale.x - 1.0, 1.0 - gl_FragCoord.y * u_pixel_scale.y);
-  vec3 dir = normalize(u_forward + s.x * u_right + s.y * u_up);
+  vec3 dir = glowPixelRay();
   float t0, t1;
   vec3 sum = vec3(0.0);
   if (glowSpan(u_eye, dir, u_box_lo, u_box_hi, u_box_hi_open, t0, t1)) {
@@ -47,9 +36,9 @@ void main() {
 
 GlowRenderer::GlowRenderer(const GlApi& gl, int width, int height)
     : gl_(gl), target_(gl, width, height) {
-  const std::string fragment =
-      std::string("#version 450 core\n") + shaders::kGlowSegment + shaders::kGlowAlong + kMain;
-  program_ = linkProgram(gl_, kVertex, fragment.c_str());
+  const std::string fragment = std::string("#version 450 core\n") + shaders::kGlowSegment +
+                               shaders::kGlowAlong + shaders::kGlowPixelRay + kMain;
+  program_ = linkProgram(gl_, shaders::kGlowFullscreenVertex, fragment.c_str());
   gl_.GenVertexArrays(1, &vao_);
 }
 
@@ -60,12 +49,18 @@ GlowRenderer::~GlowRenderer() {
 }
 
 void GlowRenderer::setEmitters(const std::vector<GlowEmitter>& emitters, double eps, double intensity) {
-  if (emitters_) gl_.DeleteTextures(1, &emitters_);
-  emitters_ = 0;
-  count_ = int(emitters.size());
-  if (count_ > 0) {
-    const std::vector<float> texels = glowEmitterTexels(emitters);
-    emitters_ = makeFloatTexture(gl_, 3, count_, texels.data());
+  // Uploaded only when they change (an orbit that moves them, a served request).
+  std::vector<float> texels = glowEmitterTexels(emitters);
+  if (texels != texels_) {
+    count_ = int(emitters.size());
+    if (count_ > 0 && !emitters_) {
+      emitters_ = makeFloatTexture(gl_, 3, count_, texels.data());
+    } else if (count_ > 0) {
+      gl_.ActiveTexture(GL_TEXTURE0);
+      gl_.BindTexture(GL_TEXTURE_2D, emitters_);
+      gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, 3, count_, 0, GL_RGBA, GL_FLOAT, texels.data());
+    }
+    texels_ = std::move(texels);
   }
   eps_ = float(eps);
   intensity_ = float(intensity);
@@ -87,19 +82,11 @@ GlowBrickImage GlowRenderer::render(const Box3& box, const Box3& whole, const Ca
     auto u3 = [&](const char* name, const glm::dvec3& v) {
       gl_.Uniform3f(loc(name), float(v.x), float(v.y), float(v.z));
     };
-    const double th = std::tan(0.5 * cam.fov_deg * 3.14159265358979323846 / 180.0);
-    u3("u_eye", cam.position);
-    u3("u_forward", cam.forward());
-    u3("u_right", cam.right() * (th * double(cam.width) / cam.height));
-    u3("u_up", cam.trueUp() * th);
+    setGlowPixelRay(gl_, program_, cam);
     u3("u_box_lo", box.lo);
     u3("u_box_hi", box.hi);
     u3("u_box_hi_open", glm::dvec3(glm::lessThan(box.hi, whole.hi)));
-    gl_.Uniform2f(loc("u_pixel_scale"), float(2.0 / cam.width), float(2.0 / cam.height));
     gl_.Uniform1f(loc("u_intensity"), intensity_);
-    gl_.Uniform1f(loc("u_glow_eps"), eps_);
-    gl_.Uniform1i(loc("u_glow_count"), count_);
-    gl_.Uniform1i(loc("u_glow_emitters"), 0);
     gl_.Uniform1i(loc("u_surface"), 2);
     gl_.Uniform1i(loc("u_has_surface"), has_surface ? 1 : 0);
     if (has_surface) {
@@ -108,8 +95,7 @@ GlowBrickImage GlowRenderer::render(const Box3& box, const Box3& whole, const Ca
       gl_.ActiveTexture(GL_TEXTURE2);
       gl_.BindTexture(GL_TEXTURE_2D, surface->surface_texture);
     }
-    gl_.ActiveTexture(GL_TEXTURE0);
-    gl_.BindTexture(GL_TEXTURE_2D, emitters_);
+    bindGlowEmitters(gl_, program_, pass(box, whole), 0);
     gl_.BindVertexArray(vao_);
     gl_.DrawArrays(GL_TRIANGLES, 0, 3);
     gl_.Disable(GL_BLEND);

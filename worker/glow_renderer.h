@@ -44,6 +44,7 @@ class GlowRenderer {
   const GlApi& gl_;
   FloatTarget target_;
   unsigned program_ = 0, emitters_ = 0, vao_ = 0;
+  std::vector<float> texels_;  // what the emitters' texture holds
   int count_ = 0;
   float eps_ = 0.01f, intensity_ = 1.0f;
 };

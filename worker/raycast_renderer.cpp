@@ -312,11 +312,7 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
       u3("u_glow_hi", glow->box.hi);
       u3("u_glow_hi_open", glm::dvec3(glm::lessThan(glow->box.hi, glow->whole.hi)));
       gl_.Uniform1f(gl_.GetUniformLocation(program, "u_glow_intensity"), glow->intensity);
-      gl_.Uniform1f(gl_.GetUniformLocation(program, "u_glow_eps"), glow->eps);
-      gl_.Uniform1i(gl_.GetUniformLocation(program, "u_glow_count"), glow->count);
-      gl_.Uniform1i(gl_.GetUniformLocation(program, "u_glow_emitters"), 7);  // 6: the pre-integration table
-      gl_.ActiveTexture(GL_TEXTURE7);
-      gl_.BindTexture(GL_TEXTURE_2D, glow->emitters);
+      bindGlowEmitters(gl_, program, *glow, 7);  // 6: the pre-integration table
     }
     gl_.ActiveTexture(GL_TEXTURE3);
     gl_.BindTexture(GL_TEXTURE_2D, g.planes);

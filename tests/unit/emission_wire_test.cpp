@@ -5,8 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <stdexcept>
 
 #include "compositing/blend.h"
+#include "compositing/brick_image.h"
 #include "compositing/rect_image.h"
 #include "compositing/rle.h"
 
@@ -75,6 +78,28 @@ TEST(EmissionWire, FusedEncodeIsToEmission16ThenRle) {
     rleEncode(raw, want, 8, max_run);
     EXPECT_EQ(fused, want) << max_run;
   }
+}
+
+TEST(EmissionWire, UnencodedImageBlendsAsItsEncoding) {
+  // A brick image kept in float on the rank that blends it (BrickImage::emission) against the
+  // same image encoded: glow, opaque and transparent pixels, colour too small for a half (shows
+  // in float, not after rounding), above 65504, NaN and Inf, blended over a frame that already
+  // holds light, so every blend counts. The frames must be the same bits.
+  const float px[][4] = {{0, 0, 0, 0},        {2.5f, 0, 1e-6f, 0}, {1e-9f, 0, 0, 0},
+                         {0.1f, 0.2f, 0.3f, 1}, {NAN, 1, 1e9f, 0.5f}, {0, 0, INFINITY, 0},
+                         {0.3f, 0.3f, 0.3f, 0.4f}, {0, 0, 0, 0},        {7.0f, 1e-3f, 0, 1e-7f}};
+  const Rect r{1, 2, 3, 3};
+  std::vector<float> flat(&px[0][0], &px[0][0] + 4 * 9);
+  BrickImage encoded{0, r, {}}, kept{0, r, {}};
+  encodeEmission(flat, encoded.rle, kMaxRun);
+  kept.emission = flat;
+  ImageF a(5, 6), b(5, 6);
+  for (size_t i = 0; i < a.px.size(); ++i) a.px[i] = b.px[i] = 0.05f * float(i % 7);
+  blendBackToFront({&encoded}, a, WireFormat::Emission);
+  blendBackToFront({&kept}, b, WireFormat::Emission);
+  EXPECT_EQ(0, std::memcmp(a.px.data(), b.px.data(), a.px.size() * sizeof(float)));
+  // Never sent: packing an unencoded image is a programming error.
+  EXPECT_THROW(packBrickImage(kept), std::logic_error);
 }
 
 }  // namespace
