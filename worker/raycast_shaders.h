@@ -221,20 +221,38 @@ vec3 g_dir;
 #define GLOW_STOP g_due  // the sample loops stop at a closed piece
 
 // The emitters' texels (worker/glow_gl.h's layout: (centre, a), (direction, b), (colour, 0)).
-// g_lmax of the ray o + s u (above). Distances of the line to the centre and the axis are taken
-// from the closest points, computed as vectors (no difference of squares).
-float glowRayLength(vec3 o, vec3 u) {
+// g_lmax of the ray o + s u over its glow span [s0, s1] (above). Each term's |g''| is at most
+// a / rho^3 (rho: the line's closest approach, with eps) and, pointwise, 2 a / R^3
+// (|2 y^2 - rho^2| <= 2 R^2), so over the part of the span on the term's side of the plane it is
+// at most min(a / rho^3, 2 a / Rmin^3), Rmin at the point of that part closest to the centre
+// (sphere) or the axis (cylinder): a ray passing a core on the other side of its plane, or far
+// from it, gets a small K2. Closest points are computed as vectors (no difference of squares).
+float glowTermBound(vec3 w0, vec3 w1, float lo, float hi, float e2) {
+  if (!(hi >= lo)) return 0.0;  // the span has no part on this side
+  float q = dot(w1, w1);
+  float tc = q > 1e-30 ? -dot(w0, w1) / q : lo;
+  vec3 c = w0 + clamp(tc, lo, hi) * w1;        // the part's closest point
+  vec3 c0 = q > 1e-30 ? w0 - dot(w0, w1) / q * w1 : w0;  // the whole line's
+  float rm = inversesqrt(dot(c, c) + e2), r0 = inversesqrt(dot(c0, c0) + e2);
+  return min(r0 * r0 * r0, 2.0 * rm * rm * rm);
+}
+float glowRayLength(vec3 o, vec3 u, float s0, float s1) {
   float k2 = 0.0, e2 = u_glow_eps * u_glow_eps;
   for (int i = 0; i < u_glow_count; ++i) {
     vec4 e0 = texelFetch(u_glow_emitters, ivec2(0, i), 0), e1 = texelFetch(u_glow_emitters, ivec2(1, i), 0);
     vec3 col = texelFetch(u_glow_emitters, ivec2(2, i), 0).rgb;
     vec3 p = o - e0.xyz;
-    vec3 cs = p - dot(p, u) * u;                          // to the centre
-    vec3 w0 = p - dot(p, e1.xyz) * e1.xyz, w1 = u - dot(u, e1.xyz) * e1.xyz;
-    float sw = length(w1);
-    vec3 cc = sw > 1e-20 ? w0 - dot(w0, w1 / sw) * (w1 / sw) : w0;  // to the axis
-    float rs = inversesqrt(dot(cs, cs) + e2), rc = inversesqrt(dot(cc, cc) + e2);
-    k2 += max(max(col.r, col.g), col.b) * max(e0.w * rs * rs * rs, e1.w * rc * rc * rc);
+    // The span's part on the cylinder's side (height >= 0) and on the sphere's.
+    float h0 = dot(p, e1.xyz), ud = dot(u, e1.xyz);
+    float tp = ud != 0.0 ? -h0 / ud : 0.0;
+    float ulo = s0, uhi = s1, dlo = s0, dhi = s1;
+    if (ud > 0.0) { ulo = max(s0, tp); dhi = min(s1, tp); }
+    else if (ud < 0.0) { uhi = min(s1, tp); dlo = max(s0, tp); }
+    else if (h0 >= 0.0) dhi = -1.0e38;
+    else uhi = -1.0e38;
+    float cyl = glowTermBound(p - h0 * e1.xyz, u - ud * e1.xyz, ulo, uhi, e2);
+    float sph = glowTermBound(p, u, dlo, dhi, e2);
+    k2 += max(max(col.r, col.g), col.b) * max(e1.w * cyl, e0.w * sph);
   }
   float x = 12.0 * kGlowErr / max(u_glow_intensity * k2, 1e-30);
   return x > 1e30 ? 3.0e38 : pow(x, 1.0 / 3.0);
@@ -395,7 +413,7 @@ void main() {
     frag = acc;
     return;
   }
-  g_lmax = glowRayLength(u_eye, dir);  // only for rays through the volume
+  g_lmax = glowRayLength(u_eye, dir, g_t, g_end);  // only for rays through the volume
   g_tx = glowNextCrossing(g_t);
   glowTo(t0, 1.0);  // in front of the volume (nothing closes: no piece is pending yet)
 #else
