@@ -188,9 +188,10 @@ vec4 sampleAt(vec3 p) {
 //   G Tbar + g'(t_m) int (t - t_m) T dt,  Tbar = S / L,
 // the first-order (in g) value of int g T. Against the reference's sum of G_k T_k it is off by
 // int h (T - Tbar) dt with h = g - gbar - g'(t_m)(t - t_m) (the gbar and linear parts are
-// exact), and |h| <= K2 L^2 / 6 (Taylor about t_m; K2 >= |g''| over the piece), while
-// int |T - Tbar| <= L dT / 2 (T falls along the ray: dT = T_first - T_last; a mean absolute
-// deviation is at most half the range), so by at most K2 L^3 dT / 12. K2 per ray
+// exact); a constant integrates to 0 against T - Tbar, so h may be taken as
+// g - g(t_m) - g'(t_m)(t - t_m), at most K2 L^2 / 8 in size (Taylor about t_m; K2 >= |g''| over
+// the piece), while int |T - Tbar| <= L dT / 2 (T falls along the ray: dT = T_first - T_last; a
+// mean absolute deviation is at most half the range): off by at most K2 L^3 dT / 16. K2 per ray
 // (glowRayLength): each emitter's term on one side of its plane is a / sqrt(x^2 + rho^2) (rho^2 =
 // the line's squared distance to the centre plus eps^2, x along the ray) or b / sqrt(sin^2 x^2 +
 // rho^2) (to the axis), whose second derivative is at most a / rho^3 (b / rho^3) in size; summed
@@ -198,23 +199,26 @@ vec4 sampleAt(vec3 p) {
 // its slope jump, so a piece whose T changes never spans a plane: it is split there (g_tx, the
 // first plane beyond the piece's start; a piece of constant T is exact whatever g does, so the
 // front, empty blocks and the back make one piece each when they can). A piece ends before a
-// segment that would make its T change and its length exceed g_lmax = (12 E / (intensity K2))^(1/3),
+// segment that would make its T change and its length exceed g_lmax = (16 E / (intensity K2))^(1/3),
 // E = kGlowErr: its error is then at most E dT in the image's radiance (before tone mapping),
 // and the sum of dT over a ray is at most 1, so the glow inside the volume is off by at most
 // E = 1/1024 per pixel (a quarter of an 8-bit level; the exponential tone map's slope is at most
 // glow.exposure). Far from every core pieces are long (K2 small); near a core or axis they shrink
 // to single segments, where the rule is the reference's own.
+// Every brick of a ray keeps to this with its own T, which the bricks in front dim further, so
+// the bound holds for the whole ray.
 // glowTo() only closes a piece (g_due); the sample loops stop at a closed piece and the block
 // loop integrates it at its top (glowFlushDue), so the closed form is not inlined into every
-// sample loop.
+// sample loop. Per sample: a sqrt, two FMAs, a max and one compare against g_tlim.
 uniform vec3 u_glow_lo, u_glow_hi, u_glow_hi_open;
 uniform float u_glow_intensity;
 const float kGlowErr = 1.0 / 1024.0;
 float g_t = 0.0, g_end = 0.0;  // closed up to g_t; the glow span ends at g_end
 float g_pend = 0.0;            // pending piece [g_t, g_pend], first T g_tr0; S, first moment about g_t
-float g_tr0 = 1.0, g_sum = 0.0, g_mom = 0.0;
+float g_tr0 = -1.0, g_sum = 0.0, g_mom = 0.0;  // g_tr0 -1: no segment yet
 float g_lmax = 3.0e38;         // longest piece whose T may change (above)
 float g_tx = 3.0e38;           // the first emitter plane beyond g_t
+float g_tlim = 3.0e38;         // min(g_t + g_lmax, g_tx): a segment ending beyond may close the piece
 bool g_due = false;            // a closed piece [g_due_t0, g_due_t1] to integrate
 float g_due_t0 = 0.0, g_due_t1 = 0.0, g_due_s = 0.0, g_due_m = 0.0;
 vec3 g_dir;
@@ -254,7 +258,7 @@ float glowRayLength(vec3 o, vec3 u, float s0, float s1) {
     float sph = glowTermBound(p, u, dlo, dhi, e2);
     k2 += max(max(col.r, col.g), col.b) * max(e1.w * cyl, e0.w * sph);
   }
-  float x = 12.0 * kGlowErr / max(u_glow_intensity * k2, 1e-30);
+  float x = 16.0 * kGlowErr / max(u_glow_intensity * k2, 1e-30);
   return x > 1e30 ? 3.0e38 : pow(x, 1.0 / 3.0);
 }
 // The first crossing beyond t of an emitter's plane (3e38: none).
@@ -293,6 +297,7 @@ void glowFlushDue(inout vec4 acc) {
     if (m != 0.0) g += glowSlope(u_eye, g_dir, 0.5 * (g_due_t0 + g_due_t1)) * m;
     acc.rgb += u_glow_intensity * g;
     g_tx = glowNextCrossing(g_t);
+    g_tlim = min(g_t + g_lmax, g_tx);
   }
   g_due = false;
 }
@@ -308,9 +313,10 @@ void glowClose() {
   g_t = g_pend;
   g_sum = 0.0;
   g_mom = 0.0;
+  g_tr0 = -1.0;
 }
 void glowAdd(float te, float tr) {
-  if (!(g_pend > g_t)) g_tr0 = tr;
+  g_tr0 = max(g_tr0, tr);  // the first T (T falls along the ray)
   float len = te - g_pend;
   g_sum += tr * len;
   g_mom += tr * len * (0.5 * (te + g_pend) - g_t);
@@ -320,16 +326,15 @@ void glowAdd(float te, float tr) {
 void glowTo(float t_end, float tr) {
   float te = min(t_end, g_end);
   if (!(te > g_pend)) return;
-  bool changes = g_pend > g_t && tr < g_tr0;  // this segment would make the piece's T change
-  // Close before it if the piece already spans a plane or would grow too long.
-  if (changes && (g_pend > g_tx || te - g_t > g_lmax)) {
-    glowClose();
-    changes = false;
-  }
-  // Split it at a plane it crosses, unless the piece stays of constant T (or one is already closed).
-  if (changes && te > g_tx && !g_due) {
-    glowAdd(g_tx, tr);
-    glowClose();
+  // The segment would make the piece's T change (tr < g_tr0: never for an empty piece) and end
+  // beyond g_tlim: close the piece before it if the piece already spans a plane or would grow
+  // too long, else split the segment at the plane it crosses.
+  if (te > g_tlim && tr < g_tr0) {
+    if (g_pend > g_tx || te - g_t > g_lmax) glowClose();
+    else {
+      glowAdd(g_tx, tr);
+      glowClose();
+    }
   }
   glowAdd(te, tr);
 }
@@ -415,6 +420,7 @@ void main() {
   }
   g_lmax = glowRayLength(u_eye, dir, g_t, g_end);  // only for rays through the volume
   g_tx = glowNextCrossing(g_t);
+  g_tlim = min(g_t + g_lmax, g_tx);
   glowTo(t0, 1.0);  // in front of the volume (nothing closes: no piece is pending yet)
 #else
   if (!(t0 < t1)) discard;
