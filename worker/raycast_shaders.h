@@ -171,35 +171,134 @@ vec4 sampleAt(vec3 p) {
 }
 
 #ifdef GLOW
-// Glow emitters (the GLOW variant, docs/glow.md; withGlow() puts glowSegment() and glowAlong()
-// before this text): emission without opacity, added to acc.rgb and never to acc.a. The ray's
-// glow is integrated exactly over [g_t, g_end] in pieces, each seen through the transmittance
-// at its middle as master/reference.cpp does: in front of the volume 1; a sample's segment
-// [(k - 1/2) delta, (k + 1/2) delta] (an anchor's: its steps) the transmittance before it times
-// exp(-tau len / 2); jumped empty blocks the (constant) transmittance; behind the volume what is
-// left. Only inside this brick's part of the glow box (u_glow_lo, u_glow_hi), so the bricks'
-// pieces tile every ray; up to the surface's t. After early ray termination the rest is dropped
-// (at most 1 - u_ert of it).
-// Consecutive pieces whose transmittances stay within kGlowMerge of the first are integrated as
-// one (the closed form once, not once per sample), weighted by the mean of the first and last
-// transmittance: every weight it stands for lies within kGlowMerge / 2 of that, so the glow is
-// off by at most kGlowMerge / 2 = 1/512 of the undimmed glow inside the volume.
+// Glow emitters (the GLOW variant, docs/glow.md "In the volume"; withGlow() puts glowSegment()
+// and glowAlong() before this text): emission without opacity, added to acc.rgb and never to
+// acc.a. The ray's glow is integrated over [g_t, g_end] seen through the transmittance the
+// reference (master/reference.cpp) uses: in front of the volume 1; over a sample's segment
+// [(k - 1/2) delta, (k + 1/2) delta] (an anchor's: its steps) the transmittance at its middle,
+// T_k = (1 - acc.a) exp(-tau len / 2) = (1 - acc.a) sqrt(1 - alpha); over jumped empty blocks the
+// (constant) transmittance; behind the volume what is left. Only inside this brick's part of the
+// glow box (u_glow_lo, u_glow_hi), so the bricks' pieces tile every ray; up to the surface's t.
+// After early ray termination the rest is dropped (at most 1 - u_ert of it).
+//
+// Consecutive segments make one piece of length L, middle t_m. Per sample two FMAs gather
+// S = sum T_k len_k and the first moment of T about the piece's start; at the piece's end the
+// closed form gives its exact glow G (glowAlong) and the field's slope g'(t_m) (glowSlope), and
+// the piece adds
+//   G Tbar + g'(t_m) int (t - t_m) T dt,  Tbar = S / L,
+// the first-order (in g) value of int g T. Against the reference's sum of G_k T_k it is off by
+// int h (T - Tbar) dt with h = g - gbar - g'(t_m)(t - t_m) (the gbar and linear parts are
+// exact); a constant integrates to 0 against T - Tbar, so h may be taken as
+// g - g(t_m) - g'(t_m)(t - t_m), at most K2 L^2 / 8 in size (Taylor about t_m; K2 >= |g''| over
+// the piece), while int |T - Tbar| <= L dT / 2 (T falls along the ray: dT = T_first - T_last; a
+// mean absolute deviation is at most half the range): off by at most K2 L^3 dT / 16. K2 per ray
+// (glowRayLength): each emitter's term on one side of its plane is a / sqrt(x^2 + rho^2) (rho^2 =
+// the line's squared distance to the centre plus eps^2, x along the ray) or b / sqrt(sin^2 x^2 +
+// rho^2) (to the axis), whose second derivative is at most a / rho^3 (b / rho^3) in size; summed
+// over the emitters, times the largest colour channel. Across an emitter's plane the field and
+// its slope jump, so a piece whose T changes never spans a plane: it is split there (g_tx, the
+// first plane beyond the piece's start; a piece of constant T is exact whatever g does, so the
+// front, empty blocks and the back make one piece each when they can). A piece ends before a
+// segment that would make its T change and its length exceed g_lmax = (16 E / (intensity K2))^(1/3),
+// E = kGlowErr: its error is then at most E dT in the image's radiance (before tone mapping),
+// and the sum of dT over a ray is at most 1, so the glow inside the volume is off by at most
+// E = 1/1024 per pixel (a quarter of an 8-bit level; the exponential tone map's slope is at most
+// glow.exposure). Far from every core pieces are long (K2 small); near a core or axis they shrink
+// to single segments, where the rule is the reference's own.
+// Every brick of a ray keeps to this with its own T, which the bricks in front dim further, so
+// the bound holds for the whole ray.
 // glowTo() only closes a piece (g_due); the sample loops stop at a closed piece and the block
 // loop integrates it at its top (glowFlushDue), so the closed form is not inlined into every
-// sample loop (GLSL inlines each call: 5 copies of glowAlong instead of 8, none per sample, for a
-// quicker compile on llvmpipe; the frame time did not change, docs/glow.md).
+// sample loop. Per sample: a sqrt, two FMAs, a max and one compare against g_tlim.
 uniform vec3 u_glow_lo, u_glow_hi, u_glow_hi_open;
 uniform float u_glow_intensity;
-const float kGlowMerge = 1.0 / 256.0;
+const float kGlowErr = 1.0 / 1024.0;
 float g_t = 0.0, g_end = 0.0;  // closed up to g_t; the glow span ends at g_end
-float g_pend = 0.0;            // pending piece [g_t, g_pend], transmittances g_tr0 .. g_tr1
-float g_tr0 = 1.0, g_tr1 = 1.0;
-bool g_due = false;            // a closed piece [g_due_t0, g_due_t1] to integrate, weight g_due_w
-float g_due_t0 = 0.0, g_due_t1 = 0.0, g_due_w = 0.0;
+float g_pend = 0.0;            // pending piece [g_t, g_pend], first T g_tr0; S, first moment about g_t
+float g_tr0 = -1.0, g_sum = 0.0, g_mom = 0.0;  // g_tr0 -1: no segment yet
+float g_lmax = 3.0e38;         // longest piece whose T may change (above)
+float g_tx = 3.0e38;           // the first emitter plane beyond g_t
+float g_tlim = 3.0e38;         // min(g_t + g_lmax, g_tx): a segment ending beyond may close the piece
+bool g_due = false;            // a closed piece [g_due_t0, g_due_t1] to integrate
+float g_due_t0 = 0.0, g_due_t1 = 0.0, g_due_s = 0.0, g_due_m = 0.0;
 vec3 g_dir;
 #define GLOW_STOP g_due  // the sample loops stop at a closed piece
+
+// The emitters' texels (worker/glow_gl.h's layout: (centre, a), (direction, b), (colour, 0)).
+// g_lmax of the ray o + s u over its glow span [s0, s1] (above). Each term's |g''| is at most
+// a / rho^3 (rho: the line's closest approach, with eps) and, pointwise, 2 a / R^3
+// (|2 y^2 - rho^2| <= 2 R^2), so over the part of the span on the term's side of the plane it is
+// at most min(a / rho^3, 2 a / Rmin^3), Rmin at the point of that part closest to the centre
+// (sphere) or the axis (cylinder): a ray passing a core on the other side of its plane, or far
+// from it, gets a small K2. Closest points are computed as vectors (no difference of squares).
+float glowTermBound(vec3 w0, vec3 w1, float lo, float hi, float e2) {
+  if (!(hi >= lo)) return 0.0;  // the span has no part on this side
+  float q = dot(w1, w1);
+  float tc = q > 1e-30 ? -dot(w0, w1) / q : lo;
+  vec3 c = w0 + clamp(tc, lo, hi) * w1;        // the part's closest point
+  vec3 c0 = q > 1e-30 ? w0 - dot(w0, w1) / q * w1 : w0;  // the whole line's
+  float rm = inversesqrt(dot(c, c) + e2), r0 = inversesqrt(dot(c0, c0) + e2);
+  return min(r0 * r0 * r0, 2.0 * rm * rm * rm);
+}
+float glowRayLength(vec3 o, vec3 u, float s0, float s1) {
+  float k2 = 0.0, e2 = u_glow_eps * u_glow_eps;
+  for (int i = 0; i < u_glow_count; ++i) {
+    vec4 e0 = texelFetch(u_glow_emitters, ivec2(0, i), 0), e1 = texelFetch(u_glow_emitters, ivec2(1, i), 0);
+    vec3 col = texelFetch(u_glow_emitters, ivec2(2, i), 0).rgb;
+    vec3 p = o - e0.xyz;
+    // The span's part on the cylinder's side (height >= 0) and on the sphere's.
+    float h0 = dot(p, e1.xyz), ud = dot(u, e1.xyz);
+    float tp = ud != 0.0 ? -h0 / ud : 0.0;
+    float ulo = s0, uhi = s1, dlo = s0, dhi = s1;
+    if (ud > 0.0) { ulo = max(s0, tp); dhi = min(s1, tp); }
+    else if (ud < 0.0) { uhi = min(s1, tp); dlo = max(s0, tp); }
+    else if (h0 >= 0.0) dhi = -1.0e38;
+    else uhi = -1.0e38;
+    float cyl = glowTermBound(p - h0 * e1.xyz, u - ud * e1.xyz, ulo, uhi, e2);
+    float sph = glowTermBound(p, u, dlo, dhi, e2);
+    k2 += max(max(col.r, col.g), col.b) * max(e1.w * cyl, e0.w * sph);
+  }
+  float x = 16.0 * kGlowErr / max(u_glow_intensity * k2, 1e-30);
+  return x > 1e30 ? 3.0e38 : pow(x, 1.0 / 3.0);
+}
+// The first crossing beyond t of an emitter's plane (3e38: none).
+float glowNextCrossing(float t) {
+  float tx = 3.0e38;
+  for (int i = 0; i < u_glow_count; ++i) {
+    vec4 e0 = texelFetch(u_glow_emitters, ivec2(0, i), 0), e1 = texelFetch(u_glow_emitters, ivec2(1, i), 0);
+    float ud = dot(g_dir, e1.xyz);
+    float tp = ud != 0.0 ? dot(e0.xyz - u_eye, e1.xyz) / ud : -1.0;
+    if (tp > t) tx = min(tx, tp);
+  }
+  return tx;
+}
+// d/ds of the colour-weighted field at o + s u (the side of each plane as glowSegment takes it).
+vec3 glowSlope(vec3 o, vec3 u, float s) {
+  vec3 sum = vec3(0.0);
+  float e2 = u_glow_eps * u_glow_eps;
+  for (int i = 0; i < u_glow_count; ++i) {
+    vec4 e0 = texelFetch(u_glow_emitters, ivec2(0, i), 0), e1 = texelFetch(u_glow_emitters, ivec2(1, i), 0);
+    vec3 col = texelFetch(u_glow_emitters, ivec2(2, i), 0).rgb;
+    vec3 p = o - e0.xyz + s * u;
+    bool up = dot(p, e1.xyz) >= 0.0;
+    vec3 q = up ? p - dot(p, e1.xyz) * e1.xyz : p;
+    vec3 v = up ? u - dot(u, e1.xyz) * e1.xyz : u;
+    float r = inversesqrt(dot(q, q) + e2);
+    sum -= col * ((up ? e1.w : e0.w) * dot(q, v) * r * r * r);
+  }
+  return sum;
+}
 void glowFlushDue(inout vec4 acc) {
-  if (g_due) acc.rgb += g_due_w * u_glow_intensity * glowAlong(u_eye, g_dir, g_due_t0, g_due_t1);
+  if (g_due) {
+    float len = g_due_t1 - g_due_t0;
+    vec3 g = glowAlong(u_eye, g_dir, g_due_t0, g_due_t1) * (g_due_s / len);
+    // int (t - t_m) T dt; zero for a piece of constant T (skip the slope's cost there).
+    float m = g_due_m - 0.5 * len * g_due_s;
+    if (m != 0.0) g += glowSlope(u_eye, g_dir, 0.5 * (g_due_t0 + g_due_t1)) * m;
+    acc.rgb += u_glow_intensity * g;
+    g_tx = glowNextCrossing(g_t);
+    g_tlim = min(g_t + g_lmax, g_tx);
+  }
   g_due = false;
 }
 // Closes the pending piece (the caller has integrated any earlier closed one).
@@ -208,17 +307,36 @@ void glowClose() {
     g_due = true;
     g_due_t0 = g_t;
     g_due_t1 = g_pend;
-    g_due_w = 0.5 * (g_tr0 + g_tr1);
+    g_due_s = g_sum;
+    g_due_m = g_mom;
   }
   g_t = g_pend;
+  g_sum = 0.0;
+  g_mom = 0.0;
+  g_tr0 = -1.0;
 }
+void glowAdd(float te, float tr) {
+  g_tr0 = max(g_tr0, tr);  // the first T (T falls along the ray)
+  float len = te - g_pend;
+  g_sum += tr * len;
+  g_mom += tr * len * (0.5 * (te + g_pend) - g_t);
+  g_pend = te;
+}
+// The segment from the pending piece's end to t_end, seen through transmittance tr.
 void glowTo(float t_end, float tr) {
   float te = min(t_end, g_end);
   if (!(te > g_pend)) return;
-  if (g_pend > g_t && abs(tr - g_tr0) > kGlowMerge) glowClose();
-  if (!(g_pend > g_t)) g_tr0 = tr;
-  g_pend = te;
-  g_tr1 = tr;
+  // The segment would make the piece's T change (tr < g_tr0: never for an empty piece) and end
+  // beyond g_tlim: close the piece before it if the piece already spans a plane or would grow
+  // too long, else split the segment at the plane it crosses.
+  if (te > g_tlim && tr < g_tr0) {
+    if (g_pend > g_tx || te - g_t > g_lmax) glowClose();
+    else {
+      glowAdd(g_tx, tr);
+      glowClose();
+    }
+  }
+  glowAdd(te, tr);
 }
 #endif
 
@@ -231,7 +349,7 @@ void glowTo(float t_end, float tr) {
 void composite(inout vec4 acc, vec4 e, float len, float t_end) {
   float alpha = 1.0 - exp(-e.a * len);
 #ifdef GLOW
-  glowTo(t_end, (1.0 - acc.a) * exp(-0.5 * e.a * len));
+  glowTo(t_end, (1.0 - acc.a) * sqrt(max(1.0 - alpha, 0.0)));  // exp(-tau len / 2)
 #endif
   acc += (1.0 - acc.a) * vec4(e.rgb * alpha, alpha);
 }
@@ -300,6 +418,9 @@ void main() {
     frag = acc;
     return;
   }
+  g_lmax = glowRayLength(u_eye, dir, g_t, g_end);  // only for rays through the volume
+  g_tx = glowNextCrossing(g_t);
+  g_tlim = min(g_t + g_lmax, g_tx);
   glowTo(t0, 1.0);  // in front of the volume (nothing closes: no piece is pending yet)
 #else
   if (!(t0 < t1)) discard;
