@@ -179,7 +179,9 @@ const std::vector<SceneKey>& sceneKeys() {
        "Orbit radius. `auto`: 2 x the largest extent of the scene's bounds (the volume box, "
        "grown to hold the particles' domain; the paper's R, kept for the benchmark protocol: it "
        "may crop a wide scene, which `camera.position: auto` does not)."},
-      {"bricks.per_axis", "2", "d: the volume is cut into d x d x d bricks."},
+      {"bricks.per_axis", "auto",
+       "d: the scene is cut into d x d x d bricks. `auto`: 2, but 1 for a scene of glow emitters "
+       "alone (their integral splits anywhere, so one brick draws them in one pass; docs/glow.md)."},
       {"render.backend", "osmesa",
        "OpenGL backend: `osmesa` (software) or `egl` (surfaceless platform, or the device "
        "platform on an NVIDIA GPU)."},

@@ -25,6 +25,10 @@ for d in 1 2 3; do
   run_np 2 render -q "$scene" --set bricks.per_axis=$d -o "$WORK/gl$d.png"
   near "$WORK/gl$d.png" "$WORK/ref$d.png" "d = $d vs reference"
 done
+# bricks.per_axis: auto is one brick for glow alone (the same image as d = 1).
+run_np 1 render -q "$scene" --set bricks.per_axis=auto -o "$WORK/glauto.png" --stats "$WORK/auto.json"
+grep -Eq '"bricks_per_axis": *1([^0-9]|$)' "$WORK/auto.json" || fail "bricks.per_axis: auto did not give one brick for glow alone"
+near "$WORK/glauto.png" "$WORK/ref1.png" "d = auto vs reference"
 # 2. Rank invariance, 1-4 ranks and the swap strategies (d = 2), against 1 rank.
 run_np 1 render -q "$scene" -o "$WORK/one.png"
 for np in 2 3 4; do
