@@ -122,7 +122,7 @@ std::vector<GlowEmitterSpec> parseGlowEmitters(const YAML::Node& list, int frame
 
 std::vector<GlowEmitter> GlowSpec::emittersAt(int frame) const {
   std::vector<GlowEmitter> out;
-  const double f = frame;
+  const double f = double(first_frame) + double(frame);
   for (const GlowEmitterSpec& s : emitters) {
     GlowEmitter e = s.at0;
     e.centre += f * s.velocity;

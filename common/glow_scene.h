@@ -30,15 +30,19 @@ struct GlowSpec {
   std::string tone_map = "none";  // none | exponential
   double exposure = 1.0;          // exponential: 1 - exp(-exposure * radiance)
   std::optional<Box3> box;        // glow.box; unset: the scene's bounds
+  // Frames before the first of this time step: the rates run on through a series (time.step s
+  // of a scene whose orbit has N frames starts at frame s N; without an orbit at frame s).
+  int first_frame = 0;
 
   bool enabled() const { return !emitters.empty(); }
-  // The emitters at frame `frame` (0: as given; an orbit's frame i: i steps of each rate).
+  // The emitters at frame `frame` of this time step (an orbit's frame index, 0 without one):
+  // first_frame + frame steps of each rate from the emitters as given.
   std::vector<GlowEmitter> emittersAt(int frame) const;
 };
 
 // Reads `glow.emitters` (a list of maps) and checks every entry; `frames` is the number of frames
-// the scene renders (1, or the orbit's), so a rate that would make a or b negative or the direction
-// zero in a later frame is refused now. Throws InputError naming the key and entry.
+// the scene renders (its time steps times its orbit's frames, each at least 1), so a rate that
+// would make a or b negative or the direction zero in a later frame is refused now. Throws InputError naming the key and entry.
 std::vector<GlowEmitterSpec> parseGlowEmitters(const YAML::Node& list, int frames);
 
 // The tone map, applied once to the final composited radiance (premultiplied rgb; alpha kept).

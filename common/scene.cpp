@@ -277,10 +277,12 @@ std::vector<std::string> readSeries(const Reader& r, const std::string& key,
 }
 
 // The glow.* keys (common/glow_scene.h has the emitters' own).
-GlowSpec readGlow(const Reader& r) {
+// The emitters' rates run per frame of an orbit and on through the steps of a series.
+GlowSpec readGlow(const Reader& r, int time_step, int time_steps) {
   GlowSpec g;
-  const int orbit = r.as<int>("camera.orbit.frames");  // checked >= 0 with the camera
-  g.emitters = parseGlowEmitters(r.get("glow.emitters"), std::max(1, orbit));
+  const int per_step = std::max(1, r.as<int>("camera.orbit.frames"));  // checked >= 0 with the camera
+  g.emitters = parseGlowEmitters(r.get("glow.emitters"), time_steps * per_step);
+  g.first_frame = time_step * per_step;
   g.core_radius = r.as<double>("glow.core_radius");
   checkLength("glow.core_radius", g.core_radius);
   g.intensity = r.as<double>("glow.intensity");
@@ -491,7 +493,7 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
                      std::to_string(s.time_steps) + " time step(s), 0 ... " + std::to_string(s.time_steps - 1));
   if (!s.volume_files.empty()) vol.file = s.volume_files[size_t(s.time_step)];
   if (!s.particle_files.empty()) s.particles.file = s.particle_files[size_t(s.time_step)];
-  s.glow = readGlow(r);
+  s.glow = readGlow(r, s.time_step, s.time_steps);
   s.surfaces = parseSurfaces(r.get("surfaces"), base_dir);
   if (!s.hasVolume() && !s.particles.enabled() && !s.glow.enabled() && s.surfaces.empty())
     throw InputError("the scene has nothing to render: volume.procedural is none with no "

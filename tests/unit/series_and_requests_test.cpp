@@ -68,6 +68,21 @@ TEST_F(SeriesFiles, BadSeriesAreNamed) {
   EXPECT_NE(inputErrorOf([&] { loadScene("", {"time.step=1"}); }).find("out of range"), std::string::npos);
 }
 
+// Glow emitters' rates run on through a series: step s of a scene with an N-frame orbit starts at
+// frame s N (s without an orbit), and a rate is checked up to the last step's last frame.
+TEST_F(SeriesFiles, GlowRatesRunThroughTheSeries) {
+  const std::string text =
+      "volume: {files: \"step_*.raw\"}\nglow: {box: [[-1, -1, -1], [1, 1, 1]], emitters: [{center: "
+      "[0, 0, 0], velocity: [1, 0, 0], a: 1, a_rate: -0.1}]}\n";
+  EXPECT_DOUBLE_EQ(loadScene(scene(text), {"time.step=2"}).glow.emittersAt(0)[0].centre.x, 2.0);
+  Scene orbit = loadScene(scene(text), {"time.step=1", "camera.orbit.frames=3"});
+  EXPECT_DOUBLE_EQ(orbit.glow.emittersAt(2)[0].centre.x, 5.0);  // frame 1 x 3 + 2
+  EXPECT_DOUBLE_EQ(orbit.glow.emittersAt(2)[0].a, 0.5);
+  // 3 steps x 4 frames: a reaches 1 - 11 x 0.1 < 0 at the last frame, refused at step 0 already.
+  EXPECT_NE(inputErrorOf([&] { loadScene(scene(text), {"camera.orbit.frames=4"}); }).find("negative at frame 11"),
+            std::string::npos);
+}
+
 TEST(FrameKeys, LayoutKeysAreNotFrameKeys) {
   for (const char* k : {"camera.position", "image.width", "transfer.points", "render.method",
                         "compositing.strategy", "time.step", "particles.color", "render.sample_spacing"})
