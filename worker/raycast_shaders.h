@@ -176,7 +176,7 @@ vec4 sampleAt(vec3 p) {
 // acc.a. The ray's glow is integrated over [g_t, g_end] seen through the transmittance the
 // reference (master/reference.cpp) uses: in front of the volume 1; over a sample's segment
 // [(k - 1/2) delta, (k + 1/2) delta] (an anchor's: its steps) the transmittance at its middle,
-// T_k = (1 - acc.a) exp(-tau len / 2) = (1 - acc.a) sqrt(1 - alpha); over jumped empty blocks the
+// T_k = (1 - acc.a) exp(-tau len / 2) (its square: 1 - alpha); over jumped empty blocks the
 // (constant) transmittance; behind the volume what is left. Only inside this brick's part of the
 // glow box (u_glow_lo, u_glow_hi), so the bricks' pieces tile every ray; up to the surface's t.
 // After early ray termination the rest is dropped (at most 1 - u_ert of it).
@@ -374,9 +374,14 @@ void glowCatchUp(inout vec4 acc) {
 // A sample standing for `len` of the ray, front to back (opacity corrected for len); its segment
 // ends at t_end (the glow variant's piece).
 void composite(inout vec4 acc, vec4 e, float len, float t_end) {
-  float alpha = 1.0 - exp(-e.a * len);
 #ifdef GLOW
-  glowSample(t_end, (1.0 - acc.a) * sqrt(max(1.0 - alpha, 0.0)));  // exp(-tau len / 2)
+  // The half segment's transmittance exp(-tau len / 2) is the glow's weight; its square gives
+  // alpha (one exp per sample, no sqrt).
+  float half_tr = exp(-0.5 * e.a * len);
+  float alpha = 1.0 - half_tr * half_tr;
+  glowSample(t_end, (1.0 - acc.a) * half_tr);
+#else
+  float alpha = 1.0 - exp(-e.a * len);
 #endif
   acc += (1.0 - acc.a) * vec4(e.rgb * alpha, alpha);
 }
