@@ -176,7 +176,7 @@ vec4 sampleAt(vec3 p) {
 // acc.a. The ray's glow is integrated over [g_t, g_end] seen through the transmittance the
 // reference (master/reference.cpp) uses: in front of the volume 1; over a sample's segment
 // [(k - 1/2) delta, (k + 1/2) delta] (an anchor's: its steps) the transmittance at its middle,
-// T_k = (1 - acc.a) exp(-tau len / 2) = (1 - acc.a) sqrt(1 - alpha); over jumped empty blocks the
+// T_k = (1 - acc.a) exp(-tau len / 2) (its square: 1 - alpha); over jumped empty blocks the
 // (constant) transmittance; behind the volume what is left. Only inside this brick's part of the
 // glow box (u_glow_lo, u_glow_hi), so the bricks' pieces tile every ray; up to the surface's t.
 // After early ray termination the rest is dropped (at most 1 - u_ert of it).
@@ -207,9 +207,10 @@ vec4 sampleAt(vec3 p) {
 // to single segments, where the rule is the reference's own.
 // Every brick of a ray keeps to this with its own T, which the bricks in front dim further, so
 // the bound holds for the whole ray.
-// glowTo() only closes a piece (g_due); the sample loops stop at a closed piece and the block
-// loop integrates it at its top (glowFlushDue), so the closed form is not inlined into every
-// sample loop. Per sample: a sqrt, two FMAs, a max and one compare against g_tlim.
+// glowTo() only closes a piece (g_due); the sample loops only record a segment that would close
+// one (glowSample, branch-free) and stop. The closed form has a single call site in main
+// (glowCatchUp at the foot of the stage loop): llvmpipe runs every if's body, masked, whenever a
+// group of pixels reaches it, so each site costs every pixel a closed form whether taken or not.
 uniform vec3 u_glow_lo, u_glow_hi, u_glow_hi_open;
 uniform float u_glow_intensity;
 const float kGlowErr = 1.0 / 1024.0;
@@ -221,8 +222,10 @@ float g_tx = 3.0e38;           // the first emitter plane beyond g_t
 float g_tlim = 3.0e38;         // min(g_t + g_lmax, g_tx): a segment ending beyond may close the piece
 bool g_due = false;            // a closed piece [g_due_t0, g_due_t1] to integrate
 float g_due_t0 = 0.0, g_due_t1 = 0.0, g_due_s = 0.0, g_due_m = 0.0;
+bool g_hit = false;            // a sample's segment [g_pend, g_hit_te] at T g_hit_tr, not yet added
+float g_hit_te = 0.0, g_hit_tr = 0.0;
 vec3 g_dir;
-#define GLOW_STOP g_due  // the sample loops stop at a closed piece
+#define GLOW_STOP g_hit  // the sample loops stop at a segment that ends beyond g_tlim
 
 // The emitters' texels (worker/glow_gl.h's layout: (centre, a), (direction, b), (colour, 0)).
 // g_lmax of the ray o + s u over its glow span [s0, s1] (above). Each term's |g''| is at most
@@ -338,6 +341,30 @@ void glowTo(float t_end, float tr) {
   }
   glowAdd(te, tr);
 }
+// A sample loop's segment, branch-free: llvmpipe runs 8-16 pixels in lock-step and executes an
+// if's body, masked, whenever any lane takes it, so glowTo's closing code in the sample loop
+// cost every sample the masked stores of a dozen globals. Here a segment ending beyond g_tlim
+// and would change T is only recorded (g_hit) and the loop stops; glowCatchUp at the block
+// loop's top runs glowTo's rule on it.
+void glowSample(float t_end, float tr) {
+  float te = min(t_end, g_end);
+  g_hit = te > g_tlim && tr < g_tr0 && te > g_pend;  // glowTo's test (a clipped segment: none)
+  g_hit_te = te;
+  g_hit_tr = tr;
+  float w = g_hit ? 0.0 : tr * max(te - g_pend, 0.0);
+  g_sum += w;
+  g_mom += w * (0.5 * (te + g_pend) - g_t);
+  g_tr0 = max(g_tr0, tr);  // the first T (T falls along the ray; a hit's T is not above it)
+  g_pend = g_hit ? g_pend : max(g_pend, te);
+}
+// The hit segment, if any, by the rule; then the closed piece, if any.
+void glowCatchUp(inout vec4 acc) {
+  if (g_hit) {
+    g_hit = false;
+    glowTo(g_hit_te, g_hit_tr);
+  }
+  glowFlushDue(acc);
+}
 #endif
 
 #ifndef GLOW
@@ -347,9 +374,14 @@ void glowTo(float t_end, float tr) {
 // A sample standing for `len` of the ray, front to back (opacity corrected for len); its segment
 // ends at t_end (the glow variant's piece).
 void composite(inout vec4 acc, vec4 e, float len, float t_end) {
-  float alpha = 1.0 - exp(-e.a * len);
 #ifdef GLOW
-  glowTo(t_end, (1.0 - acc.a) * sqrt(max(1.0 - alpha, 0.0)));  // exp(-tau len / 2)
+  // The half segment's transmittance exp(-tau len / 2) is the glow's weight; its square gives
+  // alpha (one exp per sample, no sqrt).
+  float half_tr = exp(-0.5 * e.a * len);
+  float alpha = 1.0 - half_tr * half_tr;
+  glowSample(t_end, (1.0 - acc.a) * half_tr);
+#else
+  float alpha = 1.0 - exp(-e.a * len);
 #endif
   acc += (1.0 - acc.a) * vec4(e.rgb * alpha, alpha);
 }
@@ -365,7 +397,7 @@ void compositeSegment(inout vec4 acc, float vf, float vb, int mid, float len, ve
   if (e.a > 0.0) e.rgb = e.a * shadeColour(e.rgb / e.a, u_volume, p * u_tex_scale + u_tex_offset, dir);
 #endif
 #ifdef GLOW
-  glowTo(t_end, (1.0 - acc.a) * sqrt(max(1.0 - e.a, 0.0)));
+  glowSample(t_end, (1.0 - acc.a) * sqrt(max(1.0 - e.a, 0.0)));
 #endif
   acc += (1.0 - acc.a) * e;
 }
@@ -413,15 +445,13 @@ void main() {
   if (u_has_surface != 0 && all(greaterThanEqual(px, u_surface_rect.xy)) &&
       all(lessThan(px, u_surface_rect.xy + u_surface_rect.zw)))
     g_end = min(g_end, texelFetch(u_surface, px, 0).x);
-  if (!(t0 < t1)) {  // no volume on this ray: its glow in the brick, undimmed
-    acc.rgb = u_glow_intensity * glowAlong(u_eye, dir, g_t, g_end);
-    frag = acc;
-    return;
-  }
-  g_lmax = glowRayLength(u_eye, dir, g_t, g_end);  // only for rays through the volume
+  g_lmax = glowRayLength(u_eye, dir, g_t, g_end);
   g_tx = glowNextCrossing(g_t);
   g_tlim = min(g_t + g_lmax, g_tx);
-  glowTo(t0, 1.0);  // in front of the volume (nothing closes: no piece is pending yet)
+  // In front of the volume (nothing closes: no piece is pending yet). A ray that misses the
+  // volume takes the same path below, its span one piece at T = 1 (no early return: llvmpipe
+  // would run that return's closed form, masked, for every pixel).
+  if (t0 < t1) glowTo(t0, 1.0);
 #else
   if (!(t0 < t1)) discard;
 #endif
@@ -439,10 +469,19 @@ void main() {
   float v_back = 0.0;
 #endif
   float t = t0;
-  while (t < t1 && acc.a < u_ert) {
 #ifdef GLOW
-    glowFlushDue(acc);  // the one place the closed form runs inside the volume
+  // llvmpipe runs 8-16 pixels in lock-step and every if's body, masked, whenever the group
+  // reaches it, so the closed form runs as often as the group passes one of its call sites,
+  // taken or not. It has one site (glowCatchUp at this loop's foot), passed once per round;
+  // a round ends when a piece closes (the sample and block loops stop), so a group runs it
+  // 1 + (most closures of its rays) times. Stages: 0 the march, 1 behind the volume, 2 the
+  // last piece, 3 done.
+  int stage = t0 < t1 ? 0 : 1;
+  do {
+  if (stage == 0) {
+  bool more = false;  // stopped to integrate a closed piece; the march resumes at sample k
 #endif
+  while (t < t1 && acc.a < u_ert) {
     uvec2 info = texelFetch(u_skip, idx, 0).rg;
     // Every block within d - 1 of this one has its class: the ray crosses that cube at once (d = 1:
     // this block alone), jumping it if empty, else sampling it with one m.
@@ -506,8 +545,8 @@ void main() {
     }
 #ifdef GLOW
     else if (acc.a < u_ert) glowTo((float(k_end) - 0.5) * u_delta, 1.0 - acc.a);  // jumped: T constant
-    // A piece closed inside the block: integrate it at the loop's top, then go on from sample k.
-    if (g_due && k < k_end && acc.a < u_ert) continue;
+    // A piece closed inside the block: integrate it, then go on from sample k.
+    if (g_hit && k < k_end && acc.a < u_ert) { more = true; break; }
 #endif
     k = k_end;
     // Into the block holding tb: on each axis, past every slab the ray has left by then.
@@ -518,13 +557,23 @@ void main() {
     }
     if (!inside) break;
     t = tb;
+#ifdef GLOW
+    if (g_hit || g_due) { more = true; break; }
+#endif
   }
 #ifdef GLOW
-  glowFlushDue(acc);
-  if (acc.a < u_ert) glowTo(g_end, 1.0 - acc.a);  // the rest of the brick, behind the volume
-  glowFlushDue(acc);
-  glowClose();  // the last piece
-  glowFlushDue(acc);
+  if (!more) stage = 1;
+  }
+  if (stage == 1 && !g_hit && !g_due) {
+    if (acc.a < u_ert) glowTo(g_end, 1.0 - acc.a);  // the rest of the brick, behind the volume
+    stage = 2;
+  }
+  if (stage == 2 && !g_hit && !g_due) {
+    glowClose();  // the last piece
+    stage = 3;
+  }
+  glowCatchUp(acc);  // the one place the closed form runs
+  } while (stage < 3);
 #endif
   frag = acc;
 }
