@@ -89,7 +89,7 @@ int main(int argc, char** argv) {
     gl.Uniform3f(loc(name), float(v.x), float(v.y), float(v.z));
   };
   bindGlowEmitters(gl, program, GlowPass{emitters, count, eps, intensity, {}, {}}, 0);
-  setGlowPixelRay(gl, program, cam);
+  setPixelRayUniforms(gl, program, cam);
   u3("u_box_lo", glm::dvec3(lo));
   u3("u_box_hi", glm::dvec3(hi));
   gl.Uniform1f(loc("u_intensity"), intensity);

@@ -44,7 +44,7 @@ void bindGlowEmitters(const GlApi& gl, unsigned program, const GlowPass& pass, i
   gl.BindTexture(GL_TEXTURE_2D, pass.emitters);
 }
 
-void setGlowPixelRay(const GlApi& gl, unsigned program, const Camera& cam) {
+void setPixelRayUniforms(const GlApi& gl, unsigned program, const Camera& cam) {
   auto u3 = [&](const char* name, const glm::dvec3& v) {
     gl.Uniform3f(gl.GetUniformLocation(program, name), float(v.x), float(v.y), float(v.z));
   };

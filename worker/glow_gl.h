@@ -28,8 +28,10 @@ std::vector<float> glowEmitterTexels(const std::vector<GlowEmitter>& emitters);
 // their count and core radius. Every program that includes kGlowAlong binds them here.
 void bindGlowEmitters(const GlApi& gl, unsigned program, const GlowPass& pass, int unit);
 
-// The uniforms of kGlowPixelRay for `program` (in use): the camera's eye and pixel rays.
-void setGlowPixelRay(const GlApi& gl, unsigned program, const Camera& cam);
+// The pixel-ray uniforms (u_eye, u_forward, u_right, u_up, u_pixel_scale) for `program` (in use),
+// shared by kGlowPixelRay and the ray caster's main(): the image plane at distance 1, pixel
+// centre (x, y) at forward + sx right + sy up, as in Camera::rayDirection.
+void setPixelRayUniforms(const GlApi& gl, unsigned program, const Camera& cam);
 
 namespace shaders {
 // The vertex shader of a fullscreen pass: one triangle (gl_VertexID 0..2, no attributes) covering

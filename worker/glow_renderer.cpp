@@ -82,7 +82,7 @@ GlowBrickImage GlowRenderer::render(const Box3& box, const Box3& whole, const Ca
     auto u3 = [&](const char* name, const glm::dvec3& v) {
       gl_.Uniform3f(loc(name), float(v.x), float(v.y), float(v.z));
     };
-    setGlowPixelRay(gl_, program_, cam);
+    setPixelRayUniforms(gl_, program_, cam);
     u3("u_box_lo", box.lo);
     u3("u_box_hi", box.hi);
     u3("u_box_hi_open", glm::dvec3(glm::lessThan(box.hi, whole.hi)));

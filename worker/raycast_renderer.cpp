@@ -267,13 +267,7 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
     auto u3 = [&](const char* name, const glm::dvec3& v) {
       gl_.Uniform3f(gl_.GetUniformLocation(program, name), float(v.x), float(v.y), float(v.z));
     };
-    // The image plane at distance 1: pixel centre (x, y) is forward + sx right + sy up, as in
-    // Camera::rayDirection.
-    const double th = std::tan(0.5 * cam.fov_deg * 3.14159265358979323846 / 180.0);
-    u3("u_eye", cam.position);
-    u3("u_forward", cam.forward());
-    u3("u_right", cam.right() * (th * double(cam.width) / cam.height));
-    u3("u_up", cam.trueUp() * th);
+    setPixelRayUniforms(gl_, program, cam);
     if (g.adaptive) {
       u3("u_index_scale", glm::dvec3(g.lookup.index_scale));
       u3("u_index_offset", glm::dvec3(g.lookup.index_offset));
@@ -288,8 +282,6 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
       u3("u_tex_scale", glm::dvec3(b.tex_scale));
       u3("u_tex_offset", glm::dvec3(b.tex_offset));
     }
-    gl_.Uniform2f(gl_.GetUniformLocation(program, "u_pixel_scale"), float(2.0 / cam.width),
-                  float(2.0 / cam.height));
     gl_.Uniform1f(gl_.GetUniformLocation(program, "u_delta"), float(spacing));
     gl_.Uniform1f(gl_.GetUniformLocation(program, "u_ert"),
                   settings_.ert_threshold < 1.0 ? float(settings_.ert_threshold) : 2.0f);
