@@ -265,13 +265,17 @@ float glowRayLength(vec3 o, vec3 u, float s0, float s1) {
   float x = 16.0 * kGlowErr / max(u_glow_intensity * k2, 1e-30);
   return x > 1e30 ? 3.0e38 : pow(x, 1.0 / 3.0);
 }
+// Where the ray u_eye + t g_dir crosses the plane of the emitter with texels e0, e1 (-1: parallel).
+float glowPlaneT(vec4 e0, vec4 e1) {
+  float ud = dot(g_dir, e1.xyz);
+  return ud != 0.0 ? dot(e0.xyz - u_eye, e1.xyz) / ud : -1.0;
+}
 // The first crossing beyond t of an emitter's plane (3e38: none).
 float glowNextCrossing(float t) {
   float tx = 3.0e38;
   for (int i = 0; i < u_glow_count; ++i) {
     vec4 e0 = texelFetch(u_glow_emitters, ivec2(0, i), 0), e1 = texelFetch(u_glow_emitters, ivec2(1, i), 0);
-    float ud = dot(g_dir, e1.xyz);
-    float tp = ud != 0.0 ? dot(e0.xyz - u_eye, e1.xyz) / ud : -1.0;
+    float tp = glowPlaneT(e0, e1);
     if (tp > t) tx = min(tx, tp);
   }
   return tx;
@@ -299,8 +303,7 @@ void glowFlushDue(inout vec4 acc) {
       vec3 v = up ? g_dir - dot(g_dir, e1.xyz) * e1.xyz : g_dir;
       float r = inversesqrt(dot(q, q) + e2);
       slope -= col * ((up ? e1.w : e0.w) * dot(q, v) * r * r * r);
-      float ud = dot(g_dir, e1.xyz);
-      float tp = ud != 0.0 ? dot(e0.xyz - u_eye, e1.xyz) / ud : -1.0;
+      float tp = glowPlaneT(e0, e1);
       tx = tp > g_t ? min(tx, tp) : tx;
     }
     g *= g_due_s / len;
