@@ -228,6 +228,11 @@ float g_hit_te = 0.0, g_hit_tr = 0.0;
 vec3 g_dir;
 #define GLOW_STOP g_hit  // the sample loops stop at a segment that ends beyond g_tlim
 
+// Where the ray u_eye + t g_dir crosses the plane of the emitter with texels e0, e1 (-1: parallel).
+float glowPlaneT(vec4 e0, vec4 e1) {
+  float ud = dot(g_dir, e1.xyz);
+  return ud != 0.0 ? dot(e0.xyz - u_eye, e1.xyz) / ud : -1.0;
+}
 // The emitters' texels (worker/glow_gl.h's layout: (centre, a), (direction, b), (colour, 0)).
 // g_lmax of the ray o + s u over its glow span [s0, s1] (above). Each term's |g''| is at most
 // a / rho^3 (rho: the line's closest approach, with eps) and, pointwise, 2 a / R^3
@@ -244,8 +249,11 @@ float glowTermBound(vec3 w0, vec3 w1, float lo, float hi, float e2) {
   float rm = inversesqrt(dot(c, c) + e2), r0 = inversesqrt(dot(c0, c0) + e2);
   return min(r0 * r0 * r0, 2.0 * rm * rm * rm);
 }
-float glowRayLength(vec3 o, vec3 u, float s0, float s1) {
+// Also gives tx, the first emitter plane the ray crosses beyond s0 (3e38: none), in the same loop
+// over the emitters (their texels fetched once per ray).
+float glowRayLength(vec3 o, vec3 u, float s0, float s1, out float tx) {
   float k2 = 0.0, e2 = u_glow_eps * u_glow_eps;
+  tx = 3.0e38;
   for (int i = 0; i < u_glow_count; ++i) {
     vec4 e0 = texelFetch(u_glow_emitters, ivec2(0, i), 0), e1 = texelFetch(u_glow_emitters, ivec2(1, i), 0);
     vec3 col = texelFetch(u_glow_emitters, ivec2(2, i), 0).rgb;
@@ -261,28 +269,15 @@ float glowRayLength(vec3 o, vec3 u, float s0, float s1) {
     float cyl = glowTermBound(p - h0 * e1.xyz, u - ud * e1.xyz, ulo, uhi, e2);
     float sph = glowTermBound(p, u, dlo, dhi, e2);
     k2 += max(max(col.r, col.g), col.b) * max(e1.w * cyl, e0.w * sph);
+    float tc = glowPlaneT(e0, e1);
+    if (tc > s0) tx = min(tx, tc);
   }
   float x = 16.0 * kGlowErr / max(u_glow_intensity * k2, 1e-30);
   return x > 1e30 ? 3.0e38 : pow(x, 1.0 / 3.0);
 }
-// Where the ray u_eye + t g_dir crosses the plane of the emitter with texels e0, e1 (-1: parallel).
-float glowPlaneT(vec4 e0, vec4 e1) {
-  float ud = dot(g_dir, e1.xyz);
-  return ud != 0.0 ? dot(e0.xyz - u_eye, e1.xyz) / ud : -1.0;
-}
-// The first crossing beyond t of an emitter's plane (3e38: none).
-float glowNextCrossing(float t) {
-  float tx = 3.0e38;
-  for (int i = 0; i < u_glow_count; ++i) {
-    vec4 e0 = texelFetch(u_glow_emitters, ivec2(0, i), 0), e1 = texelFetch(u_glow_emitters, ivec2(1, i), 0);
-    float tp = glowPlaneT(e0, e1);
-    if (tp > t) tx = min(tx, tp);
-  }
-  return tx;
-}
 // The closed piece [g_due_t0, g_due_t1]: its exact glow G (glowSegment per emitter), the field's
 // slope g'(t_m) at its middle (the side of each plane as glowSegment takes it) and the next plane
-// crossing beyond g_t (glowNextCrossing's), in one loop over the emitters: each emitter's texels
+// crossing beyond g_t (as glowRayLength finds the first), in one loop over the emitters: each emitter's texels
 // are fetched once per piece instead of three times (three loops), which cost 8 emitters at 512^2
 // about a tenth of the frame's CPU (docs/glow.md).
 void glowFlushDue(inout vec4 acc) {
@@ -455,8 +450,7 @@ void main() {
   if (u_has_surface != 0 && all(greaterThanEqual(px, u_surface_rect.xy)) &&
       all(lessThan(px, u_surface_rect.xy + u_surface_rect.zw)))
     g_end = min(g_end, texelFetch(u_surface, px, 0).x);
-  g_lmax = glowRayLength(u_eye, dir, g_t, g_end);
-  g_tx = glowNextCrossing(g_t);
+  g_lmax = glowRayLength(u_eye, dir, g_t, g_end, g_tx);
   g_tlim = min(g_t + g_lmax, g_tx);
   // In front of the volume (nothing closes: no piece is pending yet). A ray that misses the
   // volume takes the same path below, its span one piece at T = 1 (no early return: llvmpipe
