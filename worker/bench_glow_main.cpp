@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
   auto ctx = createGlContext("osmesa");
   const GlApi& gl = ctx->gl();
   std::string fragment = std::string("#version 450 core\n") + shaders::kGlowSegment +
-                         shaders::kGlowAlong + shaders::kGlowPixelRay + kMain;
+                         shaders::kGlowEmitters + shaders::kGlowAlong + shaders::kGlowPixelRay + kMain;
   unsigned program = linkProgram(gl, shaders::kGlowFullscreenVertex, fragment.c_str());
   unsigned vao = 0;
   const unsigned target = makeFloatTexture(gl, size, size, nullptr);

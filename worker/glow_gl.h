@@ -24,8 +24,8 @@ unsigned makeFramebuffer(const GlApi& gl, unsigned texture);
 // Row i of a 3-texel-wide texture is emitter i: (centre, a), (direction, b), (colour, 0).
 std::vector<float> glowEmitterTexels(const std::vector<GlowEmitter>& emitters);
 
-// The uniforms of kGlowAlong for `program` (in use): the emitters' texture on texture unit `unit`,
-// their count and core radius. Every program that includes kGlowAlong binds them here.
+// The uniforms of kGlowEmitters for `program` (in use): the emitters' texture on texture unit
+// `unit`, their count and core radius. Every program that includes kGlowEmitters binds them here.
 void bindGlowEmitters(const GlApi& gl, unsigned program, const GlowPass& pass, int unit);
 
 // The pixel-ray uniforms (u_eye, u_forward, u_right, u_up, u_pixel_scale) for `program` (in use),
@@ -55,23 +55,13 @@ vec3 glowPixelRay() {
 }
 )";
 
-// glowAlong(o, u, s0, s1): the colour-weighted sum of every emitter's integral over [s0, s1] of
-// the ray o + s u (unit u), from the texture above (u_glow_emitters, u_glow_count rows) with core
-// radius u_glow_eps. Include after kGlowSegment.
-inline constexpr const char* kGlowAlong = R"(
+// The emitters' uniforms (the texture above: u_glow_emitters, u_glow_count rows; core radius
+// u_glow_eps) and glowSpan(), which every glow program needs (the brick pass and the ray caster's
+// GLOW variant).
+inline constexpr const char* kGlowEmitters = R"(
 uniform sampler2D u_glow_emitters;
 uniform int u_glow_count;
 uniform float u_glow_eps;
-vec3 glowAlong(vec3 o, vec3 u, float s0, float s1) {
-  vec3 sum = vec3(0.0);
-  if (!(s1 > s0)) return sum;
-  for (int i = 0; i < u_glow_count; ++i) {
-    vec4 e0 = texelFetch(u_glow_emitters, ivec2(0, i), 0), e1 = texelFetch(u_glow_emitters, ivec2(1, i), 0);
-    vec3 colour = texelFetch(u_glow_emitters, ivec2(2, i), 0).rgb;
-    sum += colour * glowSegment(e0.xyz, e1.xyz, e0.w, e1.w, u_glow_eps, o, u, s0, s1);
-  }
-  return sum;
-}
 
 // The ray's span inside [lo, hi], t >= 0; false: it misses. An axis the ray does not move along
 // is tested by position (no 0 * inf): a ray lying in a face plane between two bricks belongs to
@@ -91,12 +81,28 @@ bool glowSpan(vec3 o, vec3 u, vec3 lo, vec3 hi, vec3 hi_open, out float t0, out 
 }
 )";
 
-// A fragment shader `src` (starting with its #version line) with GLOW defined and the glow
-// functions above put before its own text (the ray caster's GLOW variant).
+// glowAlong(o, u, s0, s1): the colour-weighted sum of every emitter's integral over [s0, s1] of
+// the ray o + s u (unit u). Include after kGlowSegment and kGlowEmitters. (The ray caster sums
+// glowSegment itself, with the field's slope: glowFlushDue.)
+inline constexpr const char* kGlowAlong = R"(
+vec3 glowAlong(vec3 o, vec3 u, float s0, float s1) {
+  vec3 sum = vec3(0.0);
+  if (!(s1 > s0)) return sum;
+  for (int i = 0; i < u_glow_count; ++i) {
+    vec4 e0 = texelFetch(u_glow_emitters, ivec2(0, i), 0), e1 = texelFetch(u_glow_emitters, ivec2(1, i), 0);
+    vec3 colour = texelFetch(u_glow_emitters, ivec2(2, i), 0).rgb;
+    sum += colour * glowSegment(e0.xyz, e1.xyz, e0.w, e1.w, u_glow_eps, o, u, s0, s1);
+  }
+  return sum;
+}
+)";
+
+// A fragment shader `src` (starting with its #version line) with GLOW defined and glowSegment(),
+// the emitters' uniforms and glowSpan() put before its own text (the ray caster's GLOW variant).
 inline std::string withGlow(const std::string& src) {
   const std::string version = "#version 450 core\n";
   if (src.rfind(version, 0) != 0) throw std::logic_error("glow shader: no #version line");
-  return version + "#define GLOW 1\n" + kGlowSegment + kGlowAlong + src.substr(version.size());
+  return version + "#define GLOW 1\n" + kGlowSegment + kGlowEmitters + src.substr(version.size());
 }
 }  // namespace shaders
 

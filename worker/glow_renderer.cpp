@@ -37,7 +37,7 @@ void main() {
 GlowRenderer::GlowRenderer(const GlApi& gl, int width, int height)
     : gl_(gl), target_(gl, width, height) {
   const std::string fragment = std::string("#version 450 core\n") + shaders::kGlowSegment +
-                               shaders::kGlowAlong + shaders::kGlowPixelRay + kMain;
+                               shaders::kGlowEmitters + shaders::kGlowAlong + shaders::kGlowPixelRay + kMain;
   program_ = linkProgram(gl_, shaders::kGlowFullscreenVertex, fragment.c_str());
   gl_.GenVertexArrays(1, &vao_);
 }

@@ -171,15 +171,15 @@ vec4 sampleAt(vec3 p) {
 }
 
 #ifdef GLOW
-// Glow emitters (the GLOW variant, docs/glow.md "In the volume"; withGlow() puts glowSegment() and
-// glowAlong() before this text; glowFlushDue below sums glowSegment itself): emission without
-// opacity, added to acc.rgb and never to acc.a. The ray's glow is integrated over [g_t, g_end] seen
-// through the transmittance the reference (master/reference.cpp) uses: in front of the volume 1;
-// over a sample's segment [(k - 1/2) delta, (k + 1/2) delta] (an anchor's: its steps) the
-// transmittance at its middle, T_k = (1 - acc.a) exp(-tau len / 2) (its square: 1 - alpha); over
-// jumped empty blocks the (constant) transmittance; behind the volume what is left. Only inside
-// this brick's part of the glow box (u_glow_lo, u_glow_hi), so the bricks' pieces tile every ray;
-// up to the surface's t.
+// Glow emitters (the GLOW variant, docs/glow.md "In the volume"; withGlow() puts glowSegment(),
+// the emitters' uniforms and glowSpan() before this text; glowFlushDue sums glowSegment): emission
+// without opacity, added to acc.rgb and never to acc.a. The ray's glow is integrated over
+// [g_t, g_end] seen through the transmittance the reference (master/reference.cpp) uses: in front
+// of the volume 1; over a sample's segment [(k - 1/2) delta, (k + 1/2) delta] (an anchor's: its
+// steps) the transmittance at its middle, T_k = (1 - acc.a) exp(-tau len / 2) (its square:
+// 1 - alpha); over jumped empty blocks the (constant) transmittance; behind the volume what is
+// left. Only inside this brick's part of the glow box (u_glow_lo, u_glow_hi), so the bricks'
+// pieces tile every ray; up to the surface's t.
 // After early ray termination the rest is dropped (at most 1 - u_ert of it).
 //
 // Consecutive segments make one piece of length L, middle t_m. Per sample two FMAs gather
@@ -277,9 +277,9 @@ float glowRayLength(vec3 o, vec3 u, float s0, float s1, out float tx) {
 }
 // The closed piece [g_due_t0, g_due_t1]: its exact glow G (glowSegment per emitter), the field's
 // slope g'(t_m) at its middle (the side of each plane as glowSegment takes it) and the next plane
-// crossing beyond g_t (as glowRayLength finds the first), in one loop over the emitters: each emitter's texels
-// are fetched once per piece instead of three times (three loops), which cost 8 emitters at 512^2
-// about a tenth of the frame's CPU (docs/glow.md).
+// crossing beyond g_t (as glowRayLength finds the first), in one loop over the emitters: each
+// emitter's texels are fetched once per piece instead of three times (three loops), which cost 8
+// emitters at 512^2 about a tenth of the frame's CPU (docs/glow.md).
 void glowFlushDue(inout vec4 acc) {
   if (g_due) {
     float len = g_due_t1 - g_due_t0, tm = 0.5 * (g_due_t0 + g_due_t1);
