@@ -25,14 +25,14 @@ void bsplinePatch(const std::array<glm::dvec3, 16>& p, double s, double t, glm::
 
 namespace {
 
-// The 2N + 8 points of the patch on control face `face` whose corner `r` has valence n, in
+// The 2N + 8 points of the patch on control face `face` whose corner 0 has valence n, in
 // ValenceBasis's labels, found by walking the directed edges (see subdiv_basis.h for the layout).
-std::vector<int> gatherPatch(const PolyMesh& m, const MeshTopology& t, int face, int r, int n) {
+std::vector<int> gatherPatch(const PolyMesh& m, const MeshTopology& t, int face, int n) {
   auto at = [&](int f, int c) { return m.corner(f, c % 4); };
   auto across = [&](int f, int c) { return t.twin[m.faceOffsets[f] + c % 4]; };
   std::vector<int> label(2 * n + 8, -1);
-  label[0] = at(face, r);
-  int g = face, c = r;
+  label[0] = at(face, 0);
+  int g = face, c = 0;
   for (int i = 1; i <= n; ++i) {  // the fan round the extraordinary vertex, counter-clockwise
     label[2 * i - 1] = at(g, c + 1);
     label[2 * i] = at(g, c + 2);
@@ -44,8 +44,8 @@ std::vector<int> gatherPatch(const PolyMesh& m, const MeshTopology& t, int face,
   if (at(g, c + 3) != label[1]) throw std::logic_error("gatherPatch: the fan does not close");
   auto L = [n](int i, int j) { return ValenceBasis::label(n, i, j); };
   const auto h = across(g, c + 2);        // cell (1,-1)-(2,0), entered at e_1
-  const auto jc = across(face, r + 1);    // cell (1,0)-(2,1), entered at f_1
-  const auto lc = across(face, r + 2);    // cell (0,1)-(1,2), entered at e_2
+  const auto jc = across(face, 1);        // cell (1,0)-(2,1), entered at f_1
+  const auto lc = across(face, 2);        // cell (0,1)-(1,2), entered at e_2
   const auto mc = across(jc.face, jc.corner + 3);  // cell (1,1)-(2,2), entered at f_1
   const auto pc = across(lc.face, lc.corner + 3);  // cell (-1,1)-(0,2), entered at e_2
   label[L(2, -1)] = at(h.face, h.corner + 2);
@@ -73,34 +73,30 @@ SubdivSurface::SubdivSurface(const PolyMesh& input) : control_(buildControlMesh(
     bool onBoundary = false;
     for (int c = 0; c < 4; ++c) onBoundary |= t.boundary[m.corner(f, c)] != 0;
     if (onBoundary) {
-      // At most one irregular corner (buildControlMesh checks), and it is on the boundary: an
-      // interior extraordinary vertex's faces do not reach the boundary after refinement.
+      // At most one irregular corner, corner 0 (buildControlMesh checks), and it is on the
+      // boundary: an interior extraordinary vertex's faces do not reach the boundary after
+      // refinement.
       p.kind = Kind::BoundaryRegular;
-      for (int c = 0; c < 4; ++c)
-        if (!regularVertex(t, m.corner(f, c))) {
-          if (!t.boundary[m.corner(f, c)]) throw std::logic_error("a boundary face has an interior extraordinary vertex");
-          p.kind = Kind::BoundaryIrregular;
-          p.rotation = c;
-          p.valence = t.valence[m.corner(f, c)];
-        }
+      if (!regularVertex(t, m.corner(f, 0))) {
+        if (!t.boundary[m.corner(f, 0)])
+          throw std::logic_error("a boundary face has an interior extraordinary vertex");
+        p.kind = Kind::BoundaryIrregular;
+        p.valence = t.valence[m.corner(f, 0)];
+      }
       if (p.kind == Kind::BoundaryIrregular) {
         nets_.resize(m.faceCount());
-        nets_[f] = std::make_unique<LocalNet>(m, t, f, p.rotation);
+        nets_[f] = std::make_unique<LocalNet>(m, t, f);
       }
       if (p.kind == Kind::BoundaryRegular) {
         LocalNet::Grid world, local;
-        LocalNet(m, t, f, 0).grid(world, local);
+        LocalNet(m, t, f).grid(world, local);
         p.points.resize(16, 3);
         for (int i = 0; i < 16; ++i) p.points.row(i) << world[i].x, world[i].y, world[i].z;
       }
       continue;
     }
-    for (int c = 0; c < 4; ++c)
-      if (t.valence[m.corner(f, c)] != 4) {
-        p.rotation = c;
-        p.valence = t.valence[m.corner(f, c)];
-      }
-    const std::vector<int> label = gatherPatch(m, t, f, p.rotation, p.valence);
+    p.valence = t.valence[m.corner(f, 0)];  // the only corner that may be extraordinary
+    const std::vector<int> label = gatherPatch(m, t, f, p.valence);
     if (p.valence == 4) {
       p.kind = Kind::Regular;
       p.points.resize(16, 3);
@@ -122,21 +118,14 @@ SubdivSurface::SubdivSurface(const PolyMesh& input) : control_(buildControlMesh(
 
 SubdivSurface::Location SubdivSurface::locate(int face, double u, double v, int maxLevel) const {
   const Patch& p = patches_[face];
-  double pu = u, pv = v;  // the patch's own frame: its corner `rotation` at (0, 0)
-  switch (p.rotation) {
-    case 1: pu = v, pv = 1.0 - u; break;
-    case 2: pu = 1.0 - u, pv = 1.0 - v; break;
-    case 3: pu = 1.0 - v, pv = u; break;
-    default: break;
-  }
   Location loc;
   if (p.kind == Kind::BoundaryIrregular) maxLevel = std::min(maxLevel, kBoundaryMaxLevel);
   if (regular(face)) {
-    loc.s = pu, loc.t = pv;
+    loc.s = u, loc.t = v;
     return loc;
   }
   // n = floor(-log2 max(u, v)) + 1: the level whose ring [2^-n, 2^(1-n)] holds max(u, v).
-  const double m = std::max(pu, pv);
+  const double m = std::max(u, v);
   int n = maxLevel;
   if (m > 0) {
     int e;
@@ -144,7 +133,7 @@ SubdivSurface::Location SubdivSurface::locate(int face, double u, double v, int 
     n = std::min(maxLevel, fraction == 0.5 ? 2 - e : 1 - e);
   }
   n = std::max(n, 1);
-  const double su = std::ldexp(pu, n), sv = std::ldexp(pv, n);  // in [0, 2] but at the level cap
+  const double su = std::ldexp(u, n), sv = std::ldexp(v, n);  // in [0, 2] but at the level cap
   loc.n = n;
   if (su >= 1.0 && sv >= 1.0) loc.k = 2;
   else if (su >= 1.0) loc.k = 1;
@@ -220,8 +209,8 @@ LimitPoint SubdivSurface::evaluate(int face, double u, double v) const {
   }
   bsplinePatch(controlPoints(face, loc.n, loc.k), loc.s, loc.t, position, unused, unused);
   bsplinePatch(controlPoints(face, loc.n, loc.k, true), loc.s, loc.t, unused, ds, dt);
-  // The frame rotation keeps orientation, and the 2^n scale of the sub-patch does not turn the
-  // normal, so the cross product of the sub-patch's own derivatives gives the normal directly.
+  // The 2^n scale of the sub-patch does not turn the normal, so the cross product of the
+  // sub-patch's own derivatives gives the normal directly.
   return {position, glm::normalize(glm::cross(ds, dt))};
 }
 

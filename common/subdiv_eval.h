@@ -3,8 +3,9 @@
 // (Stam 1998), with the per-(patch, n, k) control points the paper precomputes for the GPU.
 //
 // Parameters: (u, v) in [0,1]^2 of control face f (a quad of ControlMesh::mesh), u along the edge
-// from corner 0 to corner 1, v from corner 0 to corner 3. A face with an extraordinary corner r is
-// evaluated in a frame rotated so that corner r is (0, 0); its rotation is stored per patch.
+// from corner 0 to corner 1, v from corner 0 to corner 3. A face's extraordinary corner, if any, is
+// its corner 0 (buildControlMesh checks), so (u, v) is the patch's own frame: the paper's
+// per-patch rotation is always 0 here, and there is none to store.
 #include <glm/vec3.hpp>
 
 #include <array>
@@ -46,8 +47,8 @@ class SubdivSurface {
   int patchCount() const { return control_.mesh.faceCount(); }
   LimitPoint evaluate(int face, double u, double v) const;
 
-  // Where (u, v) of a face goes in the patch's own frame (extraordinary vertex at (0, 0)), which
-  // (n, k) sub-patch holds it, and its parameters t in that sub-patch's cell. Regular patches:
+  // Which (n, k) sub-patch holds (u, v) of a face (extraordinary vertex at (0, 0)), and its
+  // parameters t in that sub-patch's cell. Regular patches:
   // n = 0, k = 0, t = (u, v) in the patch's own 4 x 4 grid.
   struct Location {
     int n = 0, k = 0;
@@ -72,7 +73,6 @@ class SubdivSurface {
   bool regular(int face) const { return patches_[face].kind <= Kind::BoundaryRegular; }
   // Touches a boundary (and then is evaluated by local subdivision if irregular).
   bool boundary(int face) const { return patches_[face].kind == Kind::BoundaryRegular || patches_[face].kind == Kind::BoundaryIrregular; }
-  int rotation(int face) const { return patches_[face].rotation; }
   const std::map<int, std::unique_ptr<ValenceBasis>>& bases() const { return bases_; }
 
  private:
@@ -80,7 +80,6 @@ class SubdivSurface {
   struct Patch {
     Kind kind = Kind::Regular;
     int valence = 4;
-    int rotation = 0;           // corner of the face at the patch's (0, 0)
     Eigen::MatrixXd points;     // regular: 16 x 3 grid; Stam: (2N+8) x 3, V^-1 C0 (Stam's C-hat);
                                 // irregular at a boundary: none (local subdivision each time)
   };

@@ -39,9 +39,8 @@ std::vector<int> oneRing(const PolyMesh& mesh, const MeshTopology& t, int f) {
   return out;
 }
 
-// `faces` of `src` as a mesh of their own, the first (faces[0]) rotated so that its corner
-// `rotation` comes first.
-PolyMesh extract(const PolyMesh& src, const std::vector<int>& faces, int rotation) {
+// `faces` of `src` as a mesh of their own, corners in the same order.
+PolyMesh extract(const PolyMesh& src, const std::vector<int>& faces) {
   PolyMesh out;
   out.name = src.name;
   std::unordered_map<int, int> index;
@@ -49,7 +48,7 @@ PolyMesh extract(const PolyMesh& src, const std::vector<int>& faces, int rotatio
     const int f = faces[i], m = src.faceSizes[f];
     std::vector<int> corners;
     for (int c = 0; c < m; ++c) {
-      const int p = src.corner(f, (c + (i == 0 ? rotation : 0)) % m);
+      const int p = src.corner(f, c);
       auto [it, added] = index.emplace(p, static_cast<int>(out.points.size()));
       if (added) out.points.push_back(src.points[p]);
       corners.push_back(it->second);
@@ -61,8 +60,8 @@ PolyMesh extract(const PolyMesh& src, const std::vector<int>& faces, int rotatio
 
 }  // namespace
 
-LocalNet::LocalNet(const PolyMesh& mesh, const MeshTopology& topology, int face, int rotation) {
-  keepOneRing(extract(mesh, oneRing(mesh, topology, face), rotation), 0);
+LocalNet::LocalNet(const PolyMesh& mesh, const MeshTopology& topology, int face) {
+  keepOneRing(extract(mesh, oneRing(mesh, topology, face)), 0);
 }
 
 LocalNet::Grid LocalNet::toWorld(const Grid& local) const {
@@ -85,7 +84,7 @@ void LocalNet::keepOneRing(const PolyMesh& refined, int face) {
       for (int d = 0; d < refined.faceSizes[face]; ++d) shares |= refined.corner(f, c) == refined.corner(face, d);
     if (shares) faces.push_back(f);
   }
-  mesh_ = extract(refined, faces, 0);
+  mesh_ = extract(refined, faces);
   face_ = 0;
   // Re-centre on the irregular vertex and rescale by a power of two (exact) to unit extent.
   const glm::dvec3 centre = mesh_.points[mesh_.corner(0, 0)];

@@ -24,8 +24,9 @@ namespace sortlast {
 
 class LocalNet {
  public:
-  // The one-ring of control face `face`, in the frame whose (0, 0) is the face's corner `rotation`.
-  LocalNet(const PolyMesh& mesh, const MeshTopology& topology, int face, int rotation);
+  // The one-ring of control face `face`, in the frame whose (0, 0) is the face's corner 0 (where
+  // buildControlMesh puts the irregular vertex).
+  LocalNet(const PolyMesh& mesh, const MeshTopology& topology, int face);
 
   using Grid = std::array<glm::dvec3, 16>;  // B-spline control points, row b * 4 + a
   // One step: afterwards the net is the one-ring of the child at the frame's (0, 0). With

@@ -276,10 +276,16 @@ ControlMesh buildControlMesh(const PolyMesh& input) {
   }
   // After these steps no quad has two irregular corners (Catmull-Clark separates them); regular
   // are interior vertices of valence 4, boundary vertices of valence 3 and corners (valence 2).
+  // The irregular one is the face's corner 0: the last step's edge and face points are regular
+  // (its input is all quads), so only a vertex of its input can be irregular, and
+  // catmullClarkStep puts that vertex first in each child. The evaluation relies on it (the
+  // patch's own frame is the face's (u, v): no per-patch rotation, as the paper stores).
   for (int f = 0; f < mesh.faceCount(); ++f) {
     int extraordinary = 0;
     for (int c = 0; c < 4; ++c) extraordinary += !regularVertex(topology, mesh.corner(f, c));
     if (extraordinary > 1) throw std::logic_error("buildControlMesh: a face kept two extraordinary vertices");
+    if (extraordinary == 1 && regularVertex(topology, mesh.corner(f, 0)))
+      throw std::logic_error("buildControlMesh: a face's extraordinary vertex is not its corner 0");
   }
   cm.mesh = std::move(mesh);
   cm.topology = std::move(topology);

@@ -71,9 +71,9 @@ void childToParentQuad(int corner, double u, double v, double& pu, double& pv);
 
 // The control mesh exact evaluation runs on: the input refined once (all-quad input) or twice
 // (input with triangles or n-gons), so that every face is a quad with at most one extraordinary
-// vertex and every extraordinary vertex's neighbourhood is regular. Per control face, which input
-// face it lies in and the chain of children down to it, so a point (face, u, v) maps back to the
-// input mesh's faces (the reference evaluator needs that). Throws InputError as checkMesh does,
+// vertex, its corner 0, and every extraordinary vertex's neighbourhood is regular. Per control
+// face, which input face it lies in and the chain of children down to it, so a point (face, u, v)
+// maps back to the input mesh's faces (the reference evaluator needs that). Throws InputError as checkMesh does,
 // and for interior vertices of valence 2 (legal in a closed mesh, but outside Stam's method).
 struct ControlMesh {
   PolyMesh mesh;

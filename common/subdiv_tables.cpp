@@ -22,7 +22,6 @@ SubdivTables buildTables(const SubdivSurface& surface) {
   for (int f = 0; f < surface.patchCount(); ++f) {
     auto& e = t.faces[f];
     e.firstSet = sets;
-    e.rotation = surface.rotation(f);
     e.regular = surface.regular(f) ? 1 : 0;
     if (e.regular) {
       append(f, 0, 0);
@@ -43,20 +42,13 @@ SubdivTables buildTables(const SubdivSurface& surface) {
 
 FloatLimitPoint evaluateTables(const SubdivTables& tables, int face, float u, float v) {
   const auto& e = tables.faces[face];
-  float pu = u, pv = v;
-  switch (e.rotation) {
-    case 1: pu = v, pv = 1.0f - u; break;
-    case 2: pu = 1.0f - u, pv = 1.0f - v; break;
-    case 3: pu = 1.0f - v, pv = u; break;
-    default: break;
-  }
   int set = e.firstSet;
-  float s = pu, t = pv;
+  float s = u, t = v;
   if (!e.regular) {
-    const float m = std::max(pu, pv);
+    const float m = std::max(u, v);
     int n = kTableLevels;
     if (m > 0.0f) n = std::clamp(int(std::floor(-std::log2(m))) + 1, 1, kTableLevels);
-    const float su = std::ldexp(pu, n), sv = std::ldexp(pv, n);
+    const float su = std::ldexp(u, n), sv = std::ldexp(v, n);
     int k;
     if (su >= 1.0f && sv >= 1.0f) k = 2;
     else if (su >= 1.0f) k = 1;

@@ -19,9 +19,7 @@ namespace sortlast {
 struct SubdivTables {
   struct FaceEntry {
     int firstSet = 0;
-    int rotation = 0;  // corner at the patch's (0, 0)
-    int regular = 1;
-    int pad = 0;
+    int regular = 1;  // (no rotation: every face's extraordinary corner is its corner 0)
   };
   std::vector<FaceEntry> faces;
   std::vector<glm::vec4> positions, tangents;  // xyz used; w pads to std430's vec4 stride

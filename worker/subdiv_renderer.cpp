@@ -45,7 +45,7 @@ void main() {
 
 // The evaluation is common/subdiv_tables.cpp's evaluateTables, line for line.
 const char* kFragment = R"(#version 450 core
-layout(std430, binding = 0) readonly buffer Faces { ivec4 faces[]; };      // firstSet, rotation, regular, -
+layout(std430, binding = 0) readonly buffer Faces { ivec2 faces[]; };      // firstSet, regular
 layout(std430, binding = 1) readonly buffer Positions { vec4 positions[]; };
 layout(std430, binding = 2) readonly buffer Tangents { vec4 tangents[]; };
 layout(std430, binding = 3) readonly buffer Neighbours { ivec4 neighbours[]; };  // across edge c: face * 4 + its edge
@@ -72,21 +72,17 @@ void basis(float t, out vec4 b, out vec4 db) {
 }
 
 // Where (face, u, v) is in the tables: the first of its 16 control points, the sub-patch's own
-// (s, t), the scale 2^n of its parameters, and the face's rotation.
-void locate(int face, float u, float v, out int set, out float s, out float t, out float scale, out int rotation) {
-  ivec4 e = faces[face];
-  rotation = e.y;
-  float pu = u, pv = v;
-  if (e.y == 1) { pu = v; pv = 1.0 - u; }
-  else if (e.y == 2) { pu = 1.0 - u; pv = 1.0 - v; }
-  else if (e.y == 3) { pu = 1.0 - v; pv = u; }
+// (s, t) and the scale 2^n of its parameters. A face's extraordinary corner is its corner 0
+// (buildControlMesh checks), so (u, v) is the patch's own frame: no rotation.
+void locate(int face, float u, float v, out int set, out float s, out float t, out float scale) {
+  ivec2 e = faces[face];
   set = e.x;
-  s = pu; t = pv; scale = 1.0;
-  if (e.z == 0) {
-    float m = max(pu, pv);
+  s = u; t = v; scale = 1.0;
+  if (e.y == 0) {
+    float m = max(u, v);
     int n = 15;
     if (m > 0.0) n = clamp(int(floor(-log2(m))) + 1, 1, 15);
-    float su = ldexp(pu, n), sv = ldexp(pv, n);
+    float su = ldexp(u, n), sv = ldexp(v, n);
     int k;
     if (su >= 1.0 && sv >= 1.0) k = 2;
     else if (su >= 1.0) k = 1;
@@ -99,28 +95,17 @@ void locate(int face, float u, float v, out int set, out float s, out float t, o
   }
 }
 
-// The patch's derivatives, scaled back to the face's parameters and turned from the patch's
-// rotated frame to the face's (u, v).
-void toFace(int rotation, float scale, vec3 ps, vec3 pt, out vec3 su, out vec3 sv) {
-  ps *= scale;
-  pt *= scale;
-  if (rotation == 0) { su = ps; sv = pt; }
-  else if (rotation == 1) { su = -pt; sv = ps; }
-  else if (rotation == 2) { su = -ps; sv = -pt; }
-  else { su = pt; sv = -ps; }
-}
-
 // (face, u, v) on its patch: locate's answer and the B-spline bases (and their derivatives) at
 // the sub-patch's (s, t), which a point and its tangents both weigh their 16 control points by.
 struct PatchPoint {
-  int set, rotation;
+  int set;
   float s, t, scale;
   vec4 bs, dbs, bt, dbt;
 };
 
 PatchPoint patchPoint(int face, float u, float v) {
   PatchPoint q;
-  locate(face, u, v, q.set, q.s, q.t, q.scale, q.rotation);
+  locate(face, u, v, q.set, q.s, q.t, q.scale);
   basis(q.s, q.bs, q.dbs);
   basis(q.t, q.bt, q.dbt);
   return q;
@@ -139,7 +124,9 @@ void evaluatePoint(int face, float u, float v, out vec3 p, out vec3 su, out vec3
       ps += q.dbs[a] * q.bt[b] * c;
       pt += q.bs[a] * q.dbt[b] * c;
     }
-  toFace(q.rotation, q.scale, ps, pt, su, sv);
+  // The sub-patch's derivatives scaled back to the face's parameters.
+  su = ps * q.scale;
+  sv = pt * q.scale;
 }
 
 // The tangent-point derivatives (for the normal) at (face, u, v).

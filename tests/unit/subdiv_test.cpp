@@ -127,6 +127,42 @@ TEST(SubdivMesh, RefinementCountsAndSeparatesExtraordinaryVertices) {
   }
 }
 
+// The evaluation (CPU, tables and GL shader) takes a face's (u, v) as its patch's own frame, with
+// the extraordinary vertex at (0, 0): it has no per-patch rotation, so every control face's
+// irregular corner must be its corner 0. catmullClarkStep gives that (only a vertex of the last
+// step's input can be irregular, and it comes first in each child), whatever corner each input
+// face starts at: checked on closed, open, triangle and n-gon meshes, and on prism5 and fan5 with
+// every input face's corners turned by f % size. (buildControlMesh also throws if it fails.)
+// Seeded fault, children listed from their edge point (catmullClarkStep's {e_c, f, e_c-1, v}):
+// every SubdivSurface throws "a face's extraordinary vertex is not its corner 0", and with that
+// check removed too this test counts 24 of cube's 24 irregular faces off corner 0.
+TEST(SubdivMesh, ExtraordinaryVertexIsCornerZeroOfItsFaces) {
+  auto turned = [](PolyMesh m) {
+    PolyMesh out = m;
+    out.name += " turned";
+    for (int f = 0; f < m.faceCount(); ++f)
+      for (int c = 0; c < m.faceSizes[f]; ++c)
+        out.faceCorners[m.faceOffsets[f] + c] = m.corner(f, (c + f) % m.faceSizes[f]);
+    return out;
+  };
+  std::vector<PolyMesh> meshes;
+  for (const std::string name :
+       {"cube", "octahedron", "prism5", "pole7", "fan1", "fan3", "fan5", "fan8"})
+    meshes.push_back(proceduralMesh(name));
+  meshes.push_back(turned(proceduralMesh("prism5")));
+  meshes.push_back(turned(proceduralMesh("fan5")));
+  for (const PolyMesh& m : meshes) {
+    const ControlMesh c = buildControlMesh(m);
+    int irregular = 0, offCorner0 = 0;
+    for (int f = 0; f < c.mesh.faceCount(); ++f)
+      for (int k = 0; k < 4; ++k)
+        if (!regularVertex(c.topology, c.mesh.corner(f, k))) ++irregular, offCorner0 += k != 0;
+    EXPECT_GT(irregular, 0) << m.name;
+    EXPECT_EQ(offCorner0, 0) << m.name << ": " << offCorner0 << " of " << irregular
+                             << " irregular faces";
+  }
+}
+
 // ---- Stam's eigenbasis ----
 
 TEST(SubdivBasis, EigenstructureMatchesCatmullClark) {
