@@ -80,4 +80,19 @@ ImageRGBA8 readImageRGBA8(const std::string& path) {
   return img;
 }
 
+ImageChannels readImageChannels(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw InputError("image " + path + ": cannot open (" + OIIO::geterror() + ")");
+  const OIIO::ImageSpec& spec = in->spec();
+  ImageChannels img;
+  img.width = spec.width;
+  img.height = spec.height;
+  img.channels = spec.nchannels;
+  img.names = spec.channelnames;
+  img.px.resize(size_t(img.width) * img.height * img.channels);
+  if (!in->read_image(0, 0, 0, img.channels, OIIO::TypeDesc::FLOAT, img.px.data()))
+    throw InputError("image " + path + ": " + in->geterror());
+  return img;
+}
+
 }  // namespace sortlast

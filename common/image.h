@@ -42,4 +42,13 @@ void writeImage(const std::string& path, const ImageRGBA8& img, const glm::dvec3
 // Reads an image as RGBA8 (an opaque RGB file gets A = 255).
 ImageRGBA8 readImageRGBA8(const std::string& path);
 
+// An image file's channels as stored, converted to float with no rounding for float files: any
+// channel count (RGB frames, RGBA, surface images' t, nx, ny, nz). For comparisons in float.
+struct ImageChannels {
+  int width = 0, height = 0, channels = 0;
+  std::vector<std::string> names;  // channel names as the file gives them
+  std::vector<float> px;           // `channels` floats per pixel, row 0 at the top
+};
+ImageChannels readImageChannels(const std::string& path);
+
 }  // namespace sortlast

@@ -34,6 +34,35 @@ ImageDifference compareImages(const ImageRGBA8& a, const ImageRGBA8& b) {
   return d;
 }
 
+FloatDifference compareFloatImages(const ImageChannels& a, const ImageChannels& b, double abs_tol,
+                                   double rel_tol) {
+  if (a.width != b.width || a.height != b.height || a.channels != b.channels)
+    throw InputError("compare: images differ in shape (" + std::to_string(a.width) + "x" +
+                     std::to_string(a.height) + "x" + std::to_string(a.channels) + " vs " +
+                     std::to_string(b.width) + "x" + std::to_string(b.height) + "x" +
+                     std::to_string(b.channels) + " channels)");
+  FloatDifference d;
+  for (size_t i = 0; i < a.px.size(); ++i) {
+    const double x = a.px[i], y = b.px[i];
+    if (x == y || (std::isnan(x) && std::isnan(y))) continue;
+    const double diff = std::abs(x - y);  // infinity or NaN where one value is not finite
+    const double scale = std::max(std::abs(x), std::abs(y));
+    const bool finite = std::isfinite(diff);
+    ++d.values_differing;
+    if (!finite || diff > abs_tol + rel_tol * scale) ++d.values_over;
+    const double abs_d = finite ? diff : std::numeric_limits<double>::infinity();
+    d.max_rel = std::max(d.max_rel, finite ? diff / scale : abs_d);
+    if (abs_d > d.max_abs || d.values_differing == 1) {
+      d.max_abs = abs_d;
+      const size_t pixel = i / size_t(a.channels);
+      d.worst_x = int(pixel % size_t(a.width));
+      d.worst_y = int(pixel / size_t(a.width));
+      d.worst_channel = int(i % size_t(a.channels));
+    }
+  }
+  return d;
+}
+
 long long countPixelsOver(const ImageRGBA8& a, const ImageRGBA8& b, int tolerance) {
   long long n = 0;
   for (size_t i = 0; i < a.px.size(); i += 4) {

@@ -17,6 +17,20 @@ struct ImageDifference {
 };
 
 ImageDifference compareImages(const ImageRGBA8& a, const ImageRGBA8& b);  // throws on size mismatch
+
+// Two images compared value by value in float (`sortlast compare --float`): a value passes when
+// |a - b| <= abs_tol + rel_tol * max(|a|, |b|); two NaNs, or two infinities of one sign, are equal.
+// With both tolerances 0 it passes only on identical values (bit-identity checks of whole frames).
+struct FloatDifference {
+  double max_abs = 0.0;             // largest |a - b| (infinity where one value is not finite)
+  double max_rel = 0.0;             // largest |a - b| / max(|a|, |b|)
+  int worst_x = 0, worst_y = 0, worst_channel = 0;  // where max_abs is
+  long long values_differing = 0;   // values not identical
+  long long values_over = 0;        // values outside the tolerance
+};
+// Throws InputError when the sizes or channel counts differ.
+FloatDifference compareFloatImages(const ImageChannels& a, const ImageChannels& b, double abs_tol,
+                                   double rel_tol);
 // Pixels where some channel differs by more than `tolerance`.
 long long countPixelsOver(const ImageRGBA8& a, const ImageRGBA8& b, int tolerance);
 // Per pixel 1 within `radius` pixels (Chebyshev) of a silhouette of `s`: a pixel whose hit or miss

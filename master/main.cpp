@@ -73,6 +73,26 @@ int runCompare(const std::string& a, const std::string& b, int max_diff, long lo
   }
 }
 
+// `compare --float`: every stored value in float, within |a - b| <= abs + rel * max(|a|, |b|).
+int runCompareFloat(const std::string& a, const std::string& b, double abs_tol, double rel_tol,
+                    long long allow_values) {
+  try {
+    FloatDifference d = compareFloatImages(readImageChannels(a), readImageChannels(b), abs_tol, rel_tol);
+    std::printf("max_abs=%.9g max_rel=%.9g worst_value=(%d,%d,%d) values_differing=%lld values_over=%lld\n",
+                d.max_abs, d.max_rel, d.worst_x, d.worst_y, d.worst_channel, d.values_differing,
+                d.values_over);
+    if (d.values_over > allow_values) {
+      std::printf("FAIL: %lld values differ by more than %g + %g x |value| (allowed: %lld); worst %.9g at pixel (%d,%d) channel %d\n",
+                  d.values_over, abs_tol, rel_tol, allow_values, d.max_abs, d.worst_x, d.worst_y, d.worst_channel);
+      return 1;
+    }
+    return 0;
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "sortlast: error: %s\n", e.what());
+    return 2;
+  }
+}
+
 int runRoughness(const std::string& path, const RoughnessOptions& options, double max_rms_deg) {
   try {
     Roughness r = surfaceRoughness(readSurfaceImage(path), options);
@@ -206,6 +226,16 @@ int main(int argc, char** argv) {
   compare->add_option("--allow-pixels", allow_pixels, "How many pixels may exceed --max-diff (default 0)");
   compare->add_option("--min-psnr", min_psnr, "Fail if PSNR is lower (dB)");
   compare->add_option("--diff", diff_out, "Write a difference image (x16)");
+  bool compare_float = false;
+  double abs_tol = 0.0, rel_tol = 0.0;
+  compare->add_flag("--float", compare_float,
+                    "Compare every stored value in float (EXR frames, surface images); fails on any "
+                    "value outside --abs + --rel x |value| (both 0 by default: identical values)");
+  compare->add_option("--abs", abs_tol, "--float: absolute tolerance per value")->check(CLI::NonNegativeNumber);
+  compare->add_option("--rel", rel_tol, "--float: relative tolerance per value")->check(CLI::NonNegativeNumber);
+  long long allow_values = 0;
+  compare->add_option("--allow-values", allow_values, "--float: how many values may exceed the tolerance (default 0)")
+      ->check(CLI::NonNegativeNumber);
   std::vector<std::string> compare_masks;
   int mask_radius = 2;
   compare->add_option("--mask-silhouettes", compare_masks,
@@ -269,6 +299,13 @@ int main(int argc, char** argv) {
   if (*keys) {
     std::fputs(sceneKeysMarkdown().c_str(), stdout);
     return 0;
+  }
+  if (*compare && compare_float) {
+    if (max_diff >= 0 || !std::isnan(min_psnr) || !diff_out.empty() || !compare_masks.empty()) {
+      std::fprintf(stderr, "sortlast: error: compare --float takes --abs, --rel and --allow-values only\n");
+      return 2;
+    }
+    return runCompareFloat(img_a, img_b, abs_tol, rel_tol, allow_values);
   }
   if (*compare) return runCompare(img_a, img_b, max_diff, allow_pixels, min_psnr, diff_out, compare_masks, mask_radius);
   if (*compare_surface) return runCompareSurface(surf_ref, surf_test, surf_bounds);

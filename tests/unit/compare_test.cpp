@@ -1,0 +1,61 @@
+// `sortlast compare --float` (master/compare.h): tolerances, non-finite values, shape checks.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "common/error.h"
+#include "master/compare.h"
+
+using namespace sortlast;
+
+namespace {
+ImageChannels image(int w, int h, int c, float v) {
+  ImageChannels img;
+  img.width = w;
+  img.height = h;
+  img.channels = c;
+  img.px.assign(size_t(w) * h * c, v);
+  return img;
+}
+}  // namespace
+
+TEST(CompareFloat, IdenticalImagesHaveNoDifference) {
+  ImageChannels a = image(3, 2, 4, 0.25f);
+  FloatDifference d = compareFloatImages(a, a, 0.0, 0.0);
+  EXPECT_EQ(d.values_differing, 0);
+  EXPECT_EQ(d.values_over, 0);
+  EXPECT_EQ(d.max_abs, 0.0);
+}
+
+TEST(CompareFloat, OneUlpIsADifferenceAtZeroTolerance) {
+  ImageChannels a = image(3, 2, 3, 0.5f), b = a;
+  b.px[3 * (1 * 3 + 2) + 1] = std::nextafter(0.5f, 1.0f);  // pixel (2, 1), channel 1
+  FloatDifference d = compareFloatImages(a, b, 0.0, 0.0);
+  EXPECT_EQ(d.values_differing, 1);
+  EXPECT_EQ(d.values_over, 1);
+  EXPECT_EQ(d.worst_x, 2);
+  EXPECT_EQ(d.worst_y, 1);
+  EXPECT_EQ(d.worst_channel, 1);
+  EXPECT_EQ(compareFloatImages(a, b, 1e-6, 0.0).values_over, 0);   // within the absolute bound
+  EXPECT_EQ(compareFloatImages(a, b, 0.0, 1e-6).values_over, 0);   // within the relative bound
+}
+
+TEST(CompareFloat, NonFiniteValuesCompareByKind) {
+  const float inf = std::numeric_limits<float>::infinity(), nan = std::nanf("");
+  ImageChannels a = image(2, 1, 1, inf), b = a;
+  EXPECT_EQ(compareFloatImages(a, b, 0.0, 0.0).values_differing, 0);  // inf == inf (a surface miss)
+  a.px[0] = b.px[0] = nan;
+  EXPECT_EQ(compareFloatImages(a, b, 0.0, 0.0).values_differing, 0);  // NaN against NaN: the same
+  b.px[1] = 1e30f;
+  FloatDifference d = compareFloatImages(a, b, 1e9, 1.0);            // no tolerance covers inf
+  EXPECT_EQ(d.values_over, 1);
+  EXPECT_TRUE(std::isinf(d.max_abs));
+  b.px[0] = 0.0f;
+  EXPECT_EQ(compareFloatImages(a, b, 1e9, 1.0).values_over, 2);      // NaN against a number
+}
+
+TEST(CompareFloat, ShapesMustMatch) {
+  EXPECT_THROW(compareFloatImages(image(2, 2, 4, 0), image(2, 2, 3, 0), 0, 0), InputError);
+  EXPECT_THROW(compareFloatImages(image(2, 2, 4, 0), image(2, 3, 4, 0), 0, 0), InputError);
+}
