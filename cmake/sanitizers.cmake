@@ -24,7 +24,7 @@ if(SORTLAST_FUZZ)
   add_link_options(-fsanitize=address,undefined)
 elseif(SORTLAST_SANITIZE)
   # -O1 (after the build type's -O2/-O3 on the command line, so it wins): the usual level for ASan,
-  # and 26 % less compile time than -O2 on master/http_session.cpp (Beast), the heaviest file.
+  # and 26 % less compile time than -O2 on master/service/http_session.cpp (Beast), the heaviest file.
   add_compile_options(${SORTLAST_SANITIZER_FLAGS} -O1)
   add_link_options(-fsanitize=address,undefined)
 endif()

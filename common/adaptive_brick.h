@@ -1,7 +1,7 @@
 #pragma once
 // The part of an adaptive volume (common/adaptive_blocks.h) that one brick draws: the blocks its
 // domain overlaps, packed into an atlas of their own, and the cells the ray caster walks. Plain
-// data: worker/adaptive_gpu_brick.h uploads it; sampleCell() is the shader's lookup on the CPU,
+// data: worker/volume/adaptive_gpu_brick.h uploads it; sampleCell() is the shader's lookup on the CPU,
 // so the GPU contract is tested without GL.
 //
 // Cells. The brick's domain cut at every block plane that crosses it: cell (i, j, k) is the part
@@ -12,7 +12,7 @@
 // Whole blocks. A block cut by a brick face is held whole by every brick it overlaps, samples
 // beyond the face included: every brick reads the same field in it, and the ray caster's coarse
 // samples, which may sit up to 2^level - 1 lattice steps before a cell's entry (beyond the brick's
-// face), read the block's own data in every brick (worker/raycast_shaders.h).
+// face), read the block's own data in every brick (worker/volume/raycast_shaders.h).
 #include <array>
 #include <glm/glm.hpp>
 #include <vector>

@@ -2,8 +2,8 @@
 // Smoothed anisotropic metaballs (Kanamori and Nishita, ../shared/PAPERS.md §3, done in 3D): per
 // particle a radius scaled by its density and an ellipsoid stretched along the local particle
 // distribution, normalised so that every particle carries the same mass. Pure CPU, no GL: the
-// grid ray caster (worker/metaball_grid_renderer.cpp) and the CPU reference
-// (master/metaball_reference.cpp) evaluate the field from the same float kernels.
+// grid ray caster (worker/particles/metaball_grid_renderer.cpp) and the CPU reference
+// (master/reference/metaball_reference.cpp) evaluate the field from the same float kernels.
 //
 // Per particle i, with the neighbours j within h_n (i itself included) and the paper's
 // 6th-degree weight g(r) = (1 - r^2/h_n^2)^3:

@@ -2,7 +2,7 @@
 // Particles rendered as metaballs (Mishima, Tanaka and Sagawa; ../shared/PAPERS.md §2): where the
 // centres come from (a file or a procedural set), the field's constants and the renderer's
 // settings. Rank 0 loads the set and sends each rank the particles near its region
-// (master/particle_loading.h); bricks keep those near them (particlesNear), in global order, so the
+// (master/session/particle_loading.h); bricks keep those near them (particlesNear), in global order, so the
 // field a rank sums at a point is the same, in the same order, as on any other rank.
 #include <optional>
 #include <string>
@@ -31,7 +31,7 @@ struct ParticleDesc {
   glm::dvec3 colour{0.85, 0.9, 1.0};
   // Metaball renderer settings.
   // billboards (the paper's multi-pass method) | grid (one pass over a grid of cells of edge h) |
-  // slices (the field sampled on a lattice, worker/metaball_slices_renderer.h)
+  // slices (the field sampled on a lattice, worker/particles/metaball_slices_renderer.h)
   std::string method = "grid";
   double slice_spacing = 0.25;  // slices: lattice spacing, in units of h
   double step = 0.125;        // sample step along rays, in units of h

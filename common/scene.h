@@ -67,7 +67,7 @@ struct Scene {
   double ert_threshold = 0.99;            // ray casting: early ray termination opacity
   Shading shading;                        // gradient shading of the volume (render.shading*)
   bool adaptive_step = false;             // ray casting: a block takes every m-th lattice sample
-  double adaptive_step_tolerance = 0.02;  // the step rule's bound (worker/step_rule.h)
+  double adaptive_step_tolerance = 0.02;  // the step rule's bound (worker/volume/step_rule.h)
   double adaptive_tolerance = 0.0;  // adaptive sampling: relative L2 error per block, fraction; 0: off
   int adaptive_blocks = 8;          // adaptive sampling: b, blocks per axis of the whole volume
   std::string adaptive_steps = "own";  // own: a block's samples along rays at its resolution | fine

@@ -1,6 +1,6 @@
 #pragma once
 // Gradient shading of volume samples (render.shading): Blinn-Phong with a headlight, the one model
-// the GL renderers (worker/volume_shading.h) and the CPU reference (master/reference.cpp) share.
+// the GL renderers (worker/volume/volume_shading.h) and the CPU reference (master/reference/reference.cpp) share.
 //
 // The light sits at the eye, so at a sample seen along unit ray direction d the light direction
 // is l = -d and the half vector is l too. Volume isosurfaces face both ways, so the model is

@@ -7,7 +7,7 @@
 #include <set>
 
 #include "common/error.h"
-#include "common/subdiv_input.h"
+#include "common/subdiv/subdiv_input.h"
 
 namespace sortlast {
 

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "common/box.h"
-#include "common/subdiv_mesh.h"
-#include "common/subdiv_shading.h"
+#include "common/subdiv/subdiv_mesh.h"
+#include "common/subdiv/subdiv_shading.h"
 
 namespace YAML {
 class Node;
@@ -22,7 +22,7 @@ namespace sortlast {
 struct SurfaceSpec {
   std::string name;  // "surfaces[i]": what messages call it
   std::string file;  // an OBJ file (absolute), or empty
-  std::string procedural;  // cube | torus | pole<N> | ... (common/subdiv_input.h), or empty
+  std::string procedural;  // cube | torus | pole<N> | ... (common/subdiv/subdiv_input.h), or empty
   int level = 2;           // coarse subdivisions of the control mesh rasterised (1-3)
   SubdivShading shading;
   // The input mesh with the transform applied (faces re-ordered if it mirrors), checked.

@@ -11,7 +11,7 @@
 #include "common/error.h"
 #include "common/scene.h"
 #include "insitu/output_names.h"
-#include "master/serve_job.h"
+#include "master/service/serve_job.h"
 
 namespace sortlast {
 

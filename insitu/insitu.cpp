@@ -21,12 +21,12 @@
 #include "insitu/output_names.h"
 #include "insitu/particle_exchange.h"
 #include "insitu/trigger.h"
-#include "master/brick_renderer.h"
-#include "master/collective.h"
-#include "master/frame_service.h"
-#include "master/render_session.h"
-#include "master/serve_job.h"
-#include "master/session_layout.h"
+#include "master/session/brick_renderer.h"
+#include "master/session/collective.h"
+#include "master/service/frame_service.h"
+#include "master/session/render_session.h"
+#include "master/service/serve_job.h"
+#include "master/session/session_layout.h"
 
 namespace sortlast {
 

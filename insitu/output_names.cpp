@@ -5,7 +5,7 @@
 #include <system_error>
 
 #include "common/error.h"
-#include "master/render_job.h"
+#include "master/cli/render_job.h"
 
 namespace sortlast {
 

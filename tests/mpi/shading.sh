@@ -8,7 +8,7 @@
 #              33.3 dB, under the bound)
 #   bricks     no seams: 2^3 and 3^3 bricks give the 1-brick shaded image within the 2/255 of the
 #              RGBA8 intermediate images (the differences one voxel beyond a brick face read the
-#              ghost layer: worker/volume_shading.h; differences two voxels out, one beyond the
+#              ghost layer: worker/volume/volume_shading.h; differences two voxels out, one beyond the
 #              ghost, measured 25/255 on 182 pixels), with no exception for the ray caster and the
 #              20 silhouette pixels of tests/mpi/seams.sh for slicing; 1-4 ranks (slicing: 1 and 3)
 #              give one image within 1/255

@@ -10,7 +10,7 @@
 #include "common/anisotropic_kernels.h"
 #include "common/surface_roughness.h"
 #include "input_error_of.h"
-#include "master/metaball_reference.h"
+#include "master/reference/metaball_reference.h"
 
 namespace sortlast {
 namespace {

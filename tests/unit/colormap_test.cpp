@@ -17,7 +17,7 @@
 
 #include "common/colormap_presets.h"
 #include "common/scene.h"
-#include "master/request_translation.h"
+#include "master/service/request_translation.h"
 #include "tests/unit/input_error_of.h"
 
 namespace sortlast {

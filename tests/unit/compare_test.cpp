@@ -1,11 +1,11 @@
-// `sortlast compare --float` (master/compare.h): tolerances, non-finite values, shape checks.
+// `sortlast compare --float` (master/cli/compare.h): tolerances, non-finite values, shape checks.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 
 #include "common/error.h"
-#include "master/compare.h"
+#include "master/cli/compare.h"
 
 using namespace sortlast;
 

@@ -1,8 +1,8 @@
-// The GLSL of the glow integral (worker/glow_glsl.h) run on the GL driver (OSMesa: llvmpipe), one
+// The GLSL of the glow integral (worker/glow/glow_glsl.h) run on the GL driver (OSMesa: llvmpipe), one
 // ray per pixel, against the double closed form (common/glow_integral.h) on the same float inputs:
 // the float bound the C++ float instantiation meets (tests/unit/glow_test.cpp, 2e-5) must hold
 // for the shader too. Its own executable: it needs a GL context, which the unit tests never make.
-#include "worker/glow_glsl.h"
+#include "worker/glow/glow_glsl.h"
 
 #include <gtest/gtest.h>
 
@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "common/glow_integral.h"
-#include "worker/gl_context.h"
-#include "worker/gl_program.h"
-#include "worker/glow_gl.h"
+#include "worker/gl/gl_context.h"
+#include "worker/gl/gl_program.h"
+#include "worker/glow/glow_gl.h"
 
 namespace sortlast {
 namespace {

@@ -1,7 +1,7 @@
 // Glow in scenes: the glow.* keys' validation (common/glow_scene.h), and the reference path
-// (master/glow_reference.h, master/reference.h): per pixel against quadrature, split over bricks,
+// (master/reference/glow_reference.h, master/reference/reference.h): per pixel against quadrature, split over bricks,
 // and dimmed by a volume against the exact transmittance-weighted integral.
-#include "master/glow_reference.h"
+#include "master/reference/glow_reference.h"
 
 #include <gtest/gtest.h>
 
@@ -13,8 +13,8 @@
 
 #include "common/glow_quadrature.h"
 #include "common/scene.h"
-#include "master/frame_reference.h"
-#include "master/reference.h"
+#include "master/reference/frame_reference.h"
+#include "master/reference/reference.h"
 #include "tests/unit/input_error_of.h"
 
 namespace sortlast {

@@ -1,4 +1,4 @@
-// The service's HTTP/WebSocket front end (master/http_server.h) on loopback, against a fake frame
+// The service's HTTP/WebSocket front end (master/service/http_server.h) on loopback, against a fake frame
 // loop that echoes each request's body in its stats. Every client operation runs with a time
 // limit (awaitFor), so a server bug fails a test instead of hanging it.
 #include <gtest/gtest.h>
@@ -20,8 +20,8 @@
 #include <nlohmann/json.hpp>
 
 #include "common/image_encode.h"
-#include "master/http_server.h"
-#include "master/request_queue.h"
+#include "master/service/http_server.h"
+#include "master/service/request_queue.h"
 
 namespace sortlast {
 namespace {

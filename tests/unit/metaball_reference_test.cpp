@@ -1,7 +1,7 @@
-// The metaball reference (master/metaball_reference.h) against closed forms, the surface image
-// file (common/surface_image.h), surface comparison (master/compare_surface.h), shading
-// (common/metaball_shading.h) and the volume reference stopped by a surface (master/reference.h).
-#include "master/metaball_reference.h"
+// The metaball reference (master/reference/metaball_reference.h) against closed forms, the surface image
+// file (common/surface_image.h), surface comparison (master/cli/compare_surface.h), shading
+// (common/metaball_shading.h) and the volume reference stopped by a surface (master/reference/reference.h).
+#include "master/reference/metaball_reference.h"
 
 #include <gtest/gtest.h>
 
@@ -14,9 +14,9 @@
 #include "common/error.h"
 #include "common/metaball_shading.h"
 #include "common/surface_image.h"
-#include "master/compare_surface.h"
-#include "master/reference.h"
-#include "master/reference_job.h"
+#include "master/cli/compare_surface.h"
+#include "master/reference/reference.h"
+#include "master/cli/reference_job.h"
 
 namespace sortlast {
 namespace {

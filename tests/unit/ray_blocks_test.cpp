@@ -1,4 +1,4 @@
-// The ray caster's block classification (worker/ray_blocks.h, worker/step_rule.h): the distance a
+// The ray caster's block classification (worker/volume/ray_blocks.h, worker/volume/step_rule.h): the distance a
 // ray may jump from an empty block, and the step multiple a block's range allows.
 #include <gtest/gtest.h>
 
@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "common/transfer_function.h"
-#include "worker/ray_blocks.h"
-#include "worker/step_rule.h"
+#include "worker/volume/ray_blocks.h"
+#include "worker/volume/step_rule.h"
 
 namespace sortlast {
 namespace {

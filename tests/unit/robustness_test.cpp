@@ -12,8 +12,8 @@
 
 #include "common/anisotropic_kernels.h"
 #include "common/scene.h"
-#include "master/memory_budget.h"
-#include "master/session_layout.h"
+#include "master/session/memory_budget.h"
+#include "master/session/session_layout.h"
 #include "tests/unit/input_error_of.h"
 
 namespace sortlast {

@@ -10,7 +10,7 @@
 
 #include "common/error.h"
 #include "common/scene.h"
-#include "master/request_translation.h"
+#include "master/service/request_translation.h"
 #include "tests/unit/input_error_of.h"
 
 namespace sortlast {

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "common/scene.h"
-#include "master/reference.h"
+#include "master/reference/reference.h"
 #include "tests/unit/input_error_of.h"
 
 namespace sortlast {

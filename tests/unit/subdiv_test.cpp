@@ -12,10 +12,10 @@
 #include <numbers>
 #include <string>
 
-#include "common/subdiv_eval.h"
-#include "common/subdiv_coarse.h"
-#include "common/subdiv_input.h"
-#include "common/subdiv_tables.h"
+#include "common/subdiv/subdiv_eval.h"
+#include "common/subdiv/subdiv_coarse.h"
+#include "common/subdiv/subdiv_input.h"
+#include "common/subdiv/subdiv_tables.h"
 #include "input_error_of.h"
 #include "subdiv_reference.h"
 

@@ -1,0 +1,114 @@
+#pragma once
+// Exact evaluation of a Catmull-Clark limit surface at any (face, u, v) of its control mesh
+// (Stam 1998), with the per-(patch, n, k) control points the paper precomputes for the GPU.
+//
+// Parameters: (u, v) in [0,1]^2 of control face f (a quad of ControlMesh::mesh), u along the edge
+// from corner 0 to corner 1, v from corner 0 to corner 3. A face's extraordinary corner, if any, is
+// its corner 0 (buildControlMesh checks), so (u, v) is the patch's own frame: the paper's
+// per-patch rotation is always 0 here, and there is none to store.
+#include <glm/vec3.hpp>
+
+#include <array>
+#include <map>
+#include <memory>
+#include <vector>
+
+#include "common/subdiv/subdiv_basis.h"
+#include "common/subdiv/subdiv_local.h"
+#include "common/subdiv/subdiv_mesh.h"
+
+namespace sortlast {
+
+struct LimitPoint {
+  glm::dvec3 position;
+  glm::dvec3 normal;  // unit, on the side the faces' counter-clockwise order points to
+};
+
+// Deepest level the CPU evaluator goes to near an extraordinary vertex: beyond every positive
+// double, so each (u, v) other than the vertex itself falls in its own sub-patch. At u = v = 0 the
+// level-1100 sub-patch is extrapolated to its corner; Lambda^1099 then keeps only the constant
+// eigen-component for the position (the exact limit point) and only the subdominant pair for the
+// tangents (the exact limit tangent plane).
+constexpr int kCpuMaxLevel = 1100;
+// Deepest level of the explicit local subdivision round an irregular boundary vertex (no
+// eigenbasis there): nearer than 2^-48 of a control face the level-48 sub-patch is extrapolated,
+// which moves the point by about lambda^48 (< 1e-9) of the face's size.
+constexpr int kBoundaryMaxLevel = 48;
+// Levels the GPU tables hold, as in the paper (n <= 15, 45 control-point sets per patch).
+constexpr int kTableLevels = 15;
+
+class SubdivSurface {
+ public:
+  // Checks the mesh (InputError on bad input), refines it to the control mesh and prepares a patch
+  // per control face and an eigenbasis per extraordinary valence present.
+  explicit SubdivSurface(const PolyMesh& input);
+
+  const ControlMesh& control() const { return control_; }
+  int patchCount() const { return control_.mesh.faceCount(); }
+  LimitPoint evaluate(int face, double u, double v) const;
+
+  // Which (n, k) sub-patch holds (u, v) of a face (extraordinary vertex at (0, 0)), and its
+  // parameters t in that sub-patch's cell. Regular patches:
+  // n = 0, k = 0, t = (u, v) in the patch's own 4 x 4 grid.
+  struct Location {
+    int n = 0, k = 0;
+    double s = 0, t = 0;
+  };
+  Location locate(int face, double u, double v, int maxLevel = kCpuMaxLevel) const;
+  // The 16 B-spline control points of a regular patch (n = 0) or of sub-patch (n, k) of an
+  // irregular one: row b * 4 + a multiplies B_a(s) B_b(t).
+  //
+  // With `tangent`, control points whose patch has the same derivative directions (so the same
+  // normal) without the cancellation that ruins them near an extraordinary vertex: the sub-patch
+  // at level n spans about lambda_sub^n of the mesh, so its derivatives are differences of points
+  // that agree to that many digits (in float, 15 levels lose all of them). The constant
+  // eigen-component (lambda = 1), which has no derivative, is left out, and the others are
+  // scaled by 1 / lambda_sub^(n-1), so the points stay of the order of the mesh.
+  std::array<glm::dvec3, 16> controlPoints(int face, int n, int k, bool tangent = false) const;
+  // Sub-patches (n, k) for n = 1..levels of an irregular face, set (n - 1) * 3 + (k - 1), positions
+  // and tangent points: what the tables hold (one pass of local subdivision on boundary faces).
+  void subPatches(int face, int levels, std::vector<std::array<glm::dvec3, 16>>& positions,
+                  std::vector<std::array<glm::dvec3, 16>>& tangents) const;
+  // Regular: a bicubic B-spline patch (interior, or at a boundary with phantom points).
+  bool regular(int face) const { return patches_[face].kind <= Kind::BoundaryRegular; }
+  // Touches a boundary (and then is evaluated by local subdivision if irregular).
+  bool boundary(int face) const { return patches_[face].kind == Kind::BoundaryRegular || patches_[face].kind == Kind::BoundaryIrregular; }
+  const std::map<int, std::unique_ptr<ValenceBasis>>& bases() const { return bases_; }
+
+ private:
+  enum class Kind { Regular, BoundaryRegular, Stam, BoundaryIrregular };
+  struct Patch {
+    Kind kind = Kind::Regular;
+    int valence = 4;
+    Eigen::MatrixXd points;     // regular: 16 x 3 grid; Stam: (2N+8) x 3, V^-1 C0 (Stam's C-hat);
+                                // irregular at a boundary: none (local subdivision each time)
+  };
+  ControlMesh control_;
+  std::map<int, std::unique_ptr<ValenceBasis>> bases_;
+  std::vector<Patch> patches_;
+  // Per irregular boundary face, its one-ring as level 0 of the local subdivision (built once).
+  std::vector<std::unique_ptr<LocalNet>> nets_;
+  // Sub-patch (n, k) of an irregular boundary face by n steps of local subdivision.
+  void boundarySubPatch(int face, int n, int k, std::array<glm::dvec3, 16>& position,
+                        std::array<glm::dvec3, 16>& tangent) const;
+};
+
+// Uniform cubic B-spline basis B_0..B_3 at t and its derivative: in double for the exact
+// evaluation here, in float for the tables' (common/subdiv/subdiv_tables.h), which mirror the GPU's.
+template <typename T>
+void bsplineBasis(T t, T b[4], T db[4]) {
+  const T s = T(1) - t, t2 = t * t, t3 = t2 * t;
+  b[0] = s * s * s / T(6);
+  b[1] = (T(3) * t3 - T(6) * t2 + T(4)) / T(6);
+  b[2] = (T(-3) * t3 + T(3) * t2 + T(3) * t + T(1)) / T(6);
+  b[3] = t3 / T(6);
+  db[0] = T(-0.5) * s * s;
+  db[1] = T(1.5) * t2 - T(2) * t;
+  db[2] = T(-1.5) * t2 + t + T(0.5);
+  db[3] = T(0.5) * t2;
+}
+// A bicubic B-spline patch: position and both partial derivatives at (s, t).
+void bsplinePatch(const std::array<glm::dvec3, 16>& p, double s, double t, glm::dvec3& position,
+                  glm::dvec3& ds, glm::dvec3& dt);
+
+}  // namespace sortlast

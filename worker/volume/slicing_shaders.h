@@ -1,0 +1,94 @@
+#pragma once
+// GLSL for 3D-texture slicing. The fragment shader classifies the interpolated sample through the
+// transfer-function table (r, g, b, tau) and corrects opacity for the actual distance between
+// slices along this pixel's ray, ds = spacing / cos(angle to the view axis), so that slicing and
+// the reference integrator are the same emission-absorption model. With render.shading a variant
+// of the program shades the colour first (shadedSample; with pre-integration, the segment's colour
+// with the gradient at its middle).
+//
+// Pre-integration (PREINTEGRATED defined; transfer.preintegrated): the fragment stands for the
+// segment of its pixel's ray from ds/2 before the slice to ds/2 beyond it, the stretch its
+// midpoint sample stands for, and takes that segment's colour and opacity from the 2D table
+// (common/preintegration.h, built for L0 = spacing) between the values at its ends (with the
+// midpoint's value: see segment() in worker/volume/raycast_shaders.h), with the
+// table's length correction for L = ds (exact for the opacity). Both ends are read from this
+// brick's texture: they lie ds/2 from the fragment, within the ghost layer while the perpendicular
+// reach, (spacing / 2) |dir . n| / (dir . forward), stays under one voxel: spacing <= 2 voxels
+// (the scene enforces it) and up to 15 % beyond at a 60-degree field of view's corners, where the
+// texture's clamped edge is read (measured seams at 2 voxels: 2/255 at most). Segments cross brick
+// faces as the ray caster's do (worker/volume/raycast_shaders.h).
+namespace sortlast::shaders {
+
+inline constexpr const char* kSliceVertex = R"(#version 450 core
+layout(location = 0) in vec3 a_world;
+uniform mat4 u_view_proj;
+out vec3 v_world;
+void main() {
+  v_world = a_world;
+  gl_Position = u_view_proj * vec4(a_world, 1.0);
+}
+)";
+
+inline constexpr const char* kSliceFragment = R"(#version 450 core
+in vec3 v_world;
+uniform sampler3D u_volume;
+uniform sampler1D u_table;
+uniform vec3 u_tex_scale;
+uniform vec3 u_tex_offset;
+uniform vec3 u_eye;
+uniform vec3 u_forward;
+uniform float u_spacing;
+uniform vec2 u_value_map;   // normalised value = v * x + y
+uniform vec2 u_table_map;   // table coordinate = normalised * x + y (texel centres at the ends)
+uniform sampler2D u_surface;  // particle surface (t, normal) per pixel, t = 1e30 on a miss
+uniform int u_has_surface;
+uniform ivec4 u_surface_rect; // x, y, w, h where u_surface is valid (stale elsewhere)
+out vec4 frag;
+// (pre-integration: worker/volume/preintegration_glsl.h inserts segment() here)
+
+// (r, g, b, tau) of the sample at world point p, its colour shaded with the field's gradient in the
+// program's shaded variant (SHADING defined; shadeColour: worker/volume/volume_shading.h, linked in
+// front; light at the eye).
+// A sample of zero tau adds nothing whatever its colour: no gradient is read.
+vec4 shadedSample(vec3 p) {
+  vec3 tc = p * u_tex_scale + u_tex_offset;
+  float v = texture(u_volume, tc).r;
+  float x = clamp(v * u_value_map.x + u_value_map.y, 0.0, 1.0);
+  vec4 e = texture(u_table, x * u_table_map.x + u_table_map.y);
+#ifdef SHADING
+  if (e.a > 0.0) e.rgb = shadeColour(e.rgb, u_volume, tc, normalize(p - u_eye));
+#endif
+  return e;
+}
+
+void main() {
+  // An opaque particle surface in this brick ends the ray: nothing behind it is drawn.
+  ivec2 px = ivec2(gl_FragCoord.xy);
+  if (u_has_surface != 0 && all(greaterThanEqual(px, u_surface_rect.xy)) &&
+      all(lessThan(px, u_surface_rect.xy + u_surface_rect.zw)) &&
+      length(v_world - u_eye) >= texelFetch(u_surface, px, 0).x)
+    discard;
+#ifdef PREINTEGRATED
+  vec3 d = v_world - u_eye;
+  float ds = u_spacing * length(d) / dot(d, u_forward);
+  vec3 half_step = (0.5 * ds / length(d)) * d;
+  float vf = texture(u_volume, (v_world - half_step) * u_tex_scale + u_tex_offset).r;
+  float vm = texture(u_volume, v_world * u_tex_scale + u_tex_offset).r;
+  float vb = texture(u_volume, (v_world + half_step) * u_tex_scale + u_tex_offset).r;
+  vec4 e = segment(vf, vm, vb, ds);
+#ifdef SHADING
+  if (e.a > 0.0)
+    e.rgb = e.a * shadeColour(e.rgb / e.a, u_volume, v_world * u_tex_scale + u_tex_offset, normalize(d));
+#endif
+  frag = e;
+#else
+  vec4 e = shadedSample(v_world);
+  vec3 d = v_world - u_eye;
+  float ds = u_spacing * length(d) / dot(d, u_forward);
+  float a = 1.0 - exp(-e.a * ds);
+  frag = vec4(e.rgb * a, a);
+#endif
+}
+)";
+
+}  // namespace sortlast::shaders
