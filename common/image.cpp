@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include <OpenImageIO/imageio.h>
@@ -50,6 +51,14 @@ void writeImage(const std::string& path, const ImageF& img, const glm::dvec3& bg
 
 void writeImage(const std::string& path, const ImageRGBA8& img, const glm::dvec3& bg) {
   writeImage(path, toFloat(img), bg);
+}
+
+std::string frameFileName(const std::string& out, int frame, int frames) {
+  if (frames <= 1) return out;
+  std::filesystem::path p(out);
+  char num[16];
+  std::snprintf(num, sizeof num, "_%04d", frame);
+  return (p.parent_path() / (p.stem().string() + num + p.extension().string())).string();
 }
 
 ImageRGBA8 readImageRGBA8(const std::string& path) {

@@ -39,6 +39,10 @@ std::vector<float> overBackground(const ImageF& img, const glm::dvec3& backgroun
 // composited over `background` and written opaque. Throws InputError on failure.
 void writeImage(const std::string& path, const ImageF& img, const glm::dvec3& background);
 void writeImage(const std::string& path, const ImageRGBA8& img, const glm::dvec3& background);
+// Output file of frame i: OUT itself for a single frame, OUT with _0000 before the extension
+// for a series (batch render, reference, in-situ outputs).
+std::string frameFileName(const std::string& out, int frame, int frames);
+
 // Reads an image as RGBA8 (an opaque RGB file gets A = 255).
 ImageRGBA8 readImageRGBA8(const std::string& path);
 

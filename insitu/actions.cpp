@@ -11,7 +11,7 @@
 #include "common/error.h"
 #include "common/scene.h"
 #include "insitu/output_names.h"
-#include "master/service/serve_job.h"
+#include "master/service/listen_address.h"
 
 namespace sortlast {
 

@@ -25,6 +25,7 @@
 #include "master/session/collective.h"
 #include "master/service/frame_service.h"
 #include "master/session/render_session.h"
+#include "master/service/listen_address.h"
 #include "master/service/serve_job.h"
 #include "master/session/session_layout.h"
 

@@ -5,7 +5,7 @@
 #include <system_error>
 
 #include "common/error.h"
-#include "master/cli/render_job.h"
+#include "common/image.h"
 
 namespace sortlast {
 

@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "common/error.h"
+#include "common/image.h"
 #include "common/scene.h"
 #include "master/reference/frame_reference.h"
 #include "master/reference/metaball_reference.h"

@@ -17,14 +17,6 @@
 
 namespace sortlast {
 
-std::string frameFileName(const std::string& out, int frame, int frames) {
-  if (frames <= 1) return out;
-  std::filesystem::path p(out);
-  char num[16];
-  std::snprintf(num, sizeof num, "_%04d", frame);
-  return (p.parent_path() / (p.stem().string() + num + p.extension().string())).string();
-}
-
 std::vector<Camera> firstFrames(std::vector<Camera> cameras, int max_frames) {
   if (max_frames > 0 && cameras.size() > size_t(max_frames)) cameras.resize(size_t(max_frames));
   return cameras;

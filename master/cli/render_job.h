@@ -27,8 +27,4 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm);
 // The scene's cameras, cut to the first `max_frames` (0: all).
 std::vector<Camera> firstFrames(std::vector<Camera> cameras, int max_frames);
 
-// Output file of frame i: OUT itself for a single frame, OUT with _0000 before the extension
-// for a series.
-std::string frameFileName(const std::string& out, int frame, int frames);
-
 }  // namespace sortlast

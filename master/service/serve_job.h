@@ -33,11 +33,4 @@ int runServeJob(const ServeOptions& opts, MPI_Comm comm);
 // (PREFIX/share/sortlast/viewer), else the source tree's (a build that was not installed).
 std::string findViewerDir(const std::string& given);
 
-// Whether serving on this address needs no token: only the loopback names 127.0.0.1, ::1 and
-// localhost (any other address, other 127.x included, may be reachable by others).
-bool isDefaultLoopback(const std::string& address);
-
-// "host:port" (or "[v6]:port"); throws InputError.
-std::pair<std::string, int> parseListen(const std::string& listen);
-
 }  // namespace sortlast
