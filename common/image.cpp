@@ -5,9 +5,8 @@
 #include <cstdio>
 #include <filesystem>
 
-#include <OpenImageIO/imageio.h>
-
 #include "common/error.h"
+#include "common/image_files.h"
 
 namespace sortlast {
 
@@ -38,15 +37,31 @@ std::vector<float> overBackground(const ImageF& img, const glm::dvec3& bg) {
   return rgb;
 }
 
+std::vector<uint8_t> toRGB8(const std::vector<float>& rgb) {
+  std::vector<uint8_t> out(rgb.size());
+  for (size_t i = 0; i < rgb.size(); ++i)
+    out[i] = std::isnan(rgb[i]) ? 0 : uint8_t(std::clamp(std::roundf(rgb[i] * 255.0f), 0.0f, 255.0f));
+  return out;
+}
+
 void writeImage(const std::string& path, const ImageF& img, const glm::dvec3& bg) {
-  auto ext = std::filesystem::path(path).extension().string();
-  bool is_float = ext == ".exr";
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out) throw InputError("output " + path + ": no image writer for this file extension");
-  OIIO::ImageSpec spec(img.width, img.height, 3, is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-  std::vector<float> rgb = overBackground(img, bg);
-  if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, rgb.data()) || !out->close())
-    throw InputError("output " + path + ": " + out->geterror());
+  try {
+    switch (files::formatOf(path)) {
+      case files::Format::exr:
+        files::writeExr(path, img.width, img.height, {"R", "G", "B"}, overBackground(img, bg));
+        return;
+      case files::Format::png:
+        files::writeFile(path, files::encodePng({img.width, img.height, 3, toRGB8(overBackground(img, bg))}),
+                         "output");
+        return;
+      default:
+        throw InputError("output " + path + ": no image writer for this file extension (.png or .exr)");
+    }
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    if (what.rfind("output ", 0) == 0) throw;
+    throw InputError("output " + path + ": " + what);
+  }
 }
 
 void writeImage(const std::string& path, const ImageRGBA8& img, const glm::dvec3& bg) {
@@ -61,27 +76,45 @@ std::string frameFileName(const std::string& out, int frame, int frames) {
   return (p.parent_path() / (p.stem().string() + num + p.extension().string())).string();
 }
 
-ImageRGBA8 readImageRGBA8(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw InputError("image " + path + ": cannot open (" + OIIO::geterror() + ")");
-  const OIIO::ImageSpec& spec = in->spec();
-  int w = spec.width, h = spec.height, nc = spec.nchannels;
-  // A float file (an .exr frame) is first read as stored: a NaN or Inf would otherwise become a
-  // plausible 0 or 255 in the 8-bit conversion, and comparisons would pass over it.
-  if (spec.format.is_floating_point()) {
-    std::vector<float> f(size_t(w) * h * nc);
-    if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, f.data()))
-      throw InputError("image " + path + ": " + in->geterror());
-    size_t bad = 0, first = 0;
-    for (size_t i = 0; i < f.size(); ++i)
-      if (!std::isfinite(f[i]) && bad++ == 0) first = i / size_t(nc);
-    if (bad)
-      throw InputError("image " + path + ": " + std::to_string(bad) + " non-finite values (NaN or Inf), the first at pixel (" +
-                       std::to_string(first % size_t(w)) + ", " + std::to_string(first / size_t(w)) + ")");
+namespace {
+
+// Reads a PNG, JPEG or EXR file (told apart by their first bytes) as float channels: 8-bit files
+// as value / 255, named R, G, B, A.
+ImageChannels readAnyImage(const std::string& path) {
+  try {
+    const std::string bytes = files::readFile(path, "image");
+    if (bytes.compare(0, 4, std::string("\x76\x2f\x31\x01", 4)) == 0) return files::readExr(path);  // EXR's magic
+    files::Pixels8 p = files::decodeRGBA8(bytes, "");
+    ImageChannels img;
+    img.width = p.width;
+    img.height = p.height;
+    img.channels = 4;
+    img.names = {"R", "G", "B", "A"};
+    img.px.resize(p.px.size());
+    for (size_t i = 0; i < p.px.size(); ++i) img.px[i] = p.px[i] / 255.0f;
+    return img;
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    if (what.rfind("image ", 0) == 0) throw;
+    throw InputError("image " + path + ": " + what);
   }
-  std::vector<uint8_t> raw(size_t(w) * h * nc);
-  if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::UINT8, raw.data()))
-    throw InputError("image " + path + ": " + in->geterror());
+}
+
+}  // namespace
+
+ImageRGBA8 readImageRGBA8(const std::string& path) {
+  const ImageChannels f = readAnyImage(path);
+  const int w = f.width, h = f.height, nc = f.channels;
+  // A NaN or Inf in a float file (an .exr frame) would become a plausible 0 or 255 in the 8-bit
+  // conversion, and comparisons would pass over it.
+  size_t bad = 0, first = 0;
+  for (size_t i = 0; i < f.px.size(); ++i)
+    if (!std::isfinite(f.px[i]) && bad++ == 0) first = i / size_t(nc);
+  if (bad)
+    throw InputError("image " + path + ": " + std::to_string(bad) + " non-finite values (NaN or Inf), the first at pixel (" +
+                     std::to_string(first % size_t(w)) + ", " + std::to_string(first / size_t(w)) + ")");
+  // 8-bit values come back exactly (k / 255 * 255 rounds to k); float ones are rounded as toRGB8.
+  const std::vector<uint8_t> raw = toRGB8(f.px);
   ImageRGBA8 img(w, h);
   for (size_t i = 0; i < size_t(w) * h; ++i)
     for (int c = 0; c < 4; ++c)
@@ -89,19 +122,6 @@ ImageRGBA8 readImageRGBA8(const std::string& path) {
   return img;
 }
 
-ImageChannels readImageChannels(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw InputError("image " + path + ": cannot open (" + OIIO::geterror() + ")");
-  const OIIO::ImageSpec& spec = in->spec();
-  ImageChannels img;
-  img.width = spec.width;
-  img.height = spec.height;
-  img.channels = spec.nchannels;
-  img.names = spec.channelnames;
-  img.px.resize(size_t(img.width) * img.height * img.channels);
-  if (!in->read_image(0, 0, 0, img.channels, OIIO::TypeDesc::FLOAT, img.px.data()))
-    throw InputError("image " + path + ": " + in->geterror());
-  return img;
-}
+ImageChannels readImageChannels(const std::string& path) { return readAnyImage(path); }
 
 }  // namespace sortlast

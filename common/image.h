@@ -35,7 +35,11 @@ ImageF toFloat(const ImageRGBA8& img);
 // writeImage and encodeImage (common/image_encode.h) so a file and a served frame look the same.
 std::vector<float> overBackground(const ImageF& img, const glm::dvec3& background);
 
-// Writes PNG (8-bit) or EXR (float) by extension through OpenImageIO. The premultiplied image is
+// Opaque RGB floats (overBackground's) rounded to 8 bits as every PNG and served frame is: round
+// half away from zero after scaling by 255, then clamp (NaN: 0).
+std::vector<uint8_t> toRGB8(const std::vector<float>& rgb);
+
+// Writes PNG (8-bit) or EXR (float) by extension (common/image_files.h). The premultiplied image is
 // composited over `background` and written opaque. Throws InputError on failure.
 void writeImage(const std::string& path, const ImageF& img, const glm::dvec3& background);
 void writeImage(const std::string& path, const ImageRGBA8& img, const glm::dvec3& background);
@@ -43,11 +47,12 @@ void writeImage(const std::string& path, const ImageRGBA8& img, const glm::dvec3
 // for a series (batch render, reference, in-situ outputs).
 std::string frameFileName(const std::string& out, int frame, int frames);
 
-// Reads an image as RGBA8 (an opaque RGB file gets A = 255).
+// Reads a PNG, JPEG or EXR image as RGBA8 (an opaque RGB file gets A = 255).
 ImageRGBA8 readImageRGBA8(const std::string& path);
 
 // An image file's channels as stored, converted to float with no rounding for float files: any
-// channel count (RGB frames, RGBA, surface images' t, nx, ny, nz). For comparisons in float.
+// channel count (RGB frames, surface images' t, nx, ny, nz; R, G, B, A first); 8-bit files as
+// value / 255 in four channels R, G, B, A. For comparisons in float.
 struct ImageChannels {
   int width = 0, height = 0, channels = 0;
   std::vector<std::string> names;  // channel names as the file gives them

@@ -20,7 +20,7 @@ struct SurfaceImage {
   bool hit(size_t i) const { return std::isfinite(t[i]); }
 };
 
-// OpenEXR, 32-bit float, channels t, nx, ny, nz (through OpenImageIO, like common/image.cpp);
+// OpenEXR, 32-bit float, channels t, nx, ny, nz (common/image_files.h);
 // misses are stored as t = +inf. Throws InputError if the file cannot be written.
 void writeSurfaceImage(const std::string& path, const SurfaceImage& img);
 // Reads the channels by name, whatever their order in the file. Throws InputError on a missing or
