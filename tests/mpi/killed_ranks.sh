@@ -6,6 +6,7 @@
 # kill until every process is gone, on a loaded 2-core machine). Rank 0 and a worker rank, direct
 # send and binary-swap. On 2 ranks also an MPI error, which must become a message.
 # Usage: killed_ranks.sh SORTLAST DATA_DIR NP
+KILL_GRACE=1  # the ranks left must have their second to print (lib.sh)
 source "$(dirname "$0")/lib.sh" "$1"
 data=$2 np=$3
 now() { date +%s.%N; }

@@ -3,6 +3,7 @@
 # Usage: source service_lib.sh SORTLAST_BINARY
 # Sets SORTLAST, MPIRUN, WORK (scratch folder, removed on exit), HERE (this folder), and after
 # start_server: PORT, BASE (http://ADDR:PORT), MPIRUN_PID, SERVER_LOG.
+KILL_GRACE=${KILL_GRACE:-1}  # SIGTERM stops a service: its ranks get their second (lib.sh)
 source "$(dirname "${BASH_SOURCE[0]}")/../mpi/lib.sh" "$1"
 HERE=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 SERVER_PID= MPIRUN_PID= PORT= BASE= SERVER_LOG= SERVER_COUNT=0 STOP_STATUS=
