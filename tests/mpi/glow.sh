@@ -6,9 +6,16 @@
 # along the axis, in the dividing planes of the emitter and of the bricks), an orbit that moves
 # the emitters, glow behind a metaball surface, glow inside a volume (ray caster), with metaballs
 # in the volume; the refusals.
-# Usage: glow.sh SORTLAST DATA_DIR
+# Usage: glow.sh SORTLAST DATA_DIR [MODE]
+#   alone     sections 1-4: against the reference on 1-4 ranks, bricks, strategies, hard cameras, orbit
+#   surfaces  section 5: behind metaballs and around a subdivision surface
+#   volume    section 6: inside a ray-cast volume (dense, far emitter, with metaballs)
+#   bad       section 7: the refusals
+#   (no MODE: all four)
 source "$(dirname "$0")/lib.sh" "$1"
 data=$2
+mode=${3:-all}
+want() { [ "$mode" = all ] || [ "$mode" = "$1" ]; }
 scene="$data/glow.yaml"
 S=$SORTLAST
 
@@ -19,6 +26,7 @@ near() {
   echo "ok: $what: $(echo "$out" | head -1)"
 }
 
+if want alone; then
 # 1. Glow alone vs the reference, d = 1, 2, 3 (2 ranks; d = 3: 27 bricks over 3 ranks).
 for d in 1 2 3; do
   "$S" reference "$scene" --set bricks.per_axis=$d -o "$WORK/ref$d.png" -q
@@ -71,6 +79,9 @@ run_np 2 render -q "$scene" "${orbit[@]}" -o "$WORK/ogl.png"
 near "$WORK/ogl_0001.png" "$WORK/oref_0001.png" "orbit frame 1 (emitter moved) vs reference"
 near "$WORK/ogl_0003.png" "$WORK/oref_0003.png" "orbit frame 3 vs reference"
 
+fi
+
+if want surfaces; then
 # 5. Behind a metaball surface: the glow stops at the surface's depth. The surface's own pixels
 # off the reference (silhouettes: measured with the glow off) are all that may differ.
 balls=(--set particles.procedural=layers --set particles.count=64 --set glow.box=auto
@@ -95,6 +106,9 @@ run_np 3 render -q "$scene" "${surf[@]}" -o "$WORK/sgl.png" --surface-out "$WORK
 near "$WORK/sgl.png" "$WORK/sref.png" "glow around a subdivision surface vs reference" \
   --mask-silhouettes "$WORK/sref.exr" --mask-silhouettes "$WORK/sgl.exr"
 
+fi
+
+if want volume; then
 # 6. Inside a semi-transparent volume (ray caster): per step, the step's exact glow times the
 # transmittance, as the reference. The volume alone is 2-3 levels off the reference here (its own
 # sampling: PSNR 61 dB), so the bound is that: 3 levels, 60 dB (measured with glow: 2, 64-65 dB).
@@ -149,6 +163,9 @@ mixed=(--set render.method=raycast --set image.width=128 --set image.height=128 
 run_np 3 render -q "$data/mixed.yaml" "${mixed[@]}" -o "$WORK/mgl.png"
 MAXD=4 near "$WORK/mgl.png" "$WORK/mref.png" "glow in a volume with metaballs vs reference" --min-psnr 55
 
+fi
+
+if want bad; then
 # 7. Refusals, naming both keys; every rank exits non-zero.
 refuse() {
   local what=$1 want=$2; shift 2
@@ -163,4 +180,5 @@ refuse "render.method slicing in a volume" "'glow.emitters' and 'render.method: 
   --set volume.procedural=blobs --set "volume.dims=[16,16,16]" --set render.method=slicing --set glow.box=auto
 refuse "adaptive blocks" "'glow.emitters' and 'adaptive.tolerance'" \
   --set volume.procedural=blobs --set "volume.dims=[16,16,16]" --set adaptive.tolerance=0.01 --set glow.box=auto
-echo "glow: all cases passed"
+fi
+echo "glow ($mode): all cases passed"
