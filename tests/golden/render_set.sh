@@ -44,6 +44,8 @@ r volume_raycast_egl 2 default "${small[@]}" --set render.backend=egl
 # Particles: every method, anisotropic smoothing, a volume around them.
 rs particles_billboards 2 "$DATA/dam_break.yaml" "${small[@]}" --set particles.method=billboards
 rs particles_grid 3 "$DATA/dam_break.yaml" "${small[@]}" --set particles.method=grid
+rs particles_grid_egl 2 "$DATA/dam_break.yaml" "${small[@]}" --set particles.method=grid \
+  --set render.backend=egl
 rs particles_slices 2 "$DATA/dam_break.yaml" "${small[@]}" --set particles.method=slices
 rs particles_anisotropic 2 "$DATA/dam_break.yaml" "${small[@]}" --set particles.smoothing=anisotropic
 rs particles_mixed_raycast 2 "$DATA/mixed.yaml" "${small[@]}" --set render.method=raycast
