@@ -585,7 +585,7 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
   s.orbit_frames = r.as<int>("camera.orbit.frames");
   if (s.orbit_frames < 0) throw InputError("scene key 'camera.orbit.frames': must be >= 0");
   s.orbit_elevation = r.as<double>("camera.orbit.elevation");
-  if (std::abs(s.orbit_elevation) > 90.0)
+  if (!(s.orbit_elevation >= -90.0 && s.orbit_elevation <= 90.0))  // NaN too
     throw InputError("scene key 'camera.orbit.elevation': must be in [-90, 90] degrees");
   if (!r.isAuto("camera.orbit.radius")) {
     s.orbit_radius = r.as<double>("camera.orbit.radius");

@@ -152,6 +152,9 @@ TEST(Scene, InvalidValuesThrow) {
   inputErrorOf([] { loadScene("", {"image.width=wide"}); });
   inputErrorOf([] { loadScene("", {"compositing.strategy=binary_swap"}); });
   inputErrorOf([] { loadScene("", {"image.width"}); });  // no '='
+  // NaN fails every range (std::abs(NaN) > 90 let it through the elevation's: NaN cameras).
+  EXPECT_EQ(inputErrorOf([] { loadScene("", {"camera.orbit.elevation=.nan", "camera.orbit.frames=4"}); }),
+            "scene key 'camera.orbit.elevation': must be in [-90, 90] degrees");
 }
 
 TEST(Scene, CompositingStrategies) {
