@@ -220,7 +220,7 @@ std::vector<SceneKey> makeTable() {
       {"volume.dims", "[128, 128, 128]", "Samples per axis [x, y, z] (raw and procedural volumes).",
        Vector<glm::ivec3>{member<&Scene::volume, &VolumeDesc::grid, &GridGeometry::dims>,
                           {{"integers in [2, 2^20]", "entries must be {allowed}"}}}},
-      {"volume.type", "uint8", "Raw sample type: `uint8`, `uint16`, `int16` or `float32`.",
+      {"volume.type", "uint8", "Raw sample type.",
        Choice<SampleType>{member<&Scene::volume, &VolumeDesc::type>,
                           {{"uint8", SampleType::kUint8},
                            {"uint16", SampleType::kUint16},
@@ -230,7 +230,7 @@ std::vector<SceneKey> makeTable() {
       {"volume.spacing", "[1, 1, 1]", "Distance between samples along x, y, z (world units).",
        Vector<glm::dvec3>{member<&Scene::volume, &VolumeDesc::grid, &GridGeometry::spacing>,
                           {kLength}}},
-      {"volume.byte_order", "little", "Byte order of raw samples: `little` or `big`.",
+      {"volume.byte_order", "little", "Byte order of raw samples.",
        Choice<bool>{member<&Scene::volume, &VolumeDesc::big_endian>,
                     {{"little", false}, {"big", true}}}},
       {"volume.header_bytes", "0", "Bytes to skip at the start of a raw file.",
@@ -277,9 +277,9 @@ std::vector<SceneKey> makeTable() {
        OptionalReal{member<&Scene::particles, &ParticleDesc::influence>, {kPositive, kLength}},
        AutoValue{}},
       {"particles.threshold", "0.765625",
-       "T: the surface is where sqrt(sum of P) = T (the paper's value); in (0, 1).",
+       "T: the surface is where sqrt(sum of P) = T (the paper's value).",
        Real{member<&Scene::particles, &ParticleDesc::threshold>, {{"in (0, 1)"}}}},
-      {"particles.color", "[0.85, 0.9, 1]", "Surface colour [r, g, b], each in [0, 1].",
+      {"particles.color", "[0.85, 0.9, 1]", "Surface colour [r, g, b].",
        Vector<glm::dvec3>{member<&Scene::particles, &ParticleDesc::colour>, {kColour}}},
       {"particles.method", "grid",
        "Metaball ray caster: `billboards` (the paper's: rounds of passes that draw every particle "
@@ -297,7 +297,7 @@ std::vector<SceneKey> makeTable() {
       // Below 1/20 h the lattice needs 8000 points per h^3 (memory and splat time grow as the
       // inverse cube); above h the lattice cannot even hold a lone particle's surface (0.23 h).
       {"particles.slice_spacing", "0.25",
-       "`particles.method: slices`: the field's lattice spacing, in units of h, in [0.05, 1]. "
+       "`particles.method: slices`: the field's lattice spacing, in units of h. "
        "Depth error grows with it and memory and splat time shrink as its cube "
        "(results/metaballs/).",
        Real{member<&Scene::particles, &ParticleDesc::slice_spacing>,
@@ -341,13 +341,12 @@ std::vector<SceneKey> makeTable() {
        Names{member<&Scene::particles, &ParticleDesc::smoothing>, names({"none", "anisotropic"})}},
       {"particles.anisotropic.splash_scale", "1",
        "R_splash / h: radius factor of splash particles (density at most `rho_splash`); a lone "
-       "particle is the round metaball of radius h x this. In [1/64, 8].",
+       "particle is the round metaball of radius h x this.",
        Real{member<&Scene::particles, &ParticleDesc::anisotropic, &AnisotropicParams::splash_scale>,
             {kScale}}},
       {"particles.anisotropic.surface_scale", "1.5",
        "R_surface / h: radius factor of surface and inside particles (density at least "
-       "`rho_surface`); smoothstep in between. Larger: smoother, slower (longer cell lists). "
-       "In [1/64, 8].",
+       "`rho_surface`); smoothstep in between. Larger: smoother, slower (longer cell lists).",
        Real{
            member<&Scene::particles, &ParticleDesc::anisotropic, &AnisotropicParams::surface_scale>,
            {kScale}}},
@@ -363,13 +362,13 @@ std::vector<SceneKey> makeTable() {
             {kDensity}}},
       {"particles.anisotropic.neighbourhood", "1",
        "h_n / h: radius of the neighbourhood the density, mean and covariance are taken over. "
-       "In [1e-6, 8]; bricks and ranks hold ghosts this much further out.",
+       "Bricks and ranks hold ghosts this much further out.",
        Real{
            member<&Scene::particles, &ParticleDesc::anisotropic, &AnisotropicParams::neighbourhood>,
            {{"in [1e-6, 8]", "must be {allowed} (units of h), got {value}"}}}},
       {"particles.anisotropic.max_axis_ratio", "3",
        "Longest over shortest ellipsoid axis, at most (eigenvalues clamped to sigma_1 / k^2): a "
-       "plane of particles gives a disc of this ratio, a line a cigar. In [1, 100]; 1: spheres.",
+       "plane of particles gives a disc of this ratio, a line a cigar. 1: spheres.",
        Real{member<&Scene::particles, &ParticleDesc::anisotropic,
                    &AnisotropicParams::max_axis_ratio>,
             {{"in [1, 100]", "must be {allowed}, got {value}"}}}},
@@ -450,7 +449,7 @@ std::vector<SceneKey> makeTable() {
        "0: a single view. N > 0: the paper's orbit, N frames 360/N degrees apart on a circle "
        "around `camera.look_at`, written as a numbered series (out_0000.png, ...).",
        Int{member<&Scene::orbit_frames>, {{">= 0"}}}},
-      {"camera.orbit.elevation", "0", "Tilt of the orbit circle in degrees (-90 ... 90).",
+      {"camera.orbit.elevation", "0", "Tilt of the orbit circle in degrees.",
        Real{member<&Scene::orbit_elevation>, {{"in [-90, 90]", "must be {allowed} degrees"}}}},
       {"camera.orbit.radius", "auto",
        "Orbit radius. `auto`: 2 x the largest extent of the scene's bounds (the volume box, "
@@ -489,7 +488,7 @@ std::vector<SceneKey> makeTable() {
        "early ray termination and empty blocks jumped along the ray).",
        Names{member<&Scene::volume_method>, names({"slicing", "raycast"})}},
       {"render.ert_threshold", "0.99",
-       "Ray casting: a ray stops once its opacity reaches this, in (0, 1]; 1: never early. It "
+       "Ray casting: a ray stops once its opacity reaches this; 1: never early. It "
        "stops only inside a brick (bricks behind still render), and changes a pixel by at most "
        "1 - threshold.",
        Real{member<&Scene::ert_threshold>,
@@ -505,15 +504,15 @@ std::vector<SceneKey> makeTable() {
        "twice that, mixed linearly between. Not with `adaptive.tolerance` above 0. Six more "
        "texture reads per sample: measured 2.2-3.6x the render time on llvmpipe.",
        Flag{member<&Scene::shading, &Shading::enabled>}},
-      {"render.shading_ambient", "0.3", "Gradient shading: ka, the ambient term (>= 0).",
+      {"render.shading_ambient", "0.3", "Gradient shading: ka, the ambient term.",
        Real{member<&Scene::shading, &Shading::ambient>, {{"in [0, 100]"}}}},
-      {"render.shading_diffuse", "0.7", "Gradient shading: kd, the diffuse term (>= 0).",
+      {"render.shading_diffuse", "0.7", "Gradient shading: kd, the diffuse term.",
        Real{member<&Scene::shading, &Shading::diffuse>, {{"in [0, 100]"}}}},
       {"render.shading_specular", "0.2",
-       "Gradient shading: ks, the specular term (>= 0), a white highlight added to the colour.",
+       "Gradient shading: ks, the specular term, a white highlight added to the colour.",
        Real{member<&Scene::shading, &Shading::specular>, {{"in [0, 100]"}}}},
       {"render.shading_shininess", "20",
-       "Gradient shading: p, the specular exponent, in [1, 1000].",
+       "Gradient shading: p, the specular exponent.",
        Real{member<&Scene::shading, &Shading::shininess>, {{"in [1, 1000]"}}}},
       {"render.adaptive_step", "false",
        "Ray casting: adaptive steps. Each block (`render.ray_block_cells`) takes every m-th sample "
@@ -526,7 +525,7 @@ std::vector<SceneKey> makeTable() {
        Flag{member<&Scene::adaptive_step>}},
       {"render.adaptive_tolerance", "0.02",
        "Ray casting with `render.adaptive_step`: the most one coarse sample's optical depth (and "
-       "emission) may be off, by the bound above; in (0, 1].",
+       "emission) may be off, by the bound above.",
        Real{member<&Scene::adaptive_step_tolerance>, {{"in (0, 1]"}}}},
       {"adaptive.tolerance", "0",
        "Adaptive sampling (the paper's section 4.2), in percent: each block of the volume is stored at the "
@@ -534,14 +533,14 @@ std::vector<SceneKey> makeTable() {
        "around it) whose error stays within this: the block's squared error against the original "
        "(the paper's eq. 3) at most (tolerance/100)^2 x its sum of squared values, i.e. an RMS "
        "error of at most this percent of its RMS value. 0: off (the original samples; the "
-       "preprocessing at 0 is lossless). In [0, 100]. See `sortlast adaptive-stats`. Above 0 "
+       "preprocessing at 0 is lossless). See `sortlast adaptive-stats`. Above 0 "
        "the volume is rendered from the blocks, each sampled at its own resolution along the rays "
        "(needs `render.method: raycast`; its blocks replace `render.block_cells`), and every rank "
        "reads the whole volume to build them.",
        Real{member<&Scene::adaptive_tolerance>, {{"in [0, 100]", "must be {allowed} percent"}}}},
       {"adaptive.blocks", "8",
-       "Adaptive sampling: b, the blocks per axis of the whole volume (the paper: 4, 8, 16); a "
-       "power of two in [1, 256]. Blocks have the smallest power-of-two size s with b x s >= the "
+       "Adaptive sampling: b, the blocks per axis of the whole volume (the paper: 4, 8, 16). "
+       "Blocks have the smallest power-of-two size s with b x s >= the "
        "cells per axis, so there may be fewer than b per axis; they do not depend on "
        "`bricks.per_axis`.",
        Int{member<&Scene::adaptive_blocks>,
@@ -561,7 +560,7 @@ std::vector<SceneKey> makeTable() {
        "the rounds can take first fold their image into a neighbour's.",
        Names{member<&Scene::strategy>, names({"direct", "binary-swap", "radix-k"})}},
       {"compositing.radix", "4",
-       "k of `radix-k`: the most partners per round (>= 2; 2 is binary-swap; a round uses fewer "
+       "k of `radix-k`: the most partners per round (2 is binary-swap; a round uses fewer "
        "where the rank count has no factor that large).",
        Int{member<&Scene::radix>, {{">= 2"}}}},
       {"compositing.precision", "float",
@@ -613,11 +612,11 @@ std::vector<SceneKey> makeTable() {
        "`compositing.precision: rgba8` and in situ (docs/glow.md).",
        Structured{"list of emitters"}},
       {"glow.core_radius", "0.01",
-       "eps, the emitters' core radius (world units), > 0: it keeps the field finite at the "
+       "eps, the emitters' core radius (world units): it keeps the field finite at the "
        "centre and on the axis, where with eps = 0 the integral along a ray through them diverges.",
        Real{member<&Scene::glow, &GlowSpec::core_radius>, {kLength}}},
       {"glow.intensity", "1",
-       "Glow radiance per unit of integrated field (times each emitter's color), >= 0.",
+       "Glow radiance per unit of integrated field (times each emitter's color).",
        Real{member<&Scene::glow, &GlowSpec::intensity>, {{"in [0, 1e30]"}}}},
       {"glow.tone_map", "none",
        "`none` (radiance clamped to [0, 1] when written) or `exponential`: 1 - exp(-glow.exposure "
@@ -625,7 +624,7 @@ std::vector<SceneKey> makeTable() {
        "after compositing, glow and volume light are one sum), never per brick: the map is not "
        "additive, so per-brick mapping would change with the decomposition.",
        Names{member<&Scene::glow, &GlowSpec::tone_map>, names({"none", "exponential"})}},
-      {"glow.exposure", "1", "k of the exponential tone map, > 0.",
+      {"glow.exposure", "1", "k of the exponential tone map.",
        Real{member<&Scene::glow, &GlowSpec::exposure>, {{"in (0, 1e30]"}}}},
       {"glow.box", "auto",
        "`[[x0, y0, z0], [x1, y1, z1]]`: the box the glow is integrated in (the field's integral "
@@ -755,10 +754,13 @@ std::string sceneKeysMarkdown() {
         "A scene is a YAML file of nested maps; `a.b.c` below means `a: {b: {c: ...}}`. Every key "
         "may be omitted (its default applies) and overridden on the command line with "
         "`--set a.b.c=VALUE` (VALUE is YAML: `--set volume.dims=[64,64,64]`). Unknown keys are "
-        "errors. This page is generated by `sortlast keys`; a test checks it is current.\n\n"
-        "| key | default | meaning |\n| --- | --- | --- |\n";
+        "errors, and so is a value outside what the key takes (the values column). This page is "
+        "generated by `sortlast keys` from the table the parser reads the keys through; a test "
+        "checks it is current.\n\n"
+        "| key | default | values | meaning |\n| --- | --- | --- | --- |\n";
   for (const SceneKey& k : sceneKeys())
-    md << "| `" << k.path << "` | `" << k.default_yaml << "` | " << k.doc << " |\n";
+    md << "| `" << k.path << "` | `" << k.default_yaml << "` | " << sceneKeyValues(k) << " | "
+       << k.doc << " |\n";
   return md.str();
 }
 

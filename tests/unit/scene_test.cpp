@@ -591,6 +591,10 @@ TEST(SceneKeys, EveryRowRendersItsMessagesAndValues) {
         k.type);
     const std::string values = sceneKeyValues(k);
     EXPECT_FALSE(values.empty()) << k.path;
+    EXPECT_NE(sceneKeysMarkdown().find("| `" + std::string(k.path) + "` | `" + k.default_yaml +
+                                       "` | " + values + " | "),
+              std::string::npos)
+        << k.path;
   }
   EXPECT_EQ(sceneKeyValues(sceneKey("render.ert_threshold")), "number in (0, 1]");
   EXPECT_EQ(sceneKeyValues(sceneKey("particles.spacing")), "number in [1e-12, 1e18]");
