@@ -24,10 +24,10 @@ struct Scene;
 // member<&Scene::camera, &Camera::fov_deg> for scene.camera.fov_deg.
 template <class T>
 using Field = T& (*)(Scene&);
+// clang-format off
 template <auto... Members>
-auto& member(Scene& s) {
-  return (s.*....*Members);
-}
+auto& member(Scene& s) { return (s .* ... .* Members); }
+// clang-format on
 
 // The values a number may take, in the words the error messages and docs use:
 //   "in [0, 1e9]", "in (0, 180)", "in [1/64, 8]"   an interval (bounds: a number, a/b or a^b)
@@ -42,10 +42,10 @@ class Allowed {
   const std::string& phrase() const { return phrase_; }  // as written
   const std::string& range() const { return range_; }    // the phrase less its qualifier and "in "
 
-  // For the docs and tests.
-  Allowed within(
-      const Allowed& other) const;  // the intersection, bounds as the tighter one writes them
-  std::string describe() const;  // "in [1e-12, 1e18]", ">= 1", "4 or 8", "power of two in [1, 256]"
+  // For the docs and tests: the intersection with `other` (bounds written as the tighter one
+  // writes them), and the values in words ("in [1e-12, 1e18]", ">= 1", "power of two in [1, 256]").
+  Allowed within(const Allowed& other) const;
+  std::string describe() const;
   bool isList() const { return !list_.empty(); }
   const std::vector<double>& list() const { return list_; }
   double lo() const { return lo_; }
@@ -68,9 +68,9 @@ class Allowed {
 // (units, a note, "got ..."): each row keeps its key's wording.
 struct Check {
   Allowed allowed;
-  const char* says =
-      "must be {allowed}";  // nullptr: parseScene words it (its message names two keys)
-  bool of_length = false;   // a list: the check is of the vector's length
+  // nullptr: parseScene words the error (a message that names two keys).
+  const char* says = "must be {allowed}";
+  bool of_length = false;  // a list: the check is of the vector's length
 
   std::string error(std::string_view key, const std::string& value, const std::string& text) const;
 };
@@ -95,8 +95,8 @@ struct Flag {
 };
 struct Text {
   Field<std::string> field;
-  bool file =
-      false;  // a file name: relative to the scene file (to the working directory with --set)
+  // A file name: relative to the scene file (to the working directory when given with --set).
+  bool file = false;
 };
 // One of a list of names, each standing for a value of the field.
 template <class T>
