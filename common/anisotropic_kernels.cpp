@@ -83,20 +83,6 @@ ParticleKernel roundKernel(double R, double R0, double h) {
 }  // namespace
 
 void validateAnisotropic(const AnisotropicParams& p) {
-  auto in = [](double v, double lo, double hi, const char* key, const char* what) {
-    if (!(std::isfinite(v) && v >= lo && v <= hi)) {
-      char msg[256];
-      std::snprintf(msg, sizeof msg, "scene key 'particles.anisotropic.%s': %s, got %g", key, what, v);
-      throw InputError(msg);
-    }
-  };
-  // Radii beyond 8 h would make every particle's reach (and the bricks' ghost margins) huge;
-  // below 1/64 h the field falls between the ray caster's samples (step h/8).
-  in(p.splash_scale, 1.0 / 64, 8.0, "splash_scale", "must be in [1/64, 8] (units of h)");
-  in(p.surface_scale, 1.0 / 64, 8.0, "surface_scale", "must be in [1/64, 8] (units of h)");
-  in(p.neighbourhood, 1e-6, 8.0, "neighbourhood", "must be in [1e-6, 8] (units of h)");
-  in(p.rho_splash, 0.0, 1e9, "rho_splash", "must be in [0, 1e9]");
-  in(p.rho_surface, 0.0, 1e9, "rho_surface", "must be in [0, 1e9]");
   if (!(p.rho_surface > p.rho_splash)) {
     char msg[256];
     std::snprintf(msg, sizeof msg,
@@ -105,7 +91,6 @@ void validateAnisotropic(const AnisotropicParams& p) {
                   p.rho_splash, p.rho_surface);
     throw InputError(msg);
   }
-  in(p.max_axis_ratio, 1.0, 100.0, "max_axis_ratio", "must be in [1, 100]");
 }
 
 double anisotropicReachBound(const AnisotropicParams& p) {

@@ -51,7 +51,8 @@ struct AnisotropicParams {
   bool operator==(const AnisotropicParams&) const = default;
 };
 
-// Throws InputError naming the scene key (particles.anisotropic.*) of the first invalid value.
+// The rule between the keys: rho_surface above rho_splash (each key's own range is in the scene
+// key table, common/scene_keys.cpp). Throws InputError naming particles.anisotropic.rho_surface.
 void validateAnisotropic(const AnisotropicParams& p);
 
 // The furthest a particle's field can reach from its centre, in units of h: the longest axis

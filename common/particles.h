@@ -65,8 +65,6 @@ struct ParticleDesc {
   }
 };
 
-inline constexpr double kMinSliceSpacing = 0.05, kMaxSliceSpacing = 1.0;  // particles.slice_spacing
-
 struct ParticleSet {
   std::vector<glm::vec3> positions;
   Box3 bounds() const;  // of the centres; empty set: lo > hi (lo = +inf, hi = -inf)

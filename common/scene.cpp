@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include <yaml-cpp/yaml.h>
@@ -18,13 +19,6 @@ namespace sortlast {
 namespace {
 
 constexpr long long kDefaultProceduralParticles = 4096;  // particles.count: auto, procedural
-constexpr long long kMaxParticles = 1LL << 31;            // 24 GiB of centres: surely a typo
-
-const SceneKey* findKey(const std::string& path) {
-  for (const SceneKey& k : sceneKeys())
-    if (path == k.path) return &k;
-  return nullptr;
-}
 
 bool isMapPrefix(const std::string& path) {
   for (const SceneKey& k : sceneKeys())
@@ -58,7 +52,7 @@ void checkKeys(const YAML::Node& map, const std::string& prefix) {
                        "is a list or map, not a name" + where(it->first));
     std::string name = it->first.as<std::string>();
     std::string full = prefix.empty() ? name : prefix + "." + name;
-    if (findKey(full)) continue;
+    if (findSceneKey(full)) continue;
     if (isMapPrefix(full)) {
       if (!it->second.IsMap()) throw InputError("scene key '" + full + "' must be a map" + where(it->second));
       checkKeys(it->second, full);
@@ -86,7 +80,7 @@ class Reader {
   YAML::Node get(const std::string& path) const {
     YAML::Node n = YAML::Clone(root_);
     for (const std::string& p : splitPath(path)) {
-      if (!n.IsMap() || !n[p]) return YAML::Load(findKey(path)->default_yaml);
+      if (!n.IsMap() || !n[p]) return YAML::Load(sceneKey(path).default_yaml);
       n.reset(n[p]);
     }
     return n;
@@ -143,117 +137,126 @@ std::string numText(double v) {
   return b;
 }
 
-// Range checks against what float math on the GPU can hold (common/box.h): each names the key
-// and the value, before the value can turn into an overflow or a misleading later error.
-void checkCoordinates(const std::string& key, const glm::dvec3& v) {
-  for (int a = 0; a < 3; ++a)
-    if (std::abs(v[a]) > kMaxCoordinate)
-      throw InputError(
-          "scene key '" + key + "': " + numText(v[a]) +
-          " is beyond +-1e18, which float math on the GPU cannot hold (it squares distances)");
+// A value as range errors show it: numbers as %g, integers in full.
+template <class V>
+std::string valueText(V v) {
+  if constexpr (std::is_integral_v<V>) return std::to_string(v);
+  else return numText(v);
 }
 
-void checkLength(const std::string& key, double v) {
-  if (!(v >= kMinLength && v <= kMaxCoordinate))
-    throw InputError("scene key '" + key + "': " + numText(v) +
-                     " is outside [1e-12, 1e18], the lengths float math on the GPU can hold");
+// Where a relative file name starts: at the scene file, or for a key given with --set where the
+// user runs (the name stays as given).
+struct Origin {
+  std::filesystem::path base_dir;
+  std::set<std::string> overridden;  // keys given with --set
+
+  bool fromOverride(const std::string& key) const { return overridden.count(key) > 0; }
+  std::string resolve(const std::string& key, const std::string& file) const {
+    const bool as_given = file.empty() || !std::filesystem::path(file).is_relative() || fromOverride(key);
+    return as_given ? file : (base_dir / file).string();
+  }
+};
+
+// One of the table's checks; `r` gives the value as written, for a message that shows it.
+void require(const Check& c, const std::string& key, double v, const std::string& value,
+             const Reader* r = nullptr) {
+  if (c.says && !c.allowed.admits(v)) {
+    YAML::Node n = r ? r->get(key) : YAML::Node();
+    throw InputError(c.error(key, value, n.IsScalar() ? n.Scalar() : ""));
+  }
 }
 
-// The particles.* keys. Relative file paths are relative to the scene file (not for --set, whose
-// paths are the user's, relative to where they run).
-ParticleDesc readParticles(const Reader& r, const std::filesystem::path& base_dir,
-                           bool file_from_override) {
-  ParticleDesc p;
-  p.file = r.as<std::string>("particles.file");
-  if (!p.file.empty() && std::filesystem::path(p.file).is_relative() && !file_from_override)
-    p.file = (base_dir / p.file).string();
-  p.procedural = r.as<std::string>("particles.procedural");
-  if (p.procedural != "none" && p.procedural != "layers" && p.procedural != "splash")
-    throw InputError("scene key 'particles.procedural': expected none, layers or splash, got '" +
-                     p.procedural + "'");
+// A number that parseScene's own code read, by the table's checks of `key` (named `name` in the
+// message).
+void requireTable(const std::string& key, double v, const std::string& name) {
+  for (const Check& c : sceneKeyChecks(key))
+    if (!c.of_length) require(c, name, v, numText(v));
+}
+
+// Reading one key through its row (common/scene_keys.h): its value, its checks, its field.
+template <class T>
+struct ValueOf {
+  using type = T;
+};
+template <class T>
+struct ValueOf<std::optional<T>> {
+  using type = T;
+};
+
+template <class T>
+void read(const Number<T>& n, const std::string& key, const Reader& r, const Origin&, Scene& s) {
+  const auto v = r.as<typename ValueOf<T>::type>(key);
+  for (const Check& c : n.checks) require(c, key, double(v), valueText(v), &r);
+  n.field(s) = v;
+}
+
+void read(const Flag& f, const std::string& key, const Reader& r, const Origin&, Scene& s) {
+  f.field(s) = r.as<bool>(key);
+}
+
+void read(const Text& t, const std::string& key, const Reader& r, const Origin& o, Scene& s) {
+  const std::string v = r.as<std::string>(key);
+  t.field(s) = t.file ? o.resolve(key, v) : v;
+}
+
+template <class T>
+void read(const Choice<T>& c, const std::string& key, const Reader& r, const Origin&, Scene& s) {
+  const std::string name = r.as<std::string>(key);
+  std::vector<std::string> known;
+  for (const auto& [n, value] : c.names) {
+    if (name == n) {
+      c.field(s) = value;
+      return;
+    }
+    known.push_back(n);
+  }
+  throw InputError(choiceError(key, c.says, known, name));
+}
+
+template <class T>
+void read(const Vector<T>& vec, const std::string& key, const Reader& r, const Origin&, Scene& s) {
+  const glm::dvec3 v = r.vec3(key);
+  for (const Check& c : vec.checks) {
+    if (c.of_length) require(c, key, glm::length(v), numText(glm::length(v)));
+    else
+      for (int a = 0; a < 3; ++a) require(c, key, v[a], numText(v[a]));
+  }
+  vec.field(s) = T(v);
+}
+
+void read(const Structured&, const std::string&, const Reader&, const Origin&, Scene&) {}
+
+// Every key the table types, in the table's order: its value (`auto` leaves the field to its
+// default or to parseScene), checked, into its field.
+void readTypedKeys(const Reader& r, const Origin& o, Scene& s) {
+  for (const SceneKey& k : sceneKeys()) {
+    if (k.auto_value) {
+      const bool is_auto = r.isAuto(k.path);
+      if (k.auto_value->flag) k.auto_value->flag(s) = is_auto;
+      if (is_auto) continue;
+    }
+    std::visit([&](const auto& type) { read(type, k.path, r, o, s); }, k.type);
+  }
+}
+
+// The particles.* rules between keys (each key's own range is the table's).
+void checkParticles(const Reader& r, ParticleDesc& p) {
   if (!p.file.empty() && p.procedural != "none")
     throw InputError(
         "scene keys 'particles.file' and 'particles.procedural' are both set: use one "
         "(set particles.procedural to none to read the file)");
-  p.format = r.as<std::string>("particles.format");
-  if (p.format != "auto" && p.format != "vtk" && p.format != "raw" && p.format != "csv")
-    throw InputError("scene key 'particles.format': expected auto, vtk, raw or csv, got '" +
-                     p.format + "'");
-  if (!r.isAuto("particles.count")) {
-    p.count = r.as<long long>("particles.count");
-    if (p.count < 0 || p.count > kMaxParticles)
-      throw InputError("scene key 'particles.count': must be auto or in [0, " +
-                       std::to_string(kMaxParticles) + "], got " + std::to_string(p.count));
-  } else if (p.file.empty() && p.procedural != "none") {
+  if (r.isAuto("particles.count") && p.file.empty() && p.procedural != "none")
     p.count = kDefaultProceduralParticles;
-  }
-  auto positive = [&](const char* key) {
-    double v = r.as<double>(key);
-    if (!(v > 0.0) || !std::isfinite(v))
-      throw InputError(std::string("scene key '") + key + "': must be a finite number > 0");
-    return v;
-  };
-  p.spacing = positive("particles.spacing");
-  p.radius = positive("particles.radius");
-  if (!r.isAuto("particles.influence")) p.influence = positive("particles.influence");
-  checkLength("particles.spacing", p.spacing);
-  checkLength("particles.radius", p.radius);
-  if (p.influence) checkLength("particles.influence", *p.influence);
-  p.threshold = r.as<double>("particles.threshold");
-  if (!(p.threshold > 0.0 && p.threshold < 1.0))
-    throw InputError("scene key 'particles.threshold': must be in (0, 1)");
-  p.colour = r.vec3("particles.color");
-  for (int c = 0; c < 3; ++c)
-    if (p.colour[c] < 0.0 || p.colour[c] > 1.0)
-      throw InputError("scene key 'particles.color': entries must be in [0, 1]");
-  p.method = r.as<std::string>("particles.method");
-  if (p.method != "billboards" && p.method != "grid" && p.method != "slices")
-    throw InputError("scene key 'particles.method': expected billboards, grid or slices, got '" + p.method + "'");
-  // Below 1/20 h the lattice needs 8000 points per h^3 (memory and splat time grow as the inverse
-  // cube); above h the lattice cannot even hold a lone particle's surface (radius 0.23 h).
-  p.slice_spacing = r.as<double>("particles.slice_spacing");
-  if (!(p.slice_spacing >= kMinSliceSpacing && p.slice_spacing <= kMaxSliceSpacing)) {
-    std::ostringstream msg;
-    msg << "scene key 'particles.slice_spacing': must be in [" << kMinSliceSpacing << ", " << kMaxSliceSpacing
-        << "] (units of h), got " << r.as<std::string>("particles.slice_spacing");
-    throw InputError(msg.str());
-  }
-  p.step = positive("particles.step");
-  p.max_samples = r.as<int>("particles.max_samples");
-  if (p.max_samples < 1) throw InputError("scene key 'particles.max_samples': must be >= 1");
-  p.refine_iterations = r.as<int>("particles.refine_iterations");
-  if (p.refine_iterations < 0)
-    throw InputError("scene key 'particles.refine_iterations': must be >= 0");
-  p.cull = r.as<bool>("particles.cull");
-  p.samples_per_pass = r.as<int>("particles.samples_per_pass");
-  if (p.samples_per_pass != 4 && p.samples_per_pass != 8)
-    throw InputError("scene key 'particles.samples_per_pass': must be 4 or 8");
-  p.smoothing = r.as<std::string>("particles.smoothing");
-  if (p.smoothing != "none" && p.smoothing != "anisotropic")
-    throw InputError("scene key 'particles.smoothing': expected none or anisotropic, got '" +
-                     p.smoothing + "'");
-  AnisotropicParams& a = p.anisotropic;
-  a.splash_scale = r.as<double>("particles.anisotropic.splash_scale");
-  a.surface_scale = r.as<double>("particles.anisotropic.surface_scale");
-  a.rho_splash = r.as<double>("particles.anisotropic.rho_splash");
-  a.rho_surface = r.as<double>("particles.anisotropic.rho_surface");
-  a.neighbourhood = r.as<double>("particles.anisotropic.neighbourhood");
-  a.max_axis_ratio = r.as<double>("particles.anisotropic.max_axis_ratio");
-  validateAnisotropic(a);
+  validateAnisotropic(p.anisotropic);
   if (p.anisotropicOn() && p.method != "grid")
     throw InputError("scene key 'particles.smoothing': anisotropic needs particles.method: grid (the " +
                      p.method + " method draws round particles only); got particles.method: " + p.method);
-  return p;
 }
 
-// volume.files / particles.files: a list of files, or one glob pattern (sorted matches). Relative
-// names are relative to the scene file (to the working directory when given with --set).
-std::vector<std::string> readSeries(const Reader& r, const std::string& key,
-                                    const std::filesystem::path& base_dir, bool from_override) {
+// volume.files / particles.files: a list of files, or one glob pattern (sorted matches).
+std::vector<std::string> readSeries(const Reader& r, const std::string& key, const Origin& o) {
   YAML::Node n = r.get(key);
-  auto resolve = [&](const std::string& f) {
-    return std::filesystem::path(f).is_relative() && !from_override ? (base_dir / f).string() : f;
-  };
+  auto resolve = [&](const std::string& f) { return o.resolve(key, f); };
   std::vector<std::string> files;
   if (n.IsNull() || (n.IsScalar() && n.Scalar().empty())) return files;
   if (n.IsSequence()) {
@@ -276,24 +279,13 @@ std::vector<std::string> readSeries(const Reader& r, const std::string& key,
   return files;
 }
 
-// The glow.* keys (common/glow_scene.h has the emitters' own).
-// The emitters' rates run per frame of an orbit and on through the steps of a series.
-GlowSpec readGlow(const Reader& r, int time_step, int time_steps) {
-  GlowSpec g;
-  const int per_step = std::max(1, r.as<int>("camera.orbit.frames"));  // checked >= 0 with the camera
-  g.emitters = parseGlowEmitters(r.get("glow.emitters"), time_steps * per_step);
-  g.first_frame = time_step * per_step;
-  g.core_radius = r.as<double>("glow.core_radius");
-  checkLength("glow.core_radius", g.core_radius);
-  g.intensity = r.as<double>("glow.intensity");
-  if (!(g.intensity >= 0.0 && g.intensity <= 1e30))
-    throw InputError("scene key 'glow.intensity': must be in [0, 1e30]");
-  g.tone_map = r.as<std::string>("glow.tone_map");
-  if (g.tone_map != "none" && g.tone_map != "exponential")
-    throw InputError("scene key 'glow.tone_map': expected none or exponential, got '" + g.tone_map + "'");
-  g.exposure = r.as<double>("glow.exposure");
-  if (!(g.exposure > 0.0 && g.exposure <= 1e30))
-    throw InputError("scene key 'glow.exposure': must be in (0, 1e30]");
+// glow.emitters (common/glow_scene.h has the emitters' own keys) and glow.box. The emitters'
+// rates run per frame of an orbit and on through the steps of a series.
+void readGlow(const Reader& r, Scene& s) {
+  GlowSpec& g = s.glow;
+  const int per_step = std::max(1, s.orbit_frames);
+  g.emitters = parseGlowEmitters(r.get("glow.emitters"), s.time_steps * per_step);
+  g.first_frame = s.time_step * per_step;
   if (!r.isAuto("glow.box")) {
     YAML::Node n = r.get("glow.box");
     if (!n.IsSequence() || n.size() != 2)
@@ -308,18 +300,64 @@ GlowSpec readGlow(const Reader& r, int time_step, int time_steps) {
       }
       if (v.size() != 3)
         throw InputError("scene key 'glow.box': each corner is a list of 3 numbers" + where(n));
-      glm::dvec3 p{v[0], v[1], v[2]};
       for (double x : v)
         if (!std::isfinite(x)) throw InputError("scene key 'glow.box': values must be finite" + where(n));
-      checkCoordinates("glow.box", p);
-      (c == 0 ? b.lo : b.hi) = p;
+      for (double x : v) requireTable("glow.box", x, "glow.box");
+      (c == 0 ? b.lo : b.hi) = glm::dvec3{v[0], v[1], v[2]};
     }
     for (int a = 0; a < 3; ++a)
       if (!(b.hi[a] - b.lo[a] >= kMinLength))
         throw InputError("scene key 'glow.box': needs lo < hi on every axis (by at least 1e-12)" + where(n));
     g.box = b;
   }
-  return g;
+}
+
+// transfer.points (or transfer.preset), transfer.range and transfer.colormap.
+void readTransfer(const Reader& r, const Origin& o, TransferSpec& tf) {
+  YAML::Node pts = r.get("transfer.points");
+  if (pts.IsNull()) {
+    tf.points = TransferFunction::preset(r.as<std::string>("transfer.preset"));
+  } else {
+    if (!pts.IsSequence() || pts.size() == 0)
+      throw InputError("scene key 'transfer.points': expected a list of [value, r, g, b, a]" + where(pts));
+    for (const auto& p : pts) {
+      std::vector<double> v;
+      try {
+        for (const auto& e : p) v.push_back(e.as<double>());
+      } catch (const YAML::Exception&) {
+        v.clear();
+      }
+      if (v.size() != 5)
+        throw InputError("scene key 'transfer.points': each point is [value, r, g, b, a]" + where(p));
+      tf.points.push_back({v[0], v[1], v[2], v[3], v[4]});
+    }
+  }
+  if (!r.isAuto("transfer.range")) {
+    auto v = r.numbers("transfer.range", 2);
+    if (!(v[1] > v[0])) throw InputError("scene key 'transfer.range': needs lo < hi");
+    // Samples are floats on the GPU: the range must be one, and wide enough not to collapse there.
+    for (double x : v) requireTable("transfer.range", x, "transfer.range");
+    if (v[1] - v[0] < 1e-6 * std::max(std::abs(v[0]), std::abs(v[1])))
+      throw InputError("scene key 'transfer.range': [" + numText(v[0]) + ", " + numText(v[1]) +
+                       "] is narrower than float precision at that magnitude (hi - lo must be at "
+                       "least 1e-6 of |hi|)");
+    tf.range = std::make_pair(v[0], v[1]);
+  }
+  // Validate the points now (range and unit length are placeholders until the data is known).
+  TransferFunction(tf.points, 0.0, 1.0, tf.unit_length.value_or(1.0));
+  // A colour map replaces the points' colours (their opacity stays): resolved here, once per
+  // parse, so the rest of the program sees plain control points.
+  if (!r.get("transfer.colormap").IsNull()) tf.colormap = r.as<std::string>("transfer.colormap");
+  if (!tf.colormap.empty()) {
+    try {
+      const bool given = o.fromOverride("transfer.colormap");
+      ColourMap map =
+          loadColourMap(tf.colormap, given ? std::filesystem::current_path() : o.base_dir);
+      tf.points = applyColourMap(tf.points, map.sampled());
+    } catch (const InputError& e) {
+      throw InputError(std::string("scene key 'transfer.colormap': ") + e.what());
+    }
+  }
 }
 
 }  // namespace
@@ -403,7 +441,7 @@ bool hasSteepOpacity(const std::vector<TfPoint>& points) {
 Scene parseScene(const SceneText& text, const std::vector<std::string>& overrides) {
   const std::string& path = text.path;
   YAML::Node root(YAML::NodeType::Map);
-  std::filesystem::path base_dir = std::filesystem::current_path();
+  Origin origin{std::filesystem::current_path(), {}};
   if (!path.empty()) {
     try {
       root = YAML::Load(text.yaml);
@@ -412,18 +450,15 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
     }
     if (root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
     if (!root.IsMap()) throw InputError("scene file " + path + ": top level must be a map of keys");
-    base_dir = std::filesystem::absolute(path).parent_path();
+    origin.base_dir = std::filesystem::absolute(path).parent_path();
   }
   checkKeys(root, "");
-  bool file_from_override = false, particles_file_from_override = false;
-  bool files_from_override = false, particles_files_from_override = false;
-  bool colormap_from_override = false;
   for (const std::string& o : overrides) {
     auto eq = o.find('=');
     if (eq == std::string::npos || eq == 0)
       throw InputError("--set " + o + ": expected key.path=value");
     std::string key = o.substr(0, eq);
-    if (!findKey(key)) throw InputError("--set " + o + ": unknown scene key '" + key + "'");
+    if (!findSceneKey(key)) throw InputError("--set " + o + ": unknown scene key '" + key + "'");
     YAML::Node v;
     try {
       v = YAML::Load(o.substr(eq + 1));
@@ -431,54 +466,24 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
       throw InputError("--set " + o + ": value is not valid YAML: " + e.what());
     }
     setPath(root, splitPath(key), 0, v);
-    if (key == "volume.file") file_from_override = true;
-    if (key == "particles.file") particles_file_from_override = true;
-    if (key == "volume.files") files_from_override = true;
-    if (key == "particles.files") particles_files_from_override = true;
-    if (key == "transfer.colormap") colormap_from_override = true;
+    origin.overridden.insert(key);
   }
 
   Reader r(root);
   Scene s;
-  VolumeDesc& vol = s.volume;
-  vol.file = r.as<std::string>("volume.file");
-  if (!vol.file.empty() && std::filesystem::path(vol.file).is_relative() && !file_from_override)
-    vol.file = (base_dir / vol.file).string();
-  vol.procedural = r.as<std::string>("volume.procedural");
-  auto dims = r.numbers("volume.dims", 3);
-  for (int a = 0; a < 3; ++a) {
-    if (dims[a] != std::floor(dims[a]) || dims[a] < 2 || dims[a] > 1 << 20)
-      throw InputError("scene key 'volume.dims': entries must be integers in [2, 2^20]");
-    vol.grid.dims[a] = int(dims[a]);
-  }
-  vol.grid.spacing = r.vec3("volume.spacing");
-  for (int a = 0; a < 3; ++a) {
-    checkLength("volume.spacing", vol.grid.spacing[a]);
-    checkLength("volume.spacing (times volume.dims - 1: the volume's extent)",
-                vol.grid.spacing[a] * (vol.grid.dims[a] - 1));
-  }
-  vol.type = parseSampleType(r.as<std::string>("volume.type"));
-  std::string order = r.as<std::string>("volume.byte_order");
-  if (order != "little" && order != "big")
-    throw InputError("scene key 'volume.byte_order': expected little or big, got '" + order + "'");
-  vol.big_endian = order == "big";
-  vol.header_bytes = r.as<long long>("volume.header_bytes");
-  if (vol.header_bytes < 0) throw InputError("scene key 'volume.header_bytes': must be >= 0");
+  readTypedKeys(r, origin, s);
 
-  s.time_step = r.as<int>("time.step");
-  s.time_cache_mib = r.as<double>("time.cache_mib");
-  if (!(s.time_cache_mib >= 0.0 && s.time_cache_mib <= 1e9))
-    throw InputError("scene key 'time.cache_mib': must be in [0, 1e9] MiB");
-  if (!r.isAuto("limits.memory_mib")) {
-    s.memory_limit_mib = r.as<double>("limits.memory_mib");
-    if (!(*s.memory_limit_mib > 0.0 && *s.memory_limit_mib <= 1e12))
-      throw InputError("scene key 'limits.memory_mib': must be auto or in (0, 1e12] MiB");
-  }
-  s.volume_files = readSeries(r, "volume.files", base_dir, files_from_override);
+  // What a row cannot say: the keys with structure of their own, `auto` values derived from other
+  // keys, and the rules between keys.
+  VolumeDesc& vol = s.volume;
+  for (int a = 0; a < 3; ++a)
+    requireTable("volume.spacing", vol.grid.spacing[a] * (vol.grid.dims[a] - 1),
+                 "volume.spacing (times volume.dims - 1: the volume's extent)");
+  s.volume_files = readSeries(r, "volume.files", origin);
   if (!s.volume_files.empty() && !vol.file.empty())
     throw InputError("scene keys 'volume.file' and 'volume.files' are both set: use one");
-  s.particles = readParticles(r, base_dir, particles_file_from_override);
-  s.particle_files = readSeries(r, "particles.files", base_dir, particles_files_from_override);
+  checkParticles(r, s.particles);
+  s.particle_files = readSeries(r, "particles.files", origin);
   if (!s.particle_files.empty() && (!s.particles.file.empty() || s.particles.procedural != "none"))
     throw InputError("scene key 'particles.files' is set with 'particles.file' or "
                      "'particles.procedural': use one");
@@ -493,8 +498,8 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
                      std::to_string(s.time_steps) + " time step(s), 0 ... " + std::to_string(s.time_steps - 1));
   if (!s.volume_files.empty()) vol.file = s.volume_files[size_t(s.time_step)];
   if (!s.particle_files.empty()) s.particles.file = s.particle_files[size_t(s.time_step)];
-  s.glow = readGlow(r, s.time_step, s.time_steps);
-  s.surfaces = parseSurfaces(r.get("surfaces"), base_dir);
+  readGlow(r, s);
+  s.surfaces = parseSurfaces(r.get("surfaces"), origin.base_dir);
   if (!s.hasVolume() && !s.particles.enabled() && !s.glow.enabled() && s.surfaces.empty())
     throw InputError("the scene has nothing to render: volume.procedural is none with no "
                      "volume.file, neither particles.file nor particles.procedural is set, "
@@ -503,95 +508,13 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
     throw InputError("scene key 'glow.box': a scene of glow emitters alone must set the box the "
                      "glow is integrated in (auto takes the volume's and particles' bounds, and "
                      "there are none)");
-
-  TransferSpec& tf = s.transfer;
-  YAML::Node pts = r.get("transfer.points");
-  if (pts.IsNull()) {
-    tf.points = TransferFunction::preset(r.as<std::string>("transfer.preset"));
-  } else {
-    if (!pts.IsSequence() || pts.size() == 0)
-      throw InputError("scene key 'transfer.points': expected a list of [value, r, g, b, a]" + where(pts));
-    for (const auto& p : pts) {
-      std::vector<double> v;
-      try {
-        for (const auto& e : p) v.push_back(e.as<double>());
-      } catch (const YAML::Exception&) {
-        v.clear();
-      }
-      if (v.size() != 5)
-        throw InputError("scene key 'transfer.points': each point is [value, r, g, b, a]" + where(p));
-      tf.points.push_back({v[0], v[1], v[2], v[3], v[4]});
-    }
-  }
-  if (!r.isAuto("transfer.range")) {
-    auto v = r.numbers("transfer.range", 2);
-    if (!(v[1] > v[0])) throw InputError("scene key 'transfer.range': needs lo < hi");
-    // Samples are floats on the GPU: the range must be one, and wide enough not to collapse there.
-    for (double x : v)
-      if (std::abs(x) > 1e38)
-        throw InputError("scene key 'transfer.range': " + numText(x) +
-                         " is beyond float's range (+-3.4e38)");
-    if (v[1] - v[0] < 1e-6 * std::max(std::abs(v[0]), std::abs(v[1])))
-      throw InputError("scene key 'transfer.range': [" + numText(v[0]) + ", " + numText(v[1]) +
-                       "] is narrower than float precision at that magnitude (hi - lo must be at "
-                       "least 1e-6 of |hi|)");
-    tf.range = std::make_pair(v[0], v[1]);
-  }
-  if (!r.isAuto("transfer.unit_length")) {
-    tf.unit_length = r.as<double>("transfer.unit_length");
-    checkLength("transfer.unit_length", *tf.unit_length);
-  }
-  tf.table_size = r.as<int>("transfer.table_size");
-  if (tf.table_size < 2 || tf.table_size > 65536)
-    throw InputError("scene key 'transfer.table_size': must be in [2, 65536]");
-  // `auto` (the default): on wherever it is supported, decided below once the spacing and adaptive
-  // sampling are known.
-  const bool preintegrated_auto = r.isAuto("transfer.preintegrated");
-  tf.preintegrated = preintegrated_auto ? false : r.as<bool>("transfer.preintegrated");
-  // Validate the points now (range and unit length are placeholders until the data is known).
-  TransferFunction(tf.points, 0.0, 1.0, tf.unit_length.value_or(1.0));
-  // A colour map replaces the points' colours (their opacity stays): resolved here, once per
-  // parse, so the rest of the program sees plain control points.
-  if (!r.get("transfer.colormap").IsNull()) tf.colormap = r.as<std::string>("transfer.colormap");
-  if (!tf.colormap.empty()) {
-    try {
-      ColourMap map = loadColourMap(tf.colormap, colormap_from_override ? std::filesystem::current_path() : base_dir);
-      tf.points = applyColourMap(tf.points, map.sampled());
-    } catch (const InputError& e) {
-      throw InputError(std::string("scene key 'transfer.colormap': ") + e.what());
-    }
-  }
+  readTransfer(r, origin, s.transfer);
 
   Camera& cam = s.camera;
-  cam.width = r.as<int>("image.width");
-  cam.height = r.as<int>("image.height");
-  if (cam.width <= 0 || cam.height <= 0 || cam.width > 32768 || cam.height > 32768)
+  const Allowed& size = sceneKeyChecks("image.width").front().allowed;
+  if (!size.admits(cam.width) || !size.admits(cam.height))
     throw InputError("image size " + std::to_string(cam.width) + " x " + std::to_string(cam.height) +
-                     ": image.width and image.height must be in [1, 32768]");
-  s.background = r.vec3("image.background");
-  s.look_at_auto = r.isAuto("camera.look_at");
-  cam.look_at = s.look_at_auto ? glm::dvec3(0.0) : r.vec3("camera.look_at");
-  checkCoordinates("camera.look_at", cam.look_at);
-  s.camera_auto = r.isAuto("camera.position");
-  if (!s.camera_auto) cam.position = r.vec3("camera.position");
-  checkCoordinates("camera.position", cam.position);
-  cam.up = r.vec3("camera.up");
-  checkCoordinates("camera.up", cam.up);
-  cam.fov_deg = r.as<double>("camera.fov");
-  if (!(cam.fov_deg > 0.0 && cam.fov_deg < 180.0))
-    throw InputError("scene key 'camera.fov': must be in (0, 180) degrees");
-  if (!(glm::length(cam.up) >= kMinLength))
-    throw InputError("scene key 'camera.up': must not be zero (its length must be at least 1e-12)");
-  s.orbit_frames = r.as<int>("camera.orbit.frames");
-  if (s.orbit_frames < 0) throw InputError("scene key 'camera.orbit.frames': must be >= 0");
-  s.orbit_elevation = r.as<double>("camera.orbit.elevation");
-  if (std::abs(s.orbit_elevation) > 90.0)
-    throw InputError("scene key 'camera.orbit.elevation': must be in [-90, 90] degrees");
-  if (!r.isAuto("camera.orbit.radius")) {
-    s.orbit_radius = r.as<double>("camera.orbit.radius");
-    if (!(*s.orbit_radius > 0.0)) throw InputError("scene key 'camera.orbit.radius': must be > 0");
-    checkLength("camera.orbit.radius", *s.orbit_radius);
-  }
+                     ": image.width and image.height must be " + size.phrase());
   if (!s.camera_auto && s.orbit_frames == 0) {
     if (glm::length(cam.look_at - cam.position) == 0.0)
       throw InputError("camera.position equals camera.look_at: no view direction");
@@ -602,57 +525,10 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
   // Glow emitters alone need no cut: every brick would evaluate every emitter again over its
   // part of each ray (d = 2 draws about 3x the pixels of d = 1 at 512^2, docs/glow.md).
   const bool glow_alone = s.glow.enabled() && !s.hasVolume() && !s.particles.enabled() && s.surfaces.empty();
-  s.bricks_per_axis = r.isAuto("bricks.per_axis") ? (glow_alone ? 1 : 2) : r.as<int>("bricks.per_axis");
-  if (s.bricks_per_axis < 1 || s.bricks_per_axis > 64)
-    throw InputError("scene key 'bricks.per_axis': must be in [1, 64]");
-  s.backend = r.as<std::string>("render.backend");
-  if (s.backend != "osmesa" && s.backend != "egl")
-    throw InputError("scene key 'render.backend': expected osmesa or egl, got '" + s.backend + "'");
-  s.sample_spacing = r.as<double>("render.sample_spacing");
-  if (!(s.sample_spacing >= 0.01 && s.sample_spacing <= 100.0))
-    throw InputError("scene key 'render.sample_spacing': must be in [0.01, 100] voxels");
-  s.block_cells = r.as<int>("render.block_cells");
-  if (s.block_cells < 1) throw InputError("scene key 'render.block_cells': must be >= 1");
-  s.ray_block_cells = r.as<int>("render.ray_block_cells");
-  if (s.ray_block_cells < 1) throw InputError("scene key 'render.ray_block_cells': must be >= 1");
-  s.volume_method = r.as<std::string>("render.method");
-  if (s.volume_method != "slicing" && s.volume_method != "raycast")
-    throw InputError("scene key 'render.method': expected slicing or raycast, got '" + s.volume_method + "'");
-  s.ert_threshold = r.as<double>("render.ert_threshold");
-  if (!(s.ert_threshold > 0.0 && s.ert_threshold <= 1.0))
-    throw InputError("scene key 'render.ert_threshold': must be in (0, 1] (1: no early termination)");
-  s.shading.enabled = r.as<bool>("render.shading");
-  for (auto [key, value] : {std::pair{"render.shading_ambient", &s.shading.ambient},
-                            std::pair{"render.shading_diffuse", &s.shading.diffuse},
-                            std::pair{"render.shading_specular", &s.shading.specular}}) {
-    *value = r.as<double>(key);
-    if (!(*value >= 0.0 && *value <= 100.0))
-      throw InputError(std::string("scene key '") + key + "': must be in [0, 100]");
-  }
-  s.shading.shininess = r.as<double>("render.shading_shininess");
-  if (!(s.shading.shininess >= 1.0 && s.shading.shininess <= 1000.0))
-    throw InputError("scene key 'render.shading_shininess': must be in [1, 1000]");
-  s.adaptive_step = r.as<bool>("render.adaptive_step");
-  s.adaptive_step_tolerance = r.as<double>("render.adaptive_tolerance");
-  if (!(s.adaptive_step_tolerance > 0.0 && s.adaptive_step_tolerance <= 1.0))
-    throw InputError("scene key 'render.adaptive_tolerance': must be in (0, 1]");
-  s.strategy = r.as<std::string>("compositing.strategy");
-  if (s.strategy != "direct" && s.strategy != "binary-swap" && s.strategy != "radix-k")
-    throw InputError("scene key 'compositing.strategy': expected direct, binary-swap or radix-k, got '" +
-                     s.strategy + "'");
-  s.radix = r.as<int>("compositing.radix");
-  if (s.radix < 2) throw InputError("scene key 'compositing.radix': must be >= 2");
-  s.precision = r.as<std::string>("compositing.precision");
-  if (s.precision != "float" && s.precision != "rgba8")
-    throw InputError("scene key 'compositing.precision': expected float or rgba8, got '" +
-                     s.precision + "'");
-  s.overlap = r.as<bool>("compositing.overlap");
-  s.rle = r.as<bool>("compositing.rle");
-  s.adaptive_tolerance = r.as<double>("adaptive.tolerance");
-  if (!(s.adaptive_tolerance >= 0.0 && s.adaptive_tolerance <= 100.0))
-    throw InputError("scene key 'adaptive.tolerance': must be in [0, 100] percent");
-  s.adaptive_tolerance /= 100.0;
-  if (preintegrated_auto)
+  if (r.isAuto("bricks.per_axis")) s.bricks_per_axis = glow_alone ? 1 : 2;
+  s.adaptive_tolerance /= 100.0;  // given in percent
+  // transfer.preintegrated `auto`: on where the opacity is steep and pre-integration is supported.
+  if (r.isAuto("transfer.preintegrated"))
     s.transfer.preintegrated = s.adaptive_tolerance == 0.0 && s.sample_spacing <= 2.0 &&
                                hasSteepOpacity(s.transfer.points);
   if (s.transfer.preintegrated && s.adaptive_tolerance > 0.0)
@@ -665,26 +541,12 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
     throw InputError("scene keys 'transfer.preintegrated' and 'render.sample_spacing': "
                      "pre-integration needs render.sample_spacing <= 2 voxels (got " +
                      std::to_string(s.sample_spacing) + ")");
-  s.adaptive_blocks = r.as<int>("adaptive.blocks");
-  if (s.adaptive_blocks < 1 || s.adaptive_blocks > 256 || (s.adaptive_blocks & (s.adaptive_blocks - 1)))
-    throw InputError("scene key 'adaptive.blocks': must be a power of two in [1, 256], got " +
-                     std::to_string(s.adaptive_blocks));
   // The adaptive ray caster reads each block's own samples only (clamped to the block), so a
   // difference one voxel across a block face would read the wrong field: refused, not approximated.
   if (s.shading.enabled && s.adaptive_tolerance > 0.0)
     throw InputError("scene keys 'render.shading' and 'adaptive.tolerance': gradient shading is not "
                      "available with adaptive sampling; set render.shading: false or "
                      "adaptive.tolerance: 0");
-  s.adaptive_steps = r.as<std::string>("adaptive.steps");
-  if (s.adaptive_steps != "own" && s.adaptive_steps != "fine")
-    throw InputError("scene key 'adaptive.steps': expected own or fine, got '" + s.adaptive_steps + "'");
-  s.reference_step = r.as<double>("reference.step");
-  if (!(s.reference_step > 0.0 && s.reference_step <= 1.0))
-    throw InputError("scene key 'reference.step': must be in (0, 1] voxels");
-  s.reference_field = r.as<std::string>("reference.field");
-  if (s.reference_field != "original" && s.reference_field != "adaptive")
-    throw InputError("scene key 'reference.field': expected original or adaptive, got '" +
-                     s.reference_field + "'");
   return s;
 }
 

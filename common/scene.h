@@ -1,7 +1,8 @@
 #pragma once
 // The scene: everything a frame needs, read from a YAML file plus `--set key.path=value`
-// overrides. Every key, its default and its meaning live in one table (scene_keys.cpp), which
-// also generates docs/scene.md, so the documentation cannot drift from the parser.
+// overrides. Every key, its type, default, allowed values and meaning live in one table
+// (common/scene_keys.h), which the parser reads keys through and which generates docs/scene.md,
+// so the documentation cannot drift from the parser.
 #include <optional>
 #include <string>
 #include <vector>
@@ -9,20 +10,13 @@
 #include "common/camera.h"
 #include "common/glow_scene.h"
 #include "common/particles.h"
+#include "common/scene_keys.h"
 #include "common/shading.h"
 #include "common/surface_scene.h"
 #include "common/transfer_function.h"
 #include "common/volume_source.h"
 
 namespace sortlast {
-
-struct SceneKey {
-  const char* path;           // dotted key, e.g. "camera.orbit.frames"
-  const char* default_yaml;   // default value as YAML ("auto" where it is derived)
-  const char* doc;
-};
-const std::vector<SceneKey>& sceneKeys();
-std::string sceneKeysMarkdown();
 
 struct TransferSpec {
   std::vector<TfPoint> points;  // with transfer.colormap's colours applied, if it is set

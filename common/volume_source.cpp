@@ -10,14 +10,6 @@
 
 namespace sortlast {
 
-SampleType parseSampleType(const std::string& s) {
-  if (s == "uint8") return SampleType::kUint8;
-  if (s == "uint16") return SampleType::kUint16;
-  if (s == "int16") return SampleType::kInt16;
-  if (s == "float32") return SampleType::kFloat32;
-  throw InputError("volume.type: unknown type '" + s + "' (known: uint8, uint16, int16, float32)");
-}
-
 int sampleTypeBytes(SampleType t) {
   switch (t) {
     case SampleType::kUint8: return 1;

@@ -10,7 +10,6 @@
 namespace sortlast {
 
 enum class SampleType { kUint8, kUint16, kInt16, kFloat32 };
-SampleType parseSampleType(const std::string& s);  // throws InputError
 int sampleTypeBytes(SampleType t);
 
 struct VolumeDesc {

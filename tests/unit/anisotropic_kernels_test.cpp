@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/anisotropic_kernels.h"
+#include "common/scene.h"
 #include "common/surface_roughness.h"
 #include "input_error_of.h"
 #include "master/reference/metaball_reference.h"
@@ -27,6 +28,22 @@ bool finite(const ParticleKernel& k) {
 // Semi-axis length (units of h) along unit direction v of the support |A r| <= h, for v an
 // eigenvector of A: 1 / |A v|.
 double axisAlong(const ParticleKernel& k, glm::vec3 v) { return 1.0 / glm::length(k.a * v); }
+
+// The parameters as a scene's particles.anisotropic.* keys (their ranges are the key table's).
+std::vector<std::string> sceneKeysOf(const AnisotropicParams& p) {
+  std::vector<std::string> out;
+  for (auto [key, v] :
+       {std::pair{"splash_scale", p.splash_scale}, std::pair{"surface_scale", p.surface_scale},
+        std::pair{"rho_splash", p.rho_splash}, std::pair{"rho_surface", p.rho_surface},
+        std::pair{"neighbourhood", p.neighbourhood},
+        std::pair{"max_axis_ratio", p.max_axis_ratio}}) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.17g", v);
+    out.push_back(std::string("particles.anisotropic.") + key + "=" +
+                  (std::isnan(v) ? ".nan" : text));
+  }
+  return out;
+}
 
 std::vector<glm::vec3> plane(int n, float a) {
   std::vector<glm::vec3> ps;
@@ -122,7 +139,7 @@ TEST(AnisotropicKernels, DegenerateInputsGiveFiniteKernels) {
       for (double ratio : {1.0, 100.0})
         for (auto rho : {std::pair{0.0, 1e-9}, std::pair{1e8, 1e9}}) {
           AnisotropicParams q{scale, 8.0 / 64 / scale, rho.first, rho.second, hn, ratio};
-          validateAnisotropic(q);
+          EXPECT_EQ(loadScene("", sceneKeysOf(q)).particles.anisotropic, q);  // the keys' extremes
           for (const ParticleKernel& k : computeAnisotropicKernels(mixed, kH, q)) {
             ASSERT_TRUE(finite(k)) << scale << " " << hn << " " << ratio << " " << rho.first;
             EXPECT_LE(k.reach, anisotropicReachBound(q) * kH);
@@ -134,7 +151,7 @@ TEST(AnisotropicKernels, InvalidParametersNameTheirKey) {
   auto err = [](auto change) {
     AnisotropicParams p;
     change(p);
-    return inputErrorOf([&] { validateAnisotropic(p); });
+    return inputErrorOf([&] { loadScene("", sceneKeysOf(p)); });
   };
   EXPECT_NE(err([](auto& p) { p.splash_scale = 0; }).find("particles.anisotropic.splash_scale"), std::string::npos);
   EXPECT_NE(err([](auto& p) { p.surface_scale = NAN; }).find("particles.anisotropic.surface_scale"), std::string::npos);

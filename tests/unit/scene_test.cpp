@@ -2,11 +2,15 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <unistd.h>
 #include <vector>
+
+#include <yaml-cpp/yaml.h>
 
 #include "tests/unit/input_error_of.h"
 #include "common/error.h"
@@ -152,6 +156,9 @@ TEST(Scene, InvalidValuesThrow) {
   inputErrorOf([] { loadScene("", {"image.width=wide"}); });
   inputErrorOf([] { loadScene("", {"compositing.strategy=binary_swap"}); });
   inputErrorOf([] { loadScene("", {"image.width"}); });  // no '='
+  // NaN fails every range (std::abs(NaN) > 90 let it through the elevation's: NaN cameras).
+  EXPECT_EQ(inputErrorOf([] { loadScene("", {"camera.orbit.elevation=.nan", "camera.orbit.frames=4"}); }),
+            "scene key 'camera.orbit.elevation': must be in [-90, 90] degrees");
 }
 
 TEST(Scene, CompositingStrategies) {
@@ -238,6 +245,365 @@ TEST(Scene, KeysMarkdownListsEveryKey) {
     std::string o = std::string(k.path) + "=" + k.default_yaml;
     EXPECT_NO_THROW(loadScene("", {o})) << o;
   }
+}
+
+// --- The key table (common/scene_keys.h) ---
+
+// A key's field in `s`, through its row (none for a Structured key).
+template <class F>
+void forEachField(const SceneKey& k, F f) {
+  std::visit(
+      [&](const auto& type) {
+        if constexpr (requires { type.field; }) f(type.field);
+      },
+      k.type);
+}
+
+// Scene{}'s initialisers (scene.h, particles.h, camera.h, ...) are the table's defaults, which
+// the parser reads: for every key with a field, a default-constructed Scene, the built-in scene
+// and the key set to its own default agree.
+TEST(SceneKeys, StructDefaultsAreTheTableDefaults) {
+  Scene constructed, parsed = loadScene("", {});
+  int fields = 0;
+  for (const SceneKey& k : sceneKeys()) {
+    Scene set = loadScene("", {std::string(k.path) + "=" + k.default_yaml});
+    forEachField(k, [&](auto field) {
+      EXPECT_EQ(field(constructed), field(parsed)) << k.path << " = " << k.default_yaml;
+      EXPECT_EQ(field(set), field(parsed)) << k.path << " = " << k.default_yaml;
+      ++fields;
+    });
+  }
+  EXPECT_GE(fields, 70);
+  // The structured keys' defaults: none of each.
+  EXPECT_FALSE(parsed.transfer.range.has_value());
+  EXPECT_TRUE(parsed.transfer.colormap.empty());
+  EXPECT_FALSE(parsed.glow.box.has_value());
+  EXPECT_TRUE(parsed.glow.emitters.empty());
+  EXPECT_TRUE(parsed.surfaces.empty());
+  EXPECT_TRUE(parsed.volume_files.empty() && parsed.particle_files.empty());
+  EXPECT_EQ(parsed.transfer.points.size(),
+            TransferFunction::preset(tableDefault("transfer.preset")).size());
+}
+
+// Every message a single bad key gave before the table (tests/mpi/bad_input.sh, the service's and
+// in situ's tests pin some of them), each key's wording as it was.
+TEST(SceneKeys, ErrorsKeepTheirWording) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"volume.dims=[1,2,3]", "scene key 'volume.dims': entries must be integers in [2, 2^20]"},
+      {"volume.type=auto",
+       "volume.type: unknown type 'auto' (known: uint8, uint16, int16, float32)"},
+      {"volume.spacing=[0,0,0]",
+       "scene key 'volume.spacing': 0 is outside [1e-12, 1e18], the lengths float math on the GPU can hold"},
+      {"volume.byte_order=auto",
+       "scene key 'volume.byte_order': expected little or big, got 'auto'"},
+      {"volume.header_bytes=-1", "scene key 'volume.header_bytes': must be >= 0"},
+      {"particles.procedural=auto",
+       "scene key 'particles.procedural': expected none, layers or splash, got 'auto'"},
+      {"particles.format=abc",
+       "scene key 'particles.format': expected auto, vtk, raw or csv, got 'abc'"},
+      {"particles.count=-1",
+       "scene key 'particles.count': must be auto or in [0, 2147483648], got -1"},
+      {"particles.spacing=0", "scene key 'particles.spacing': must be a finite number > 0"},
+      {"particles.spacing=1e-13",
+       "scene key 'particles.spacing': 1e-13 is outside [1e-12, 1e18], the lengths float math on the GPU can hold"},
+      {"particles.radius=0", "scene key 'particles.radius': must be a finite number > 0"},
+      {"particles.radius=1e-13",
+       "scene key 'particles.radius': 1e-13 is outside [1e-12, 1e18], the lengths float math on the GPU can hold"},
+      {"particles.influence=0", "scene key 'particles.influence': must be a finite number > 0"},
+      {"particles.influence=1e-13",
+       "scene key 'particles.influence': 1e-13 is outside [1e-12, 1e18], the lengths float math on the GPU can hold"},
+      {"particles.threshold=0", "scene key 'particles.threshold': must be in (0, 1)"},
+      {"particles.color=[1,2,3]", "scene key 'particles.color': entries must be in [0, 1]"},
+      {"particles.method=auto",
+       "scene key 'particles.method': expected billboards, grid or slices, got 'auto'"},
+      {"particles.slice_spacing=0",
+       "scene key 'particles.slice_spacing': must be in [0.05, 1] (units of h), got 0"},
+      {"particles.slice_spacing=.nan",
+       "scene key 'particles.slice_spacing': must be in [0.05, 1] (units of h), got .nan"},
+      {"particles.step=0", "scene key 'particles.step': must be a finite number > 0"},
+      {"particles.max_samples=0", "scene key 'particles.max_samples': must be >= 1"},
+      {"particles.refine_iterations=-1", "scene key 'particles.refine_iterations': must be >= 0"},
+      {"particles.samples_per_pass=0", "scene key 'particles.samples_per_pass': must be 4 or 8"},
+      {"particles.smoothing=auto",
+       "scene key 'particles.smoothing': expected none or anisotropic, got 'auto'"},
+      {"particles.anisotropic.splash_scale=0",
+       "scene key 'particles.anisotropic.splash_scale': must be in [1/64, 8] (units of h), got 0"},
+      {"particles.anisotropic.splash_scale=.nan",
+       "scene key 'particles.anisotropic.splash_scale': must be in [1/64, 8] (units of h), got nan"},
+      {"particles.anisotropic.surface_scale=0",
+       "scene key 'particles.anisotropic.surface_scale': must be in [1/64, 8] (units of h), got 0"},
+      {"particles.anisotropic.rho_splash=-1",
+       "scene key 'particles.anisotropic.rho_splash': must be in [0, 1e9], got -1"},
+      {"particles.anisotropic.rho_splash=3",
+       "scene key 'particles.anisotropic.rho_surface': must be above particles.anisotropic.rho_splash (3), got 3"},
+      {"particles.anisotropic.rho_surface=0",
+       "scene key 'particles.anisotropic.rho_surface': must be above particles.anisotropic.rho_splash (1.5), got 0"},
+      {"particles.anisotropic.rho_surface=-1",
+       "scene key 'particles.anisotropic.rho_surface': must be in [0, 1e9], got -1"},
+      {"particles.anisotropic.neighbourhood=0",
+       "scene key 'particles.anisotropic.neighbourhood': must be in [1e-6, 8] (units of h), got 0"},
+      {"particles.anisotropic.max_axis_ratio=0",
+       "scene key 'particles.anisotropic.max_axis_ratio': must be in [1, 100], got 0"},
+      {"transfer.preset=auto",
+       "transfer.preset: unknown preset 'auto' (known: ramp, default, sharp)"},
+      {"transfer.range=[1,1]", "scene key 'transfer.range': needs lo < hi"},
+      {"transfer.unit_length=0",
+       "scene key 'transfer.unit_length': 0 is outside [1e-12, 1e18], the lengths float math on the GPU can hold"},
+      {"transfer.unit_length=.nan",
+       "scene key 'transfer.unit_length': nan is outside [1e-12, 1e18], the lengths float math on the GPU can hold"},
+      {"transfer.table_size=0", "scene key 'transfer.table_size': must be in [2, 65536]"},
+      {"image.width=0", "image size 0 x 512: image.width and image.height must be in [1, 32768]"},
+      {"image.height=0", "image size 512 x 0: image.width and image.height must be in [1, 32768]"},
+      {"camera.position=[0,0,0]", "camera.position equals camera.look_at: no view direction"},
+      {"camera.position=[2e18,0,0]",
+       "scene key 'camera.position': 2e+18 is beyond +-1e18, which float math on the GPU cannot hold (it squares distances)"},
+      {"camera.position=[0,1,0]", "camera.up is parallel to the view direction"},
+      {"camera.look_at=[2e18,0,0]",
+       "scene key 'camera.look_at': 2e+18 is beyond +-1e18, which float math on the GPU cannot hold (it squares distances)"},
+      {"camera.up=[0,0,0]",
+       "scene key 'camera.up': must not be zero (its length must be at least 1e-12)"},
+      {"camera.up=[2e18,0,0]",
+       "scene key 'camera.up': 2e+18 is beyond +-1e18, which float math on the GPU cannot hold (it squares distances)"},
+      {"camera.fov=0", "scene key 'camera.fov': must be in (0, 180) degrees"},
+      {"camera.orbit.frames=-1", "scene key 'camera.orbit.frames': must be >= 0"},
+      {"camera.orbit.elevation=1e9",
+       "scene key 'camera.orbit.elevation': must be in [-90, 90] degrees"},
+      {"camera.orbit.radius=0", "scene key 'camera.orbit.radius': must be > 0"},
+      {"camera.orbit.radius=1e-13",
+       "scene key 'camera.orbit.radius': 1e-13 is outside [1e-12, 1e18], the lengths float math on the GPU can hold"},
+      {"camera.orbit.radius=.nan", "scene key 'camera.orbit.radius': must be > 0"},
+      {"camera.orbit.radius=.inf",
+       "scene key 'camera.orbit.radius': inf is outside [1e-12, 1e18], the lengths float math on the GPU can hold"},
+      {"bricks.per_axis=0", "scene key 'bricks.per_axis': must be in [1, 64]"},
+      {"render.backend=auto", "scene key 'render.backend': expected osmesa or egl, got 'auto'"},
+      {"render.sample_spacing=0",
+       "scene key 'render.sample_spacing': must be in [0.01, 100] voxels"},
+      {"render.block_cells=0", "scene key 'render.block_cells': must be >= 1"},
+      {"render.ray_block_cells=0", "scene key 'render.ray_block_cells': must be >= 1"},
+      {"render.method=auto", "scene key 'render.method': expected slicing or raycast, got 'auto'"},
+      {"render.ert_threshold=0",
+       "scene key 'render.ert_threshold': must be in (0, 1] (1: no early termination)"},
+      {"render.shading_ambient=-1", "scene key 'render.shading_ambient': must be in [0, 100]"},
+      {"render.shading_diffuse=-1", "scene key 'render.shading_diffuse': must be in [0, 100]"},
+      {"render.shading_specular=-1", "scene key 'render.shading_specular': must be in [0, 100]"},
+      {"render.shading_shininess=0", "scene key 'render.shading_shininess': must be in [1, 1000]"},
+      {"render.adaptive_tolerance=0", "scene key 'render.adaptive_tolerance': must be in (0, 1]"},
+      {"adaptive.tolerance=-1", "scene key 'adaptive.tolerance': must be in [0, 100] percent"},
+      {"adaptive.blocks=0",
+       "scene key 'adaptive.blocks': must be a power of two in [1, 256], got 0"},
+      {"adaptive.steps=auto", "scene key 'adaptive.steps': expected own or fine, got 'auto'"},
+      {"compositing.strategy=auto",
+       "scene key 'compositing.strategy': expected direct, binary-swap or radix-k, got 'auto'"},
+      {"compositing.radix=0", "scene key 'compositing.radix': must be >= 2"},
+      {"compositing.precision=auto",
+       "scene key 'compositing.precision': expected float or rgba8, got 'auto'"},
+      {"time.step=1",
+       "scene key 'time.step': 1 is out of range: the scene has 1 time step(s), 0 ... 0"},
+      {"time.cache_mib=-1", "scene key 'time.cache_mib': must be in [0, 1e9] MiB"},
+      {"limits.memory_mib=0", "scene key 'limits.memory_mib': must be auto or in (0, 1e12] MiB"},
+      {"glow.core_radius=0",
+       "scene key 'glow.core_radius': 0 is outside [1e-12, 1e18], the lengths float math on the GPU can hold"},
+      {"glow.intensity=-1", "scene key 'glow.intensity': must be in [0, 1e30]"},
+      {"glow.tone_map=auto", "scene key 'glow.tone_map': expected none or exponential, got 'auto'"},
+      {"glow.exposure=0", "scene key 'glow.exposure': must be in (0, 1e30]"},
+      {"glow.box=abc",
+       "scene key 'glow.box': expected auto or [[x0, y0, z0], [x1, y1, z1]] (line 1)"},
+      {"glow.box=[[0,0,0],[0,1,1]]",
+       "scene key 'glow.box': needs lo < hi on every axis (by at least 1e-12) (line 1)"},
+      {"reference.step=0", "scene key 'reference.step': must be in (0, 1] voxels"},
+      {"reference.field=auto",
+       "scene key 'reference.field': expected original or adaptive, got 'auto'"},
+      {"glow.box=[[2e18,0,0],[3e18,1,1]]",
+       "scene key 'glow.box': 2e+18 is beyond +-1e18, which float math on the GPU cannot hold (it squares distances)"},
+      {"transfer.range=[0,1e39]",
+       "scene key 'transfer.range': 1e+39 is beyond float's range (+-3.4e38)"},
+      {"volume.spacing=[1e16,1,1]",
+       "scene key 'volume.spacing (times volume.dims - 1: the volume's extent)': 1.27e+18 is outside [1e-12, 1e18], the lengths float math on the GPU can hold"},
+      {"particles.samples_per_pass=5", "scene key 'particles.samples_per_pass': must be 4 or 8"},
+      {"adaptive.blocks=3",
+       "scene key 'adaptive.blocks': must be a power of two in [1, 256], got 3"},
+      {"particles.count=2147483649",
+       "scene key 'particles.count': must be auto or in [0, 2147483648], got 2147483649"},
+      {"particles.color=[0.5,-0.1,0]", "scene key 'particles.color': entries must be in [0, 1]"},
+      {"volume.dims=[16,2.5,16]", "scene key 'volume.dims': entries must be integers in [2, 2^20]"},
+      {"limits.memory_mib=1e13", "scene key 'limits.memory_mib': must be auto or in (0, 1e12] MiB"},
+      {"particles.step=.inf", "scene key 'particles.step': must be a finite number > 0"},
+      {"particles.slice_spacing=1e-9",
+       "scene key 'particles.slice_spacing': must be in [0.05, 1] (units of h), got 1e-9"},
+      {"camera.fov=180", "scene key 'camera.fov': must be in (0, 180) degrees"},
+      {"particles.threshold=1", "scene key 'particles.threshold': must be in (0, 1)"},
+  };
+  for (auto [set, message] : cases)
+    EXPECT_EQ(inputErrorOf([&] { loadScene("", {set}); }), message) << set;
+}
+
+// Values each check of a key refuses (its bounds from outside, a list's neighbours, a non-integer
+// or a non-power of two inside the interval); `integral`: the key is read as an integer.
+std::vector<double> refusedBy(const Allowed& a, bool integral) {
+  if (a.isList()) return {a.list().back() + 1, a.list().front() + 1};
+  auto beyond = [&](double bound, double dir) {
+    return integral ? bound + dir : bound + dir * (bound == 0 ? 0.5 : std::abs(bound) * 0.5);
+  };
+  std::vector<double> out;
+  if (std::isfinite(a.lo())) out.push_back(a.loOpen() ? a.lo() : beyond(a.lo(), -1));
+  if (std::isfinite(a.hi()))
+    out.push_back(a.hiOpen() ? a.hi() : beyond(a.hi(), 1));
+  else if (a.hiOpen())
+    out.push_back(INFINITY);
+  if (std::isfinite(a.lo()) && std::isfinite(a.hi())) {
+    const double mid = std::floor((a.lo() + a.hi()) / 2) + 1;
+    out.push_back(integral ? mid : mid + 0.25);
+  }
+  return out;
+}
+
+std::string yamlNumber(double v) {
+  if (std::isinf(v)) return v > 0 ? ".inf" : "-.inf";
+  char b[40];
+  std::snprintf(b, sizeof b, "%.17g", v);
+  return b;
+}
+
+std::string shortNumber(double v) {
+  char b[40];
+  std::snprintf(b, sizeof b, "%g", v);
+  return b;
+}
+
+// The first of `checks` that refuses `value` (entries, or the length, of a list), with its
+// message; nullptr if none does.
+const Check* firstRefusing(const std::vector<Check>& checks, const std::vector<double>& value,
+                           std::string& shown) {
+  for (const Check& c : checks) {
+    if (c.of_length) {
+      const double length =
+          std::sqrt(value[0] * value[0] + value[1] * value[1] + value[2] * value[2]);
+      if (!c.allowed.admits(length)) return shown = shortNumber(length), &c;
+    } else {
+      for (double v : value)
+        if (!c.allowed.admits(v)) return shown = shortNumber(v), &c;
+    }
+  }
+  return nullptr;
+}
+
+// A value one of a key's checks refuses fails with the message of the first of the key's checks
+// that refuses it, worded by the row: the parser applies each row's checks, in the row's order.
+TEST(SceneKeys, RangeErrorsAreTheTablesMessages) {
+  int tested = 0;
+  for (const SceneKey& k : sceneKeys()) {
+    std::visit(
+        [&](const auto& type) {
+          using Type = std::decay_t<decltype(type)>;
+          if constexpr (std::is_same_v<Type, Vector<glm::dvec3>> ||
+                        std::is_same_v<Type, Vector<glm::ivec3>>) {
+            // One entry refused, the others the default's or 1 (the length: a vector along x).
+            const YAML::Node d = YAML::Load(k.default_yaml);
+            auto other = [&](int i) { return d.IsSequence() ? d[i].as<double>() : 1.0; };
+            for (const Check& c : type.checks)
+              for (double v : refusedBy(c.allowed, false)) {
+                std::vector<double> value = {v, other(1), other(2)};
+                if (c.of_length) value = {v, 0, 0};
+                std::string shown;
+                const Check* refusing = firstRefusing(type.checks, value, shown);
+                if (!refusing) continue;
+                const std::string set = std::string(k.path) + "=[" + yamlNumber(value[0]) + ", " +
+                                        yamlNumber(value[1]) + ", " + yamlNumber(value[2]) + "]";
+                EXPECT_EQ(inputErrorOf([&] { loadScene("", {set}); }),
+                          refusing->error(k.path, shown, ""))
+                    << set;
+                ++tested;
+              }
+          } else if constexpr (requires { type.checks; } && !std::is_same_v<Type, Structured>) {
+            using T = std::decay_t<decltype(type.field(std::declval<Scene&>()))>;
+            constexpr bool integral = std::is_integral_v<T>;
+            for (const Check& c : type.checks)
+              for (double v : refusedBy(c.allowed, integral)) {
+                std::string shown;
+                const Check* refusing = firstRefusing(type.checks, {v, v, v}, shown);
+                if (!refusing || !refusing->says) continue;  // image size: its own message
+                const std::string text = integral ? std::to_string((long long)v) : yamlNumber(v);
+                if (integral) shown = text;
+                const std::string set = std::string(k.path) + "=" + text;
+                EXPECT_EQ(inputErrorOf([&] { loadScene("", {set}); }),
+                          refusing->error(k.path, shown, text))
+                    << set;
+                ++tested;
+              }
+          }
+        },
+        k.type);
+  }
+  EXPECT_GE(tested, 100);
+}
+
+TEST(SceneKeys, AllowedValues) {
+  const Allowed half_open("in (0, 1]");
+  EXPECT_FALSE(half_open.admits(0));
+  EXPECT_TRUE(half_open.admits(1e-300));
+  EXPECT_TRUE(half_open.admits(1));
+  EXPECT_FALSE(half_open.admits(NAN));
+  EXPECT_EQ(half_open.range(), "(0, 1]");
+  const Allowed fraction("in [1/64, 8]");
+  EXPECT_TRUE(fraction.admits(1.0 / 64));
+  EXPECT_FALSE(fraction.admits(0.0156));
+  EXPECT_EQ(fraction.describe(), "in [1/64, 8]");
+  const Allowed integers("integers in [2, 2^20]");
+  EXPECT_TRUE(integers.admits(1 << 20));
+  EXPECT_FALSE(integers.admits((1 << 20) + 1));
+  EXPECT_FALSE(integers.admits(2.5));
+  const Allowed powers("a power of two in [1, 256]");
+  for (double v : {1, 2, 64, 256}) EXPECT_TRUE(powers.admits(v)) << v;
+  for (double v : {0, 3, 96, 512}) EXPECT_FALSE(powers.admits(v)) << v;
+  EXPECT_EQ(powers.describe(), "power of two in [1, 256]");
+  const Allowed listed("4 or 8");
+  EXPECT_TRUE(listed.admits(4) && listed.admits(8));
+  EXPECT_FALSE(listed.admits(6));
+  EXPECT_TRUE(Allowed("> 0").admits(INFINITY));                   // a half-line holds +inf ...
+  EXPECT_FALSE(Allowed("a finite number > 0").admits(INFINITY));  // ... unless it says finite
+  EXPECT_FALSE(Allowed(">= 1").admits(0.5));
+  EXPECT_EQ(Allowed("a finite number > 0").within(Allowed("in [1e-12, 1e18]")).describe(),
+            "in [1e-12, 1e18]");
+  for (const char* bad : {"in [1, 0]", "in [0 1]", "4", "between 0 and 1", "in [0, 1]x", ">= x"})
+    EXPECT_THROW(Allowed{bad}, std::logic_error) << bad;
+  // The table's float limits are common/box.h's.
+  const Allowed& length = sceneKeyChecks("volume.spacing").front().allowed;
+  EXPECT_EQ(length.lo(), kMinLength);
+  EXPECT_EQ(length.hi(), kMaxCoordinate);
+  const Allowed& coordinate = sceneKeyChecks("camera.position").front().allowed;
+  EXPECT_EQ(coordinate.lo(), -kMaxCoordinate);
+  EXPECT_EQ(coordinate.hi(), kMaxCoordinate);
+}
+
+// Every row's messages fill in (no unknown {name}), and the docs say what every key takes.
+TEST(SceneKeys, EveryRowRendersItsMessagesAndValues) {
+  for (const SceneKey& k : sceneKeys()) {
+    for (const Check& c : sceneKeyChecks(k.path))
+      EXPECT_NO_THROW(c.error(k.path, "1", "1")) << k.path;
+    std::visit(
+        [&](const auto& type) {
+          if constexpr (requires {
+                          type.names;
+                          type.says;
+                        })
+            EXPECT_NO_THROW(choiceError(k.path, type.says, {"a", "b"}, "c")) << k.path;
+        },
+        k.type);
+    const std::string values = sceneKeyValues(k);
+    EXPECT_FALSE(values.empty()) << k.path;
+    EXPECT_NE(sceneKeysMarkdown().find("| `" + std::string(k.path) + "` | `" + k.default_yaml +
+                                       "` | " + values + " | "),
+              std::string::npos)
+        << k.path;
+  }
+  EXPECT_EQ(sceneKeyValues(sceneKey("render.ert_threshold")), "number in (0, 1]");
+  EXPECT_EQ(sceneKeyValues(sceneKey("particles.spacing")), "number in [1e-12, 1e18]");
+  EXPECT_EQ(sceneKeyValues(sceneKey("bricks.per_axis")), "`auto` or integer in [1, 64]");
+  EXPECT_EQ(sceneKeyValues(sceneKey("particles.samples_per_pass")), "4 or 8");
+  EXPECT_EQ(sceneKeyValues(sceneKey("adaptive.blocks")), "power of two in [1, 256]");
+  EXPECT_EQ(sceneKeyValues(sceneKey("camera.up")), "3 numbers in [-1e18, 1e18], length >= 1e-12");
+  EXPECT_EQ(sceneKeyValues(sceneKey("render.method")), "`slicing` or `raycast`");
+  EXPECT_EQ(sceneKeyValues(sceneKey("transfer.preintegrated")), "`auto`, `true` or `false`");
 }
 
 }  // namespace
