@@ -5,10 +5,9 @@
 // four readings of "E <= x %":
 //   A: E <= x * sum v^2          B: E <= x^2 * n * R^2       (R: the value range, n: samples)
 //   C: E <= x * n * R^2          D: E <= x^2 * sum v^2       (the one sortlast uses)
-// Build and run from the repository root (a raw uint8 cube of N^3, optionally only z0 .. z0+nz-1):
-//   g++ -O2 -std=c++20 -ffp-contract=off -I. bench/tolerance_definitions.cpp \
-//       -o /tmp/tolerance_definitions -lpthread
-//   /tmp/tolerance_definitions ../shared/data/inviwo_engine_256x256x256_uint8.raw 256 [z0 nz]
+// Built with the project (target tolerance_definitions, bench/CMakeLists.txt); run from the
+// repository root on a raw uint8 cube of N^3, optionally only z0 .. z0+nz-1:
+//   build/bench/tolerance_definitions ../shared/data/inviwo_engine_256x256x256_uint8.raw 256 [z0 nz]
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
