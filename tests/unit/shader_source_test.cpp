@@ -12,6 +12,7 @@
 #include "tests/unit/glsl/glsl_files.h"  // generated from tests/unit/glsl/*.glsl
 #include "worker/gl/glsl_files.h"
 #include "worker/glow/glsl_files.h"
+#include "worker/particles/glsl_files.h"
 #include "worker/volume/glsl_files.h"
 
 namespace sortlast {
@@ -71,8 +72,9 @@ TEST(ShaderSource, LocatesMesaAndNvidiaLogLines) {
 // semicolons, ??=, a tab, no final newline), crlf_test.glsl carriage returns; the others are one
 // file of each library that has them.
 TEST(EmbeddedGlsl, TextIsTheFileByteForByte) {
-  for (const GlslFile* f : {&glsl::escapes_test, &glsl::crlf_test, &glsl::fullscreen_vert,
-                            &glsl::glow_segment, &glsl::raycast_march_frag}) {
+  for (const GlslFile* f :
+       {&glsl::escapes_test, &glsl::crlf_test, &glsl::fullscreen_vert, &glsl::glow_segment,
+        &glsl::metaball_common, &glsl::raycast_march_frag}) {
     std::ifstream in(std::string(SORTLAST_SOURCE_DIR) + "/" + std::string(f->path),
                      std::ios::binary);
     ASSERT_TRUE(in) << f->path;
