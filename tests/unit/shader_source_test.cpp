@@ -13,6 +13,7 @@
 #include "worker/gl/glsl_files.h"
 #include "worker/glow/glsl_files.h"
 #include "worker/particles/glsl_files.h"
+#include "worker/surfaces/glsl_files.h"
 #include "worker/volume/glsl_files.h"
 
 namespace sortlast {
@@ -70,11 +71,11 @@ TEST(ShaderSource, LocatesMesaAndNvidiaLogLines) {
 // The embedded text is the file's, byte for byte: escapes_test.glsl holds what would end a raw
 // string, trip CMake or make a trigraph (quotes, backslashes, raw-string delimiters, ${...},
 // semicolons, ??=, a tab, no final newline), crlf_test.glsl carriage returns; the others are one
-// file of each library that has them.
+// file of each library.
 TEST(EmbeddedGlsl, TextIsTheFileByteForByte) {
   for (const GlslFile* f :
        {&glsl::escapes_test, &glsl::crlf_test, &glsl::fullscreen_vert, &glsl::glow_segment,
-        &glsl::metaball_common, &glsl::raycast_march_frag}) {
+        &glsl::metaball_common, &glsl::subdiv_limit_frag, &glsl::raycast_march_frag}) {
     std::ifstream in(std::string(SORTLAST_SOURCE_DIR) + "/" + std::string(f->path),
                      std::ios::binary);
     ASSERT_TRUE(in) << f->path;

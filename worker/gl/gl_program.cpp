@@ -21,20 +21,6 @@ std::string infoLog(unsigned object, GetIv get_iv, GetLog get_log) {
   return log.substr(0, log.find('\0'));
 }
 
-unsigned compileText(const GlApi& gl, GLenum type, const char* src) {
-  unsigned s = gl.CreateShader(type);
-  gl.ShaderSource(s, 1, &src, nullptr);
-  gl.CompileShader(s);
-  int ok = 0;
-  gl.GetShaderiv(s, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    const std::string log = infoLog(s, gl.GetShaderiv, gl.GetShaderInfoLog);
-    gl.DeleteShader(s);
-    throw std::runtime_error("GLSL compile error: " + log);
-  }
-  return s;
-}
-
 unsigned compile(const GlApi& gl, GLenum type, const ShaderSource& source) {
   const std::string text = source.text();
   const char* src = text.c_str();
@@ -88,21 +74,6 @@ unsigned linkComputeProgram(const GlApi& gl, const ShaderSource& cs) {
   const unsigned p = gl.CreateProgram();
   gl.AttachShader(p, c);
   return link(gl, p, {c}, cs.paths());
-}
-
-unsigned linkProgram(const GlApi& gl, const char* vs, const char* fs) {
-  unsigned p = gl.CreateProgram();
-  unsigned v = compileText(gl, GL_VERTEX_SHADER, vs), f = compileText(gl, GL_FRAGMENT_SHADER, fs);
-  gl.AttachShader(p, v);
-  gl.AttachShader(p, f);
-  return link(gl, p, {v, f}, "inline text");
-}
-
-unsigned linkComputeProgram(const GlApi& gl, const char* cs) {
-  unsigned p = gl.CreateProgram();
-  unsigned c = compileText(gl, GL_COMPUTE_SHADER, cs);
-  gl.AttachShader(p, c);
-  return link(gl, p, {c}, "inline text");
 }
 
 GlProgram& GlProgram::operator=(GlProgram&& o) noexcept {

@@ -11,10 +11,6 @@ namespace sortlast {
 // located), or "GLSL link error (the files): log".
 unsigned linkProgram(const GlApi& gl, const ShaderSource& vertex, const ShaderSource& fragment);
 unsigned linkComputeProgram(const GlApi& gl, const ShaderSource& compute);
-// The same from whole texts (no file names in errors): for the renderers whose GLSL is still in C++
-// strings, until they move to .glsl files.
-unsigned linkProgram(const GlApi& gl, const char* vertex_src, const char* fragment_src);
-unsigned linkComputeProgram(const GlApi& gl, const char* compute_src);
 
 // A linked program, deleted with its owner (a renderer's member; moves, never copies).
 class GlProgram {
