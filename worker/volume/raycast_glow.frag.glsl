@@ -198,3 +198,17 @@ void glowCatchUp(inout vec4 acc) {
   }
   glowFlushDue(acc);
 }
+// The glow of the ray u_eye + t dir through this brick, begun: its span (up to the particle surface
+// at pixel px), the longest piece whose T may change and the first emitter plane, and the part in
+// front of the brick's blocks, [g_t, t0] (nothing closes: no piece is pending yet). A ray that
+// misses the blocks (t0 >= t1) goes through the march as every other (no early return: llvmpipe
+// would run that return's closed form, masked, for every pixel), its span one piece at T = 1.
+void glowBegin(vec3 dir, ivec2 px, float t0, float t1) {
+  g_dir = dir;
+  if (!glowSpan(u_eye, dir, u_glow_lo, u_glow_hi, u_glow_hi_open, g_t, g_end)) g_end = g_t;
+  g_pend = g_t;
+  if (surfaceAt(px)) g_end = min(g_end, texelFetch(u_surface, px, 0).x);
+  g_lmax = glowRayLength(u_eye, dir, g_t, g_end, g_tx);
+  g_tlim = min(g_t + g_lmax, g_tx);
+  if (t0 < t1) glowTo(t0, 1.0);
+}

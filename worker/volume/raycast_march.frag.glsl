@@ -145,10 +145,15 @@ int firstSample(float t) {
   return k;
 }
 
-void main() {
+// The ray through this pixel's centre (Camera::rayDirection), unit.
+vec3 pixelRay() {
   vec2 s = vec2(gl_FragCoord.x * u_pixel_scale.x - 1.0, 1.0 - gl_FragCoord.y * u_pixel_scale.y);
-  vec3 dir = normalize(u_forward + s.x * u_right + s.y * u_up);
-  ivec3 nb = textureSize(u_skip, 0);
+  return normalize(u_forward + s.x * u_right + s.y * u_up);
+}
+
+// Where the ray enters and leaves the brick's block grid (nb blocks per axis), from t >= 0:
+// (t0, t1), empty if t0 >= t1. Sets g_inv and g_step for the ray.
+vec2 brickSpan(vec3 dir, ivec3 nb) {
   float t0 = 0.0, t1 = 1e30;
   for (int a = 0; a < 3; ++a) {
     // A zero component gets a tiny one: its slabs then span (almost) the whole line, as they should.
@@ -158,148 +163,165 @@ void main() {
     t0 = max(t0, min(ta, tb));
     t1 = min(t1, max(ta, tb));
   }
-  // An opaque particle surface in this brick ends the ray; its colour is already in the target.
-  ivec2 px = ivec2(gl_FragCoord.xy);
-  if (u_has_surface != 0 && all(greaterThanEqual(px, u_surface_rect.xy)) &&
-      all(lessThan(px, u_surface_rect.xy + u_surface_rect.zw)))
-    t1 = min(t1, texelFetch(u_surface, px, 0).x);
-  vec4 acc = vec4(0.0);
-#ifdef GLOW
-  g_dir = dir;
-  if (!glowSpan(u_eye, dir, u_glow_lo, u_glow_hi, u_glow_hi_open, g_t, g_end)) g_end = g_t;
-  g_pend = g_t;
-  if (u_has_surface != 0 && all(greaterThanEqual(px, u_surface_rect.xy)) &&
-      all(lessThan(px, u_surface_rect.xy + u_surface_rect.zw)))
-    g_end = min(g_end, texelFetch(u_surface, px, 0).x);
-  g_lmax = glowRayLength(u_eye, dir, g_t, g_end, g_tx);
-  g_tlim = min(g_t + g_lmax, g_tx);
-  // In front of the volume (nothing closes: no piece is pending yet). A ray that misses the
-  // volume takes the same path below, its span one piece at T = 1 (no early return: llvmpipe
-  // would run that return's closed form, masked, for every pixel).
-  if (t0 < t1) glowTo(t0, 1.0);
-#else
-  if (!(t0 < t1)) discard;
-#endif
+  return vec2(t0, t1);
+}
 
-  // The block holding t0 on each axis: the first slab, in ray order, that the ray leaves after t0.
+// The block holding t0 on each axis: the first slab, in ray order, that the ray leaves after t0.
+ivec3 firstBlock(float t0, ivec3 nb) {
   ivec3 idx;
   for (int a = 0; a < 3; ++a) {
     int i = g_step[a] > 0 ? 0 : nb[a] - 1;
     while (i + g_step[a] >= 0 && i + g_step[a] < nb[a] && exitT(a, i) <= t0) i += g_step[a];
     idx[a] = i;
   }
-  int k = firstSample(t0);
+  return idx;
+}
+
+// Where a ray's walk through the brick is: block idx, lattice sample k, distance t; and (the
+// pre-integrated variant) the value v_back at (float(k_back) - 0.5) * delta, the front value of
+// sample k_back.
+struct Walk {
+  ivec3 idx;
+  int k;
+  int k_back;
+  float v_back;
+  float t;
+};
+
+// The lattice samples w.k .. k_end - 1 that a non-empty block (or cube of blocks) owns, taken with
+// step multiple m (every sample for m = 1, else the anchors), front to back into acc. w.k ends at
+// k_end, or past the sample after which the ray stopped: its opacity reached u_ert, or (GLOW_STOP)
+// a glow piece is to be closed first.
+void sampleBlock(inout vec4 acc, inout Walk w, int k_end, int m, vec3 dir) {
 #ifdef PREINTEGRATED
-  int k_back = k - 1;  // v_back holds the value at (float(k_back) - 0.5) * delta; none yet
-  float v_back = 0.0;
+  if (m == 1) {
+    // The front value of sample w.k: the back value of sample w.k - 1 if that was just taken.
+    float vf = w.k == w.k_back ? w.v_back : sampleVolume(u_eye + (float(w.k) - 0.5) * u_delta * dir);
+    for (; w.k < k_end; ++w.k) {
+      float vb = sampleVolume(u_eye + (float(w.k) + 0.5) * u_delta * dir);
+      compositeSegment(acc, vf, vb, w.k, u_delta, dir, (float(w.k) + 0.5) * u_delta);
+      vf = vb;
+      if (acc.a >= u_ert || GLOW_STOP) { ++w.k; break; }
+    }
+    w.k_back = w.k;
+    w.v_back = vf;
+  } else {
+    // An anchor's segment: its steps w.k .. next - 1, from (w.k - 1/2) delta to (next - 1/2) delta.
+    float vf = w.k == w.k_back ? w.v_back : sampleVolume(u_eye + (float(w.k) - 0.5) * u_delta * dir);
+    while (w.k < k_end) {
+      int anchor = (w.k + m / 2) / m * m;
+      int next = min(anchor - m / 2 + m, k_end);
+      float vb = sampleVolume(u_eye + (float(next) - 0.5) * u_delta * dir);
+      compositeSegment(acc, vf, vb, anchor, float(next - w.k) * u_delta, dir, (float(next) - 0.5) * u_delta);
+      vf = vb;
+      w.k = next;
+      if (acc.a >= u_ert || GLOW_STOP) break;
+    }
+    w.k_back = w.k;
+    w.v_back = vf;
+  }
+#else
+  if (m == 1) {  // every sample (the same arithmetic as below with m = 1, without its cost)
+    for (; w.k < k_end; ++w.k) {
+      composite(acc, sampleAt(u_eye + float(w.k) * u_delta * dir), u_delta, (float(w.k) + 0.5) * u_delta);
+      if (acc.a >= u_ert) break;
+      if (GLOW_STOP) { ++w.k; break; }
+    }
+  } else {
+    while (w.k < k_end) {
+      int anchor = (w.k + m / 2) / m * m;
+      int next = min(anchor - m / 2 + m, k_end);
+      composite(acc, sampleAt(u_eye + float(anchor) * u_delta * dir), float(next - w.k) * u_delta,
+                (float(next) - 0.5) * u_delta);
+      w.k = next;
+      if (acc.a >= u_ert || GLOW_STOP) break;
+    }
+  }
 #endif
-  float t = t0;
-#ifdef GLOW
-  // llvmpipe runs 8-16 pixels in lock-step and every if's body, masked, whenever the group
-  // reaches it, so the closed form runs as often as the group passes one of its call sites,
-  // taken or not. It has one site (glowCatchUp at this loop's foot), passed once per round;
-  // a round ends when a piece closes (the sample and block loops stop), so a group runs it
-  // 1 + (most closures of its rays) times. Stages: 0 the march, 1 behind the volume, 2 the
-  // last piece, 3 done.
-  int stage = t0 < t1 ? 0 : 1;
-  do {
-  if (stage == 0) {
-  bool more = false;  // stopped to integrate a closed piece; the march resumes at sample k
-#endif
-  while (t < t1 && acc.a < u_ert) {
-    uvec2 info = texelFetch(u_skip, idx, 0).rg;
+}
+
+// The walk over the brick's blocks (nb per axis) from w up to t1, front to back into acc (the loop
+// described at the top). Returns true if it stopped for a closed glow piece to be integrated (the
+// GLOW variant), to go on from w.
+bool march(inout vec4 acc, inout Walk w, float t1, ivec3 nb, vec3 dir) {
+  bool more = false;
+  while (w.t < t1 && acc.a < u_ert) {
+    uvec2 info = texelFetch(u_skip, w.idx, 0).rg;
     // Every block within d - 1 of this one has its class: the ray crosses that cube at once (d = 1:
     // this block alone), jumping it if empty, else sampling it with one m.
-    ivec3 last = clamp(idx + g_step * (int(info.r) - 1), ivec3(0), nb - 1);
+    ivec3 last = clamp(w.idx + g_step * (int(info.r) - 1), ivec3(0), nb - 1);
     vec3 te = vec3(exitT(0, last.x), exitT(1, last.y), exitT(2, last.z));
     float tb = min(min(te.x, te.y), min(te.z, t1));
     int k_end = firstSample(tb);  // the first lattice sample this block (or cube) does not own
-    if (info.g != 0u) {
-#ifdef ADAPTIVE
-      g_block = texelFetch(u_blocks, idx, 0);
-      g_origin = vec3(idx) * u_block_cells;
-      int m = u_own_steps != 0 ? int(1.0 / g_block.w + 0.5) : 1;  // 2^level
-#else
-      int m = 1 << int(info.g - 1u);
-#endif
-#ifdef PREINTEGRATED
-      if (m == 1) {
-        // The front value of sample k: the back value of sample k - 1 if that was just taken.
-        float vf = k == k_back ? v_back : sampleVolume(u_eye + (float(k) - 0.5) * u_delta * dir);
-        for (; k < k_end; ++k) {
-          float vb = sampleVolume(u_eye + (float(k) + 0.5) * u_delta * dir);
-          compositeSegment(acc, vf, vb, k, u_delta, dir, (float(k) + 0.5) * u_delta);
-          vf = vb;
-          if (acc.a >= u_ert || GLOW_STOP) { ++k; break; }
-        }
-        k_back = k;
-        v_back = vf;
-      } else {
-        // An anchor's segment: its steps k .. next - 1, from (k - 1/2) delta to (next - 1/2) delta.
-        float vf = k == k_back ? v_back : sampleVolume(u_eye + (float(k) - 0.5) * u_delta * dir);
-        while (k < k_end) {
-          int anchor = (k + m / 2) / m * m;
-          int next = min(anchor - m / 2 + m, k_end);
-          float vb = sampleVolume(u_eye + (float(next) - 0.5) * u_delta * dir);
-          compositeSegment(acc, vf, vb, anchor, float(next - k) * u_delta, dir, (float(next) - 0.5) * u_delta);
-          vf = vb;
-          k = next;
-          if (acc.a >= u_ert || GLOW_STOP) break;
-        }
-        k_back = k;
-        v_back = vf;
-      }
-#else
-      if (m == 1) {  // every sample (the same arithmetic as below with m = 1, without its cost)
-        for (; k < k_end; ++k) {
-          composite(acc, sampleAt(u_eye + float(k) * u_delta * dir), u_delta, (float(k) + 0.5) * u_delta);
-          if (acc.a >= u_ert) break;
-          if (GLOW_STOP) { ++k; break; }
-        }
-      } else {
-        while (k < k_end) {
-          int anchor = (k + m / 2) / m * m;
-          int next = min(anchor - m / 2 + m, k_end);
-          composite(acc, sampleAt(u_eye + float(anchor) * u_delta * dir), float(next - k) * u_delta,
-                    (float(next) - 0.5) * u_delta);
-          k = next;
-          if (acc.a >= u_ert || GLOW_STOP) break;
-        }
-      }
-#endif
-    }
+    if (info.g != 0u) sampleBlock(acc, w, k_end, blockStep(w.idx, info.g), dir);
 #ifdef GLOW
     else if (acc.a < u_ert) glowTo((float(k_end) - 0.5) * u_delta, 1.0 - acc.a);  // jumped: T constant
-    // A piece closed inside the block: integrate it, then go on from sample k.
-    if (g_hit && k < k_end && acc.a < u_ert) { more = true; break; }
+    // A piece closed inside the block: integrate it, then go on from sample w.k.
+    if (g_hit && w.k < k_end && acc.a < u_ert) { more = true; break; }
 #endif
-    k = k_end;
+    w.k = k_end;
     // Into the block holding tb: on each axis, past every slab the ray has left by then.
     bool inside = true;
     for (int a = 0; a < 3; ++a) {
-      while (idx[a] >= 0 && idx[a] < nb[a] && exitT(a, idx[a]) <= tb) idx[a] += g_step[a];
-      inside = inside && idx[a] >= 0 && idx[a] < nb[a];
+      while (w.idx[a] >= 0 && w.idx[a] < nb[a] && exitT(a, w.idx[a]) <= tb) w.idx[a] += g_step[a];
+      inside = inside && w.idx[a] >= 0 && w.idx[a] < nb[a];
     }
     if (!inside) break;
-    t = tb;
+    w.t = tb;
 #ifdef GLOW
     if (g_hit || g_due) { more = true; break; }
 #endif
   }
+  return more;
+}
+
 #ifdef GLOW
-  if (!more) stage = 1;
-  }
-  if (stage == 1 && !g_hit && !g_due) {
-    if (acc.a < u_ert) glowTo(g_end, 1.0 - acc.a);  // the rest of the brick, behind the volume
-    stage = 2;
-  }
-  if (stage == 2 && !g_hit && !g_due) {
-    glowClose();  // the last piece
-    stage = 3;
-  }
-  glowCatchUp(acc);  // the one place the closed form runs
+// The march with the glow: llvmpipe runs 8-16 pixels in lock-step and every if's body, masked,
+// whenever the group reaches it, so the closed form runs as often as the group passes one of its
+// call sites, taken or not. It has one site (glowCatchUp at this loop's foot), passed once per
+// round; a round ends when a piece closes (the sample and block loops stop), so a group runs it
+// 1 + (most closures of its rays) times. Stages: 0 the march, 1 behind the volume, 2 the last
+// piece, 3 done.
+void marchWithGlow(inout vec4 acc, inout Walk w, float t0, float t1, ivec3 nb, vec3 dir) {
+  int stage = t0 < t1 ? 0 : 1;
+  do {
+    if (stage == 0) {
+      if (!march(acc, w, t1, nb, dir)) stage = 1;
+    }
+    if (stage == 1 && !g_hit && !g_due) {
+      if (acc.a < u_ert) glowTo(g_end, 1.0 - acc.a);  // the rest of the brick, behind the volume
+      stage = 2;
+    }
+    if (stage == 2 && !g_hit && !g_due) {
+      glowClose();  // the last piece
+      stage = 3;
+    }
+    glowCatchUp(acc);  // the one place the closed form runs
   } while (stage < 3);
+}
+#endif
+
+void main() {
+  vec3 dir = pixelRay();
+  ivec3 nb = textureSize(u_skip, 0);
+  vec2 span = brickSpan(dir, nb);
+  float t0 = span.x, t1 = span.y;
+  // An opaque particle surface in this brick ends the ray; its colour is already in the target.
+  ivec2 px = ivec2(gl_FragCoord.xy);
+  if (surfaceAt(px)) t1 = min(t1, texelFetch(u_surface, px, 0).x);
+  vec4 acc = vec4(0.0);
+#ifdef GLOW
+  glowBegin(dir, px, t0, t1);
+#else
+  if (!(t0 < t1)) discard;
+#endif
+  ivec3 idx = firstBlock(t0, nb);
+  int k = firstSample(t0);
+  Walk w = Walk(idx, k, k - 1, 0.0, t0);  // no back value yet
+#ifdef GLOW
+  marchWithGlow(acc, w, t0, t1, nb, dir);
+#else
+  march(acc, w, t1, nb, dir);
 #endif
   frag = acc;
 }
-

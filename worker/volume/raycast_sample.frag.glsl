@@ -1,5 +1,6 @@
-// The ray caster's fragment shader, its first own chunk: the uniforms, and how a sample is read
-// (sampleVolume, per variant), classified (classify) and evaluated (sampleAt).
+// The ray caster's fragment shader, its first own chunk: the uniforms, where the particle surface
+// is known (surfaceAt), a block's step multiple (blockStep), and how a sample is read
+// (sampleVolume; both per variant), classified (classify) and evaluated (sampleAt).
 // raycast_march.frag.glsl describes the whole and lists the chunks.
 uniform sampler3D u_volume;
 uniform sampler1D u_table;
@@ -24,6 +25,12 @@ out vec4 frag;
 vec3 g_inv;  // 1 / ray direction, per axis
 ivec3 g_step;
 
+// Whether u_surface holds the particle surface at pixel px.
+bool surfaceAt(ivec2 px) {
+  return u_has_surface != 0 && all(greaterThanEqual(px, u_surface_rect.xy)) &&
+         all(lessThan(px, u_surface_rect.xy + u_surface_rect.zw));
+}
+
 #ifdef ADAPTIVE
 uniform sampler3D u_blocks;     // per block (cell of this brick): atlas offset xyz, 2^-level
 uniform vec3 u_index_scale;     // sample index relative to cell (0,0,0)'s block origin
@@ -45,10 +52,19 @@ float sampleVolume(vec3 p) {
                      u_block_cells * g_block.w);
   return texture(u_volume, (g_block.xyz + local + 0.5) * u_atlas_inv).r;
 }
+// The step multiple of non-empty block idx (class g): 2^level, its level's; the block's table
+// texel becomes the current one.
+int blockStep(ivec3 idx, uint g) {
+  g_block = texelFetch(u_blocks, idx, 0);
+  g_origin = vec3(idx) * u_block_cells;
+  return u_own_steps != 0 ? int(1.0 / g_block.w + 0.5) : 1;  // 2^level
+}
 #else
 // The volume's value at world point p. The one place that reads the volume: a multi-resolution
 // lookup would replace this function alone.
 float sampleVolume(vec3 p) { return texture(u_volume, p * u_tex_scale + u_tex_offset).r; }
+// The step multiple of non-empty block idx of class g (1 + log2 m; worker/volume/step_rule.h).
+int blockStep(ivec3 idx, uint g) { return 1 << int(g - 1u); }
 #endif
 
 // (r, g, b, tau) of a value, through the transfer-function table.
