@@ -1,8 +1,9 @@
 // The glow emitters' GL cost alone (issue 16): one fullscreen pass per frame evaluates every
-// emitter's exact segment integral (worker/glow/glow_glsl.h) over each pixel's ray inside the glow box,
-// on llvmpipe; then the frame's PSNR (8-bit, after the tone map) against the same integral in
-// double on the CPU. What one brick's glow pass (worker/glow/glow_renderer.h) costs with d = 1, without
-// the pipeline around it (scripts/bench-glow measures that too, through `sortlast render`).
+// emitter's exact segment integral (worker/glow/glow_segment.glsl) over each pixel's ray inside the
+// glow box, on llvmpipe; then the frame's PSNR (8-bit, after the tone map) against the same
+// integral in double on the CPU. What one brick's glow pass (worker/glow/glow_renderer.h) costs
+// with d = 1, without the pipeline around it (scripts/bench-glow measures that too, through
+// `sortlast render`).
 //
 // Usage: bench_glow EMITTERS SIZE FRAMES   -> one CSV line:
 // emitters,size,frames,ms_per_frame,fps,psnr_db
@@ -15,32 +16,16 @@
 #include <string>
 #include <vector>
 
+#include "bench/glsl_files.h"  // generated from bench/*.glsl (cmake/embed_shaders.cmake)
 #include "common/camera.h"
 #include "common/glow_integral.h"
 #include "worker/gl/gl_context.h"
 #include "worker/gl/gl_program.h"
+#include "worker/gl/glsl_files.h"
 #include "worker/glow/glow_gl.h"
-#include "worker/glow/glow_glsl.h"
+#include "worker/glow/glsl_files.h"
 
 using namespace sortlast;
-
-namespace {
-
-const char* kMain = R"(
-uniform vec3 u_box_lo, u_box_hi;
-uniform float u_intensity, u_exposure;
-out vec4 frag;
-void main() {
-  vec3 dir = glowPixelRay();
-  float t0, t1;
-  vec3 sum = vec3(0.0);
-  if (glowSpan(u_eye, dir, u_box_lo, u_box_hi, vec3(0.0), t0, t1)) sum = glowAlong(u_eye, dir, t0, t1);
-  // Tone-mapped here only because this benchmark has no compositing: one brick, the final frame.
-  frag = vec4(1.0 - exp(-u_exposure * u_intensity * sum), 1.0);
-}
-)";
-
-}  // namespace
 
 int main(int argc, char** argv) {
   if (argc != 4) {
@@ -76,9 +61,14 @@ int main(int argc, char** argv) {
 
   auto ctx = createGlContext("osmesa");
   const GlApi& gl = ctx->gl();
-  std::string fragment = std::string("#version 450 core\n") + shaders::kGlowSegment +
-                         shaders::kGlowEmitters + shaders::kGlowAlong + shaders::kGlowPixelRay + kMain;
-  unsigned program = linkProgram(gl, shaders::kGlowFullscreenVertex, fragment.c_str());
+  // The glow pass's chunks (worker/glow/glow_renderer.cpp) with this benchmark's main.
+  unsigned program = linkProgram(gl, ShaderSource().add(glsl::fullscreen_vert),
+                                 ShaderSource()
+                                     .add(glsl::glow_segment)
+                                     .add(glsl::glow_emitters)
+                                     .add(glsl::glow_along)
+                                     .add(glsl::glow_pixel_ray)
+                                     .add(glsl::bench_glow_frag));
   unsigned vao = 0;
   const unsigned target = makeFloatTexture(gl, size, size, nullptr);
   makeFramebuffer(gl, target);

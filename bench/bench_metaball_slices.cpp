@@ -1,10 +1,10 @@
-// Times the slices method's per-brick work (worker/particles/metaball_slices_renderer.h), paid once per brick
-// and time step: the coarse bit voxelization, the slots and lists (CPU, buildSliceLattice), and
-// the whole addBrick (that, the upload and the splat in a compute shader). Also the bit
-// voxelization done in GL instead (a compute shader, one invocation per particle, atomicOr into
-// the bit grid, read back), which the renderer does not use: it is measured here against the
-// CPU pass it would replace. One brick over the whole set; prints one JSON line, the fastest of
-// --repeats runs.
+// Times the slices method's per-brick work (worker/particles/metaball_slices_renderer.h), paid once
+// per brick and time step: the coarse bit voxelization, the slots and lists (CPU,
+// buildSliceLattice), and the whole addBrick (that, the upload and the splat in a compute shader).
+// Also the bit voxelization done in GL instead (bench_voxelize.comp.glsl, one invocation per
+// particle, atomicOr into the bit grid, read back), which the renderer does not use: it is measured
+// here against the CPU pass it would replace. One brick over the whole set; prints one JSON line,
+// the fastest of --repeats runs.
 // Usage: bench_metaball_slices [procedural (splash | layers)] [count] [spacing (units of h)]
 // [repeats]
 #include <algorithm>
@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "bench/glsl_files.h"  // generated from bench/*.glsl (cmake/embed_shaders.cmake)
 #include "common/particles.h"
 #include "worker/gl/gl_program.h"
 #include "worker/particles/metaball_slices.h"
@@ -24,35 +25,6 @@ using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
-
-// The GL bit voxelization: the same test as worker/particles/metaball_slices.cpp (sphere of radius h
-// padded 1% against each voxel's closed box), one bit per voxel, x fastest.
-const char* kVoxelizeCompute = R"(#version 450 core
-layout(local_size_x = 64) in;
-layout(std430, binding = 1) readonly buffer Centres { vec4 centres[]; };
-layout(std430, binding = 2) buffer Bits { uint bits[]; };
-uniform uint u_count;
-uniform float u_r;
-uniform float u_edge;
-uniform ivec4 u_lo;    // xyz
-uniform ivec4 u_dims;  // xyz
-void main() {
-  uint i = gl_GlobalInvocationID.x;
-  if (i >= u_count) return;
-  vec3 p = centres[i].xyz;
-  ivec3 a = max(ivec3(floor((p - u_r) / u_edge)) - u_lo.xyz, ivec3(0));
-  ivec3 b = min(ivec3(floor((p + u_r) / u_edge)) - u_lo.xyz, u_dims.xyz - 1);
-  for (int z = a.z; z <= b.z; ++z)
-    for (int y = a.y; y <= b.y; ++y)
-      for (int x = a.x; x <= b.x; ++x) {
-        vec3 lo = vec3(u_lo.xyz + ivec3(x, y, z)) * u_edge, hi = lo + u_edge;
-        vec3 g = max(max(lo - p, p - hi), vec3(0.0));
-        if (dot(g, g) > u_r * u_r) continue;
-        uint v = uint((z * u_dims.y + y) * u_dims.x + x);
-        atomicOr(bits[v >> 5], 1u << (v & 31u));
-      }
-}
-)";
 
 }  // namespace
 
@@ -89,7 +61,7 @@ int main(int argc, char** argv) {
     brick = std::min(brick, since(t0));
   }
   // GL voxelization of the same voxels: upload, dispatch, read back.
-  unsigned prog = linkComputeProgram(gl, kVoxelizeCompute);
+  unsigned prog = linkComputeProgram(gl, ShaderSource().add(glsl::bench_voxelize_comp));
   std::vector<glm::vec4> centres(set.positions.size());
   for (size_t i = 0; i < centres.size(); ++i) centres[i] = glm::vec4(set.positions[i], 0.0f);
   const size_t words = (L.voxelCount() + 31) / 32;

@@ -12,7 +12,7 @@
 // Whole blocks. A block cut by a brick face is held whole by every brick it overlaps, samples
 // beyond the face included: every brick reads the same field in it, and the ray caster's coarse
 // samples, which may sit up to 2^level - 1 lattice steps before a cell's entry (beyond the brick's
-// face), read the block's own data in every brick (worker/volume/raycast_shaders.h).
+// face), read the block's own data in every brick (worker/volume/raycast_march.frag.glsl).
 #include <array>
 #include <glm/glm.hpp>
 #include <vector>

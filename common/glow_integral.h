@@ -13,7 +13,7 @@
 // be 0 (R >= eps > 0). Stretches with xi <= 0 are mirrored; a stretch that passes the closest point
 // is split there, and its two halves' logarithms combined into one. The template is instantiated
 // for double (the reference path, log1p from libm) and for float with the expressions of the GLSL
-// in worker/glow/glow_glsl.h, so its float error can be tested on the CPU.
+// in worker/glow/glow_segment.glsl, so its float error can be tested on the CPU.
 #include <cmath>
 #include <glm/glm.hpp>
 #include <type_traits>

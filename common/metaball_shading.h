@@ -1,6 +1,6 @@
 #pragma once
 // How a metaball surface point is shaded: the one definition the CPU reference uses and the GLSL
-// copy (worker/particles/metaball_shaders.h) cites. Changing it means changing both.
+// copy (worker/particles/metaball_common.glsl, shade()) cites. Changing it means changing both.
 //
 //   L       = -D                        headlight: the light comes from the eye along the ray
 //   diffuse = max(dot(N, L), 0)         N the outward unit normal, -grad F / |grad F|

@@ -1,9 +1,8 @@
-// The GLSL of the glow integral (worker/glow/glow_glsl.h) run on the GL driver (OSMesa: llvmpipe), one
-// ray per pixel, against the double closed form (common/glow_integral.h) on the same float inputs:
-// the float bound the C++ float instantiation meets (tests/unit/glow_test.cpp, 2e-5) must hold
-// for the shader too. Its own executable: it needs a GL context, which the unit tests never make.
-#include "worker/glow/glow_glsl.h"
-
+// The GLSL of the glow integral (worker/glow/glow_segment.glsl) run on the GL driver (OSMesa:
+// llvmpipe), one ray per pixel, against the double closed form (common/glow_integral.h) on the same
+// float inputs: the float bound the C++ float instantiation meets (tests/unit/glow_test.cpp, 2e-5)
+// must hold for the shader too. Its own executable: it needs a GL context, which the unit tests
+// never make.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,7 +13,10 @@
 #include "common/glow_integral.h"
 #include "worker/gl/gl_context.h"
 #include "worker/gl/gl_program.h"
+#include "worker/gl/glsl_files.h"  // generated from worker/gl/*.glsl (cmake/embed_shaders.cmake)
 #include "worker/glow/glow_gl.h"
+#include "worker/glow/glsl_files.h"
+#include "tests/unit/glsl/glsl_files.h"
 
 namespace sortlast {
 namespace {
@@ -102,13 +104,6 @@ std::vector<Ray> rays() {
   return out;
 }
 
-const char* kVertex = R"(#version 450 core
-void main() {
-  vec2 p = vec2((gl_VertexID & 1) * 4 - 1, (gl_VertexID & 2) * 2 - 1);
-  gl_Position = vec4(p, 0.0, 1.0);
-}
-)";
-
 TEST(GlowGlsl, ShaderMatchesTheClosedForm) {
   std::unique_ptr<GlContext> ctx;
   try {
@@ -127,18 +122,9 @@ TEST(GlowGlsl, ShaderMatchesTheClosedForm) {
          {r.centre.x, r.centre.y, r.centre.z, r.a,   r.dir.x, r.dir.y, r.dir.z, r.b,  r.o.x, r.o.y,
           r.o.z,      r.eps,      r.u.x,      r.u.y, r.u.z,   r.s0,    r.s1,    0.0f, 0.0f,  0.0f})
       texels.push_back(v);
-  std::string fragment = std::string("#version 450 core\n") + shaders::kGlowSegment + R"(
-uniform sampler2D u_cases;
-out vec4 frag;
-void main() {
-  int i = int(gl_FragCoord.x);
-  vec4 t0 = texelFetch(u_cases, ivec2(0, i), 0), t1 = texelFetch(u_cases, ivec2(1, i), 0);
-  vec4 t2 = texelFetch(u_cases, ivec2(2, i), 0), t3 = texelFetch(u_cases, ivec2(3, i), 0);
-  float s1 = texelFetch(u_cases, ivec2(4, i), 0).x;
-  frag = vec4(glowSegment(t0.xyz, t1.xyz, t0.w, t1.w, t2.w, t2.xyz, t3.xyz, t3.w, s1), 0.0, 0.0, 1.0);
-}
-)";
-  unsigned program = linkProgram(gl, kVertex, fragment.c_str());
+  unsigned program =
+      linkProgram(gl, ShaderSource().add(glsl::fullscreen_vert),
+                  ShaderSource().add(glsl::glow_segment).add(glsl::glow_segment_test_frag));
   unsigned vao = 0;
   const unsigned target = makeFloatTexture(gl, n, 1, nullptr);
   const unsigned fbo = makeFramebuffer(gl, target);  // throws if incomplete

@@ -1,51 +1,26 @@
 #include "worker/glow/glow_renderer.h"
 
-#include <string>
-
-#include "worker/gl/gl_program.h"
+#include "worker/gl/glsl_files.h"  // generated from worker/gl/*.glsl (cmake/embed_shaders.cmake)
 #include "worker/glow/glow_gl.h"
-#include "worker/glow/glow_glsl.h"
+#include "worker/glow/glsl_files.h"
 
 namespace sortlast {
 
-namespace {
-
-const char* kMain = R"(
-uniform vec3 u_box_lo, u_box_hi, u_box_hi_open;
-uniform float u_intensity;
-uniform sampler2D u_surface;
-uniform int u_has_surface;
-uniform ivec4 u_surface_rect;
-out vec4 frag;
-void main() {
-  vec3 dir = glowPixelRay();
-  float t0, t1;
-  vec3 sum = vec3(0.0);
-  if (glowSpan(u_eye, dir, u_box_lo, u_box_hi, u_box_hi_open, t0, t1)) {
-    ivec2 px = ivec2(gl_FragCoord.xy);
-    if (u_has_surface != 0 && all(greaterThanEqual(px, u_surface_rect.xy)) &&
-        all(lessThan(px, u_surface_rect.xy + u_surface_rect.zw)))
-      t1 = min(t1, texelFetch(u_surface, px, 0).x);
-    sum = glowAlong(u_eye, dir, t0, t1);
-  }
-  frag = vec4(u_intensity * sum, 0.0);  // added to what the target holds: no opacity
-}
-)";
-
-}  // namespace
-
 GlowRenderer::GlowRenderer(const GlApi& gl, int width, int height)
     : gl_(gl), target_(gl, width, height) {
-  const std::string fragment = std::string("#version 450 core\n") + shaders::kGlowSegment +
-                               shaders::kGlowEmitters + shaders::kGlowAlong + shaders::kGlowPixelRay + kMain;
-  program_ = linkProgram(gl_, shaders::kGlowFullscreenVertex, fragment.c_str());
+  program_ = GlProgram(gl_, linkProgram(gl_, ShaderSource().add(glsl::fullscreen_vert),
+                                        ShaderSource()
+                                            .add(glsl::glow_segment)
+                                            .add(glsl::glow_emitters)
+                                            .add(glsl::glow_along)
+                                            .add(glsl::glow_pixel_ray)
+                                            .add(glsl::glow_pass_frag)));
   gl_.GenVertexArrays(1, &vao_);
 }
 
 GlowRenderer::~GlowRenderer() {
   gl_.DeleteVertexArrays(1, &vao_);
   if (emitters_) gl_.DeleteTextures(1, &emitters_);
-  gl_.DeleteProgram(program_);
 }
 
 void GlowRenderer::setEmitters(const std::vector<GlowEmitter>& emitters, double eps, double intensity) {

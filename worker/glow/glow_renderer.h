@@ -12,6 +12,7 @@
 #include "worker/gl/brick_output.h"
 #include "worker/gl/float_target.h"
 #include "worker/gl/gl_api.h"
+#include "worker/gl/gl_program.h"
 
 namespace sortlast {
 
@@ -43,7 +44,8 @@ class GlowRenderer {
  private:
   const GlApi& gl_;
   FloatTarget target_;
-  unsigned program_ = 0, emitters_ = 0, vao_ = 0;
+  GlProgram program_;
+  unsigned emitters_ = 0, vao_ = 0;
   std::vector<float> texels_;  // what the emitters' texture holds
   int count_ = 0;
   float eps_ = 0.01f, intensity_ = 1.0f;

@@ -6,11 +6,8 @@
 #include <stdexcept>
 
 #include "common/particles.h"
-#include <string>
-
-#include "worker/gl/gl_program.h"
-#include "worker/particles/metaball_grid_shaders.h"
-#include "worker/particles/metaball_shaders.h"
+#include "worker/gl/glsl_files.h"  // generated from worker/gl/*.glsl (cmake/embed_shaders.cmake)
+#include "worker/particles/glsl_files.h"
 
 namespace sortlast {
 
@@ -35,11 +32,13 @@ MetaballGridRenderer::MetaballGridRenderer(const GlContext& ctx, int width, int 
   GLint max_block = 0;
   gl_.GetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
   max_block_bytes_ = max_block > 0 ? max_block : (1LL << 27);
-  std::string fs = std::string(shaders::kMetaballCommon) + shaders::kGridFragment;
   // Anisotropic smoothing: the same shader with the per-particle kernel block switched on (the
   // round one stays as it was, so its images do not change).
-  if (s_.anisotropic) fs.insert(fs.find('\n') + 1, "#define ANISOTROPIC 1\n");
-  program_ = linkProgram(gl_, shaders::kFullscreenVertex, fs.c_str());
+  program_ = GlProgram(gl_, linkProgram(gl_, ShaderSource().add(glsl::fullscreen_vert),
+                                        ShaderSource()
+                                            .defineIf(s_.anisotropic, "ANISOTROPIC")
+                                            .add(glsl::metaball_common)
+                                            .add(glsl::metaball_grid_frag)));
   gl_.check("metaball grid renderer setup");
 }
 
@@ -47,7 +46,6 @@ MetaballGridRenderer::~MetaballGridRenderer() {
   for (auto& b : bricks_)
     for (unsigned buf : {b.offsets, b.items, b.kernels})
       if (buf) gl_.DeleteBuffers(1, &buf);
-  gl_.DeleteProgram(program_);
   gl_.DeleteVertexArrays(1, &empty_vao_);
 }
 

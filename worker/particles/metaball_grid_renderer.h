@@ -49,7 +49,8 @@ class MetaballGridRenderer : public ParticleRenderer {
   MetaballSettings s_;
   long long max_block_bytes_ = 0;
   SurfaceTarget target_;
-  unsigned empty_vao_ = 0, program_ = 0;
+  unsigned empty_vao_ = 0;
+  GlProgram program_;  // the ANISOTROPIC variant with anisotropic smoothing
   std::vector<GpuBrick> bricks_;
 };
 

@@ -6,8 +6,8 @@
 #include <string>
 
 #include "common/particles.h"
-#include "worker/gl/gl_program.h"
-#include "worker/particles/metaball_shaders.h"
+#include "worker/gl/glsl_files.h"  // generated from worker/gl/*.glsl (cmake/embed_shaders.cmake)
+#include "worker/particles/glsl_files.h"
 
 namespace sortlast {
 
@@ -29,8 +29,6 @@ unsigned makeTexture(const GlApi& gl, GLenum format, int w, int h, int levels = 
   gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   return t;
 }
-
-std::string withCommon(const char* body) { return std::string(shaders::kMetaballCommon) + body; }
 
 }  // namespace
 
@@ -69,23 +67,27 @@ MetaballRenderer::MetaballRenderer(const GlContext& ctx, int width, int height,
   gl_.GenVertexArrays(1, &empty_vao_);
   gl_.GenQueries(1, &query_);
 
-  std::string vs = withCommon(shaders::kBillboardVertex);
-  std::string advance = withCommon(shaders::kAdvanceFragment), potential = withCommon(shaders::kPotentialFragment);
-  std::string init = withCommon(shaders::kInitFragment), window = withCommon(shaders::kWindowFragment);
-  std::string step = withCommon(shaders::kStepFragment), secant = withCommon(shaders::kSecantFragment);
-  std::string bracket_base = withCommon(shaders::kBracketBaseFragment);
-  std::string bracket = withCommon(shaders::kBracketFragment), shade = withCommon(shaders::kShadeFragment);
-  advance_ = linkProgram(gl_, vs.c_str(), advance.c_str());
-  potential_ = linkProgram(gl_, vs.c_str(), potential.c_str());
-  init_ = linkProgram(gl_, shaders::kFullscreenVertex, init.c_str());
-  window_ = linkProgram(gl_, shaders::kFullscreenVertex, window.c_str());
-  step_ = linkProgram(gl_, shaders::kFullscreenVertex, step.c_str());
-  secant_ = linkProgram(gl_, shaders::kFullscreenVertex, secant.c_str());
-  bracket_ = linkProgram(gl_, shaders::kFullscreenVertex, bracket.c_str());
-  bracket_base_ = linkProgram(gl_, shaders::kFullscreenVertex, bracket_base.c_str());
-  shade_ = linkProgram(gl_, shaders::kFullscreenVertex, shade.c_str());
-  reduce_ = linkProgram(gl_, shaders::kFullscreenVertex, shaders::kReduceFragment);
-  for (unsigned p : {advance_, potential_, init_, window_, step_, secant_, bracket_, bracket_base_, shade_}) {
+  // Every pass's shaders start with metaball_common.glsl, but the pyramid's reduction.
+  const ShaderSource billboard =
+      ShaderSource().add(glsl::metaball_common).add(glsl::metaball_billboard_vert);
+  const ShaderSource fullscreen = ShaderSource().add(glsl::fullscreen_vert);
+  auto link = [&](const ShaderSource& vertex, const GlslFile& fragment) {
+    return GlProgram(
+        gl_, linkProgram(gl_, vertex, ShaderSource().add(glsl::metaball_common).add(fragment)));
+  };
+  advance_ = link(billboard, glsl::metaball_advance_frag);
+  potential_ = link(billboard, glsl::metaball_potential_frag);
+  init_ = link(fullscreen, glsl::metaball_init_frag);
+  window_ = link(fullscreen, glsl::metaball_window_frag);
+  step_ = link(fullscreen, glsl::metaball_step_frag);
+  secant_ = link(fullscreen, glsl::metaball_secant_frag);
+  bracket_ = link(fullscreen, glsl::metaball_bracket_frag);
+  bracket_base_ = link(fullscreen, glsl::metaball_bracket_base_frag);
+  shade_ = link(fullscreen, glsl::metaball_shade_frag);
+  reduce_ =
+      GlProgram(gl_, linkProgram(gl_, fullscreen, ShaderSource().add(glsl::metaball_reduce_frag)));
+  for (unsigned p : {advance_.id(), potential_.id(), init_.id(), window_.id(), step_.id(),
+                     secant_.id(), bracket_.id(), bracket_base_.id(), shade_.id()}) {
     gl_.UseProgram(p);
     auto set = [&](const char* name, int unit) {
       int loc = gl_.GetUniformLocation(p, name);
@@ -136,8 +138,6 @@ void MetaballRenderer::setSettings(const MetaballSettings& settings) {
 
 MetaballRenderer::~MetaballRenderer() {
   for (auto& b : bricks_) gl_.DeleteBuffers(1, &b.vbo);
-  for (unsigned p : {advance_, potential_, init_, window_, step_, secant_, bracket_, bracket_base_, shade_, reduce_})
-    gl_.DeleteProgram(p);
   freeTargets();
   gl_.DeleteQueries(1, &query_);
   gl_.DeleteVertexArrays(1, &vao_);
@@ -228,7 +228,8 @@ SurfaceBrick MetaballRenderer::render(int handle, const Camera& cam, double near
   if (r.empty()) return out;
 
   const glm::mat4 vp = cam.viewProjection(near_plane, far_plane);
-  for (unsigned p : {advance_, potential_, init_, window_, step_, secant_, bracket_, bracket_base_, shade_})
+  for (unsigned p : {advance_.id(), potential_.id(), init_.id(), window_.id(), step_.id(),
+                     secant_.id(), bracket_.id(), bracket_base_.id(), shade_.id()})
     setCommonUniforms(p, cam, b);
   const int mode_loc = gl_.GetUniformLocation(potential_, "u_mode");
 

@@ -22,6 +22,7 @@
 #include "common/camera.h"
 #include "common/image.h"
 #include "worker/gl/gl_context.h"
+#include "worker/gl/gl_program.h"
 #include "worker/particles/surface_target.h"
 
 namespace sortlast {
@@ -53,9 +54,10 @@ struct SurfaceBrick {
   int rounds = 0;               // windows sampled (for stats)
 };
 
-// The uniforms every method's programs share (worker/particles/metaball_shaders.h and the passes'): the
-// rays of `cam` over a width x height image, h, T, the step w, the sample cap, the refinement
-// passes, the colour and the brick's clip box. A program that lacks one ignores it (location -1).
+// The uniforms every method's programs share (worker/particles/metaball_common.glsl and the
+// passes'): the rays of `cam` over a width x height image, h, T, the step w, the sample cap, the
+// refinement passes, the colour and the brick's clip box. A program that lacks one ignores it
+// (location -1).
 void setRayUniforms(const GlApi& gl, unsigned program, const Camera& cam, int width, int height,
                     const MetaballSettings& s, const Box3& clip);
 
@@ -122,8 +124,9 @@ class MetaballRenderer : public ParticleRenderer {
   unsigned fbo_ = 0, vao_ = 0, empty_vao_ = 0, query_ = 0;
   unsigned state_ = 0, hit_ = 0, next_ = 0, pot_ = 0, pot2_ = 0, pyramid_ = 0;
   SurfaceTarget target_;  // the shade pass's colour and the surface (t, normal)
-  unsigned advance_ = 0, potential_ = 0, init_ = 0, window_ = 0, step_ = 0, secant_ = 0,
-           bracket_ = 0, bracket_base_ = 0, shade_ = 0, reduce_ = 0;
+  // One program per pass (worker/particles/metaball_*.glsl).
+  GlProgram advance_, potential_, init_, window_, step_, secant_, bracket_, bracket_base_, shade_,
+      reduce_;
   std::vector<GpuBrick> bricks_;
 };
 

@@ -10,7 +10,7 @@
 // (the paper's dynamic allocation; the extra layer repeats the next voxel's first points, so a
 // trilinear lookup never leaves its slot). Each slot lists the particles that reach it, in the
 // brick's (global) order: the GPU sums them per point in that order
-// (worker/particles/metaball_slices_shaders.h).
+// (worker/particles/metaball_slices_splat.comp.glsl).
 #include <cstdint>
 #include <vector>
 

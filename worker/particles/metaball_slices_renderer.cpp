@@ -8,9 +8,8 @@
 #include <string>
 
 #include "common/error.h"
-#include "worker/gl/gl_program.h"
-#include "worker/particles/metaball_shaders.h"
-#include "worker/particles/metaball_slices_shaders.h"
+#include "worker/gl/glsl_files.h"  // generated from worker/gl/*.glsl (cmake/embed_shaders.cmake)
+#include "worker/particles/glsl_files.h"
 
 namespace sortlast {
 
@@ -26,13 +25,6 @@ unsigned upload(const GlApi& gl, const void* data, size_t bytes) {
   return b;
 }
 
-// The shaders with the slot side filled in.
-std::string withSide(const std::string& src) {
-  std::string def = "#define SIDE " + std::to_string(kSliceSlotSide) + "\n";
-  size_t eol = src.find('\n');  // after #version
-  return src.substr(0, eol + 1) + def + src.substr(eol + 1);
-}
-
 }  // namespace
 
 MetaballSlicesRenderer::MetaballSlicesRenderer(const GlContext& ctx, int width, int height,
@@ -42,9 +34,16 @@ MetaballSlicesRenderer::MetaballSlicesRenderer(const GlContext& ctx, int width, 
   GLint max_block = 0;
   gl_.GetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
   max_block_bytes_ = max_block > 0 ? max_block : (1LL << 27);
-  std::string fs = withSide(std::string(shaders::kMetaballCommon) + shaders::kSliceRayFragment);
-  program_ = linkProgram(gl_, shaders::kFullscreenVertex, fs.c_str());
-  splat_ = linkComputeProgram(gl_, withSide(shaders::kSliceSplatCompute).c_str());
+  // Both shaders with the slot side filled in.
+  const std::string side = std::to_string(kSliceSlotSide);
+  program_ = GlProgram(gl_, linkProgram(gl_, ShaderSource().add(glsl::fullscreen_vert),
+                                        ShaderSource()
+                                            .define("SIDE", side)
+                                            .add(glsl::metaball_common)
+                                            .add(glsl::metaball_slices_ray_frag)));
+  splat_ = GlProgram(
+      gl_, linkComputeProgram(
+               gl_, ShaderSource().define("SIDE", side).add(glsl::metaball_slices_splat_comp)));
   gl_.check("metaball slices renderer setup");
 }
 
@@ -52,8 +51,6 @@ MetaballSlicesRenderer::~MetaballSlicesRenderer() {
   for (auto& b : bricks_)
     for (unsigned buf : {b.slot_of, b.samples})
       if (buf) gl_.DeleteBuffers(1, &buf);
-  gl_.DeleteProgram(program_);
-  gl_.DeleteProgram(splat_);
   gl_.DeleteVertexArrays(1, &empty_vao_);
 }
 

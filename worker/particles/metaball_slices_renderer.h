@@ -55,7 +55,8 @@ class MetaballSlicesRenderer : public ParticleRenderer {
   MetaballSettings s_;
   long long max_block_bytes_ = 0;
   SurfaceTarget target_;
-  unsigned empty_vao_ = 0, program_ = 0, splat_ = 0;
+  unsigned empty_vao_ = 0;
+  GlProgram program_, splat_;  // the ray pass; the splat (compute)
   std::vector<GpuBrick> bricks_;
 };
 

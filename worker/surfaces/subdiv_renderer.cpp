@@ -10,220 +10,18 @@
 #include <stdexcept>
 #include <vector>
 
-#include "worker/gl/gl_program.h"
+#include "worker/gl/glsl_files.h"  // generated from worker/gl/*.glsl (cmake/embed_shaders.cmake)
+#include "worker/surfaces/glsl_files.h"
 
 namespace sortlast {
 
-namespace {
-
-// Pass 1: the coarse mesh with an ordinary depth test; the fragment shader only passes on
-// (u, v, face, surface), so the depth test runs before it (no discard, no written depth).
-const char* kCoarseVertex = R"(#version 450 core
-layout(location = 0) in vec3 position;
-layout(location = 1) in vec3 param;  // u, v, face
-uniform mat4 view_projection;
-out vec3 v_param;
-void main() {
-  v_param = param;
-  gl_Position = view_projection * vec4(position, 1.0);
-}
-)";
-
-const char* kCoarseFragment = R"(#version 450 core
-in vec3 v_param;
-layout(location = 0) out vec4 out_coarse;
-void main() { out_coarse = vec4(v_param, 1.0); }
-)";
-
-// Pass 2: one triangle over the whole viewport (scissored to the region), one fragment per pixel.
-const char* kScreenVertex = R"(#version 450 core
-void main() {
-  vec2 corner = vec2(float((gl_VertexID & 1) * 4 - 1), float((gl_VertexID & 2) * 2 - 1));
-  gl_Position = vec4(corner, 0.0, 1.0);
-}
-)";
-
-// The evaluation is common/subdiv/subdiv_tables.cpp's evaluateTables, line for line.
-const char* kFragment = R"(#version 450 core
-layout(std430, binding = 0) readonly buffer Faces { ivec2 faces[]; };      // firstSet, regular
-layout(std430, binding = 1) readonly buffer Positions { vec4 positions[]; };
-layout(std430, binding = 2) readonly buffer Tangents { vec4 tangents[]; };
-layout(std430, binding = 3) readonly buffer Neighbours { ivec4 neighbours[]; };  // across edge c: face * 4 + its edge
-uniform vec3 eye, clip_lo, clip_hi, colour, centre, light_dir, stripe_axis;
-// The pixel's ray, as Camera::rayDirection: forward + sx * right + sy * up (right and up scaled by
-// the half field of view), independent of the near and far planes, so every brick sees one ray.
-uniform vec3 ray_forward, ray_right, ray_up;
-uniform vec2 image_size;
-// Pass 1's nearest coarse fragment of this surface per pixel: (u, v, face, 1).
-uniform sampler2D coarse;
-// The (t, normal) target itself: the nearest of the layer underneath (metaballs) and the surfaces
-// drawn before this one, read at this fragment's own pixel only (after a texture barrier).
-uniform sampler2D nearest;
-uniform float size, stripe_width;
-uniform int stripes, reflection_lines, newton_steps;
-layout(location = 0) out vec4 out_colour;
-layout(location = 1) out vec4 out_surface;
-layout(location = 2) out vec4 out_param;
-
-void basis(float t, out vec4 b, out vec4 db) {
-  float s = 1.0 - t, t2 = t * t, t3 = t2 * t;
-  b = vec4(s * s * s, 3.0 * t3 - 6.0 * t2 + 4.0, -3.0 * t3 + 3.0 * t2 + 3.0 * t + 1.0, t3) / 6.0;
-  db = vec4(-0.5 * s * s, 1.5 * t2 - 2.0 * t, -1.5 * t2 + t + 0.5, 0.5 * t2);
-}
-
-// Where (face, u, v) is in the tables: the first of its 16 control points, the sub-patch's own
-// (s, t) and the scale 2^n of its parameters. A face's extraordinary corner is its corner 0
-// (buildControlMesh checks), so (u, v) is the patch's own frame: no rotation.
-void locate(int face, float u, float v, out int set, out float s, out float t, out float scale) {
-  ivec2 e = faces[face];
-  set = e.x;
-  s = u; t = v; scale = 1.0;
-  if (e.y == 0) {
-    float m = max(u, v);
-    int n = 15;
-    if (m > 0.0) n = clamp(int(floor(-log2(m))) + 1, 1, 15);
-    float su = ldexp(u, n), sv = ldexp(v, n);
-    int k;
-    if (su >= 1.0 && sv >= 1.0) k = 2;
-    else if (su >= 1.0) k = 1;
-    else if (sv >= 1.0) k = 3;
-    else k = su >= sv ? 1 : 3;
-    s = su - (k != 3 ? 1.0 : 0.0);
-    t = sv - (k != 1 ? 1.0 : 0.0);
-    set += (n - 1) * 3 + (k - 1);
-    scale = ldexp(1.0, n);
-  }
-}
-
-// (face, u, v) on its patch: locate's answer and the B-spline bases (and their derivatives) at
-// the sub-patch's (s, t), which a point and its tangents both weigh their 16 control points by.
-struct PatchPoint {
-  int set;
-  float s, t, scale;
-  vec4 bs, dbs, bt, dbt;
-};
-
-PatchPoint patchPoint(int face, float u, float v) {
-  PatchPoint q;
-  locate(face, u, v, q.set, q.s, q.t, q.scale);
-  basis(q.s, q.bs, q.dbs);
-  basis(q.t, q.bt, q.dbt);
-  return q;
-}
-
-// Limit position and its true derivatives in the face's own (u, v): all a Newton step needs (the
-// tangent points, 16 more fetches, are for the normal alone).
-void evaluatePoint(int face, float u, float v, out vec3 p, out vec3 su, out vec3 sv) {
-  PatchPoint q = patchPoint(face, u, v);
-  p = vec3(0.0);
-  vec3 ps = vec3(0.0), pt = vec3(0.0);
-  for (int b = 0; b < 4; ++b)
-    for (int a = 0; a < 4; ++a) {
-      vec3 c = positions[q.set * 16 + b * 4 + a].xyz;
-      p += q.bs[a] * q.bt[b] * c;
-      ps += q.dbs[a] * q.bt[b] * c;
-      pt += q.bs[a] * q.dbt[b] * c;
-    }
-  // The sub-patch's derivatives scaled back to the face's parameters.
-  su = ps * q.scale;
-  sv = pt * q.scale;
-}
-
-// The tangent-point derivatives (for the normal) at (face, u, v).
-void evaluateTangents(int face, float u, float v, out vec3 tu, out vec3 tv) {
-  PatchPoint q = patchPoint(face, u, v);
-  tu = vec3(0.0);
-  tv = vec3(0.0);
-  for (int b = 0; b < 4; ++b)
-    for (int a = 0; a < 4; ++a) {
-      vec3 r = tangents[q.set * 16 + b * 4 + a].xyz;
-      tu += q.dbs[a] * q.bt[b] * r;
-      tv += q.bs[a] * q.dbt[b] * r;
-    }
-}
-
-void main() {
-  ivec2 px = ivec2(gl_FragCoord.xy);
-  vec4 c0 = texelFetch(coarse, px, 0);
-  int face = int(round(c0.z));
-  float u = clamp(c0.x, 0.0, 1.0), v = clamp(c0.y, 0.0, 1.0);
-  vec3 p, ds, dt, su, sv;
-  // Newton steps move (u, v) until the limit point lies on this pixel's ray, so the pixel shows
-  // the surface where its ray meets it, whatever the coarse level.
-  vec2 ndc = 2.0 * gl_FragCoord.xy / image_size - 1.0;
-  vec3 dir = normalize(ray_forward + ndc.x * ray_right - ndc.y * ray_up);
-  vec3 e1 = normalize(abs(dir.x) < 0.9 ? cross(dir, vec3(1, 0, 0)) : cross(dir, vec3(0, 1, 0)));
-  vec3 e2 = cross(dir, e1);
-  // Each round evaluates the limit point at (u, v); the loop ends with p that of the final (u, v):
-  // after newton_steps steps, or earlier once p is within 1e-6 of the size of the ray (a few
-  // times float rounding there; a further step would move p by less), which saves the rest.
-  for (int i = 0; i <= newton_steps; ++i) {
-    evaluatePoint(face, u, v, p, su, sv);
-    if (i == newton_steps) break;
-    vec2 f = vec2(dot(e1, p - eye), dot(e2, p - eye));
-    if (dot(f, f) <= 1e-12 * size * size) break;
-    mat2 J = mat2(dot(e1, su), dot(e2, su), dot(e1, sv), dot(e2, sv));  // columns: d/du, d/dv
-    if (abs(determinant(J)) < 1e-20) break;
-    vec2 next = vec2(u, v) - inverse(J) * f;
-    // Leaving the face across an edge: continue on the neighbour, in its (u, v). Edge c's frame
-    // is (a along the edge from corner c, b into the face); the neighbour's edge runs the other way.
-    float out_by = max(max(-next.x, next.x - 1.0), max(-next.y, next.y - 1.0));
-    if (out_by > 0.0) {
-      int c = -next.y >= out_by ? 0 : (next.x - 1.0 >= out_by ? 1 : (next.y - 1.0 >= out_by ? 2 : 3));
-      vec2 ab = c == 0 ? next : (c == 1 ? vec2(next.y, 1.0 - next.x)
-                              : (c == 2 ? vec2(1.0 - next.x, 1.0 - next.y) : vec2(1.0 - next.y, next.x)));
-      int across = neighbours[face][c];
-      int d = across & 3;
-      vec2 g = vec2(1.0 - ab.x, -ab.y);
-      // Across a boundary edge (an open mesh: -1) there is no face: stay on this one, clamped.
-      if (across >= 0) next = d == 0 ? g : (d == 1 ? vec2(1.0 - g.y, g.x) : (d == 2 ? vec2(1.0 - g.x, 1.0 - g.y) : vec2(g.y, 1.0 - g.x)));
-      if (across >= 0) face = across >> 2;
-    }
-    u = clamp(next.x, 0.0, 1.0);
-    v = clamp(next.y, 0.0, 1.0);
-  }
-  evaluateTangents(face, u, v, ds, dt);
-  // The brick owns the fragment whose exact limit point it holds (half-open box).
-  if (any(lessThan(p, clip_lo)) || any(greaterThanEqual(p, clip_hi))) discard;
-  if (texelFetch(nearest, px, 0).x <= length(p - eye)) discard;
-  vec3 n = normalize(cross(ds, dt));
-  vec3 view = normalize(p - eye);
-  vec3 rgb;
-  if (reflection_lines == 1) {
-    // The reflected view ray against a striped planar light facing the surface.
-    vec3 r = reflect(view, n);
-    float facing = dot(r, light_dir);
-    float lit = 0.0;
-    if (facing > 1e-6) {
-      vec3 x = p + r * (dot(centre + 2.0 * size * light_dir - p, light_dir) / facing);
-      // A square light 8 sizes wide, its stripes across `stripe_axis`.
-      vec3 along = x - centre;
-      float a = dot(along, stripe_axis) / (8.0 * size), b = dot(along, cross(light_dir, stripe_axis)) / (8.0 * size);
-      // Stripe edges ramp over 4 % of a period: a function of the limit point alone (screen-space
-      // derivatives would differ with the coarse triangles), and no jump from dark to bright for a
-      // rounding-sized shift.
-      float c = float(stripes) * (a + 0.5), f = fract(c);
-      float d = f < stripe_width ? min(f, stripe_width - f) : -min(f - stripe_width, 1.0 - f);
-      if (abs(a) < 0.5 && abs(b) < 0.5) lit = clamp(d / 0.04 + 0.5, 0.0, 1.0);
-    }
-    rgb = colour * (0.12 + 0.88 * lit);
-  } else {
-    float diffuse = abs(dot(n, view));
-    float specular = pow(diffuse, 40.0);  // headlight: the half vector is the view direction
-    rgb = colour * (0.15 + 0.85 * diffuse) + 0.25 * vec3(specular);
-  }
-  out_colour = vec4(clamp(rgb, 0.0, 1.0), 1.0);
-  out_surface = vec4(length(p - eye), n);
-  out_param = vec4(float(face), u, v, 1.0);  // after the Newton steps
-}
-)";
-
-}  // namespace
-
 SubdivRenderer::SubdivRenderer(const GlContext& ctx, int width, int height)
     : gl_(ctx.gl()), width_(width), height_(height) {
-  coarse_program_ = linkProgram(gl_, kCoarseVertex, kCoarseFragment);
-  program_ = linkProgram(gl_, kScreenVertex, kFragment);
+  // Pass 1: the coarse mesh; pass 2: one fragment per pixel (worker/surfaces/subdiv_*.glsl).
+  coarse_program_ = GlProgram(gl_, linkProgram(gl_, ShaderSource().add(glsl::subdiv_coarse_vert),
+                                               ShaderSource().add(glsl::subdiv_coarse_frag)));
+  program_ = GlProgram(gl_, linkProgram(gl_, ShaderSource().add(glsl::fullscreen_vert),
+                                        ShaderSource().add(glsl::subdiv_limit_frag)));
   gl_.GenFramebuffers(1, &fbo_);
   gl_.GenFramebuffers(1, &coarse_fbo_);
   gl_.GenVertexArrays(1, &screen_vao_);
@@ -239,7 +37,8 @@ void SubdivRenderer::makeTargets() {
     gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width_, height_, 0, GL_RGBA, GL_FLOAT, nullptr);
     gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_TEXTURE_2D, *targets[i], 0);
+    gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_TEXTURE_2D, *targets[i],
+                             0);
   }
   if (gl_.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     throw std::runtime_error("SubdivRenderer: framebuffer incomplete");
@@ -286,8 +85,6 @@ SubdivRenderer::~SubdivRenderer() {
   gl_.DeleteFramebuffers(1, &fbo_);
   gl_.DeleteFramebuffers(1, &coarse_fbo_);
   gl_.DeleteVertexArrays(1, &screen_vao_);
-  gl_.DeleteProgram(program_);
-  gl_.DeleteProgram(coarse_program_);
 }
 
 void SubdivRenderer::clearSurfaces() {
@@ -299,12 +96,14 @@ void SubdivRenderer::clearSurfaces() {
   surfaces_.clear();
 }
 
-void SubdivRenderer::setSurface(const SubdivSurface& surface, int level, const SubdivShading& shading) {
+void SubdivRenderer::setSurface(const SubdivSurface& surface, int level,
+                                const SubdivShading& shading) {
   clearSurfaces();
   addSurface(surface, level, shading);
 }
 
-void SubdivRenderer::addSurface(const SubdivSurface& surface, int level, const SubdivShading& shading) {
+void SubdivRenderer::addSurface(const SubdivSurface& surface, int level,
+                                const SubdivShading& shading) {
   const SubdivTables tables = buildTables(surface);
   const CoarseMesh coarse = buildCoarseMesh(surface, level);
   GpuSurface g;
@@ -324,7 +123,8 @@ void SubdivRenderer::addSurface(const SubdivSurface& surface, int level, const S
   vertices.reserve(coarse.triangles.size() * 6);
   for (unsigned i : coarse.triangles) {
     const CoarseVertex& c = coarse.vertices[i];
-    vertices.insert(vertices.end(), {c.position.x, c.position.y, c.position.z, c.u, c.v, float(c.face)});
+    vertices.insert(vertices.end(),
+                    {c.position.x, c.position.y, c.position.z, c.u, c.v, float(c.face)});
   }
   g.vertex_count = int(coarse.triangles.size());
   gl_.GenVertexArrays(1, &g.vao);
@@ -334,7 +134,8 @@ void SubdivRenderer::addSurface(const SubdivSurface& surface, int level, const S
   gl_.BindBuffer(GL_ARRAY_BUFFER, g.vbo);
   gl_.BufferData(GL_ARRAY_BUFFER, vertices.size() * sizeof(float), vertices.data(), GL_STATIC_DRAW);
   gl_.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
-  gl_.VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), reinterpret_cast<void*>(3 * sizeof(float)));
+  gl_.VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float),
+                          reinterpret_cast<void*>(3 * sizeof(float)));
   gl_.EnableVertexAttribArray(0);
   gl_.EnableVertexAttribArray(1);
   gl_.BindVertexArray(0);
@@ -345,7 +146,8 @@ void SubdivRenderer::addSurface(const SubdivSurface& surface, int level, const S
   upload(g.ssbo[0], tables.faces.data(), tables.faces.size() * sizeof(SubdivTables::FaceEntry));
   upload(g.ssbo[1], tables.positions.data(), tables.positions.size() * sizeof(glm::vec4));
   upload(g.ssbo[2], tables.tangents.data(), tables.tangents.size() * sizeof(glm::vec4));
-  // Per face and edge c (corner c -> c+1): the face across it and that face's edge, as face * 4 + edge.
+  // Per face and edge c (corner c -> c+1): the face across it and that face's edge, as face * 4 +
+  // edge.
   const ControlMesh& cm = surface.control();
   std::vector<int> neighbours(size_t(cm.mesh.faceCount()) * 4);
   for (int f = 0; f < cm.mesh.faceCount(); ++f)
@@ -387,18 +189,20 @@ void SubdivRenderer::draw(const Camera& cam, const Box3& clip, double near_plane
   // discards the others), so the targets end holding the nearer of the two per pixel.
   if (under && !under->rect.empty()) {
     const Rect& r = under->rect;
-    gl_.CopyImageSubData(under->colour_texture, GL_TEXTURE_2D, 0, r.x, r.y, 0, colour_, GL_TEXTURE_2D, 0, r.x, r.y, 0,
-                         r.w, r.h, 1);
-    gl_.CopyImageSubData(under->surface_texture, GL_TEXTURE_2D, 0, r.x, r.y, 0, surface_, GL_TEXTURE_2D, 0, r.x, r.y,
-                         0, r.w, r.h, 1);
+    gl_.CopyImageSubData(under->colour_texture, GL_TEXTURE_2D, 0, r.x, r.y, 0, colour_,
+                         GL_TEXTURE_2D, 0, r.x, r.y, 0, r.w, r.h, 1);
+    gl_.CopyImageSubData(under->surface_texture, GL_TEXTURE_2D, 0, r.x, r.y, 0, surface_,
+                         GL_TEXTURE_2D, 0, r.x, r.y, 0, r.w, r.h, 1);
   }
   const glm::mat4 vp = cam.viewProjection(near_plane, far_plane);
-  const double th = std::tan(0.5 * cam.fov_deg * std::numbers::pi / 180.0), aspect = double(cam.width) / cam.height;
+  const double th = std::tan(0.5 * cam.fov_deg * std::numbers::pi / 180.0),
+               aspect = double(cam.width) / cam.height;
   gl_.Enable(GL_STENCIL_TEST);
   for (const GpuSurface& g : surfaces_) {
     // A surface none of whose limit points the brick can hold draws nothing here: both passes
     // skipped (each surface's passes are its own, so the others are unchanged).
-    if (glm::any(glm::lessThan(g.hi, clip.lo)) || glm::any(glm::greaterThanEqual(g.lo, clip.hi))) continue;
+    if (glm::any(glm::lessThan(g.hi, clip.lo)) || glm::any(glm::greaterThanEqual(g.lo, clip.hi)))
+      continue;
     // Pass 1 (the paper's first pass): this surface's nearest coarse fragment per pixel, by the
     // coarse mesh's depth, marked in the stencil. Its fragment shader is a copy, so llvmpipe's
     // early depth test and the 4 x 4 blocks it shades whole on small triangles' edges cost
@@ -421,7 +225,8 @@ void SubdivRenderer::draw(const Camera& cam, const Box3& clip, double near_plane
     if (!g.two_sided) gl_.Enable(GL_CULL_FACE);
     gl_.FrontFace(GL_CW);
     gl_.UseProgram(coarse_program_);
-    gl_.UniformMatrix4fv(gl_.GetUniformLocation(coarse_program_, "view_projection"), 1, GL_FALSE, glm::value_ptr(vp));
+    gl_.UniformMatrix4fv(gl_.GetUniformLocation(coarse_program_, "view_projection"), 1, GL_FALSE,
+                         glm::value_ptr(vp));
     gl_.BindVertexArray(g.vao);
     gl_.DrawArrays(GL_TRIANGLES, 0, g.vertex_count);
     gl_.Disable(GL_DEPTH_TEST);
@@ -441,7 +246,9 @@ void SubdivRenderer::draw(const Camera& cam, const Box3& clip, double near_plane
     gl_.TextureBarrier();
     gl_.UseProgram(program_);
     auto loc = [&](const char* name) { return gl_.GetUniformLocation(program_, name); };
-    auto vec3 = [&](const char* name, const glm::dvec3& x) { gl_.Uniform3f(loc(name), float(x.x), float(x.y), float(x.z)); };
+    auto vec3 = [&](const char* name, const glm::dvec3& x) {
+      gl_.Uniform3f(loc(name), float(x.x), float(x.y), float(x.z));
+    };
     vec3("eye", cam.position);
     vec3("ray_forward", cam.forward());
     vec3("ray_right", cam.right() * (th * aspect));
@@ -501,13 +308,14 @@ void SubdivRenderer::read(const Rect& r, ImageRGBA8* pixels, std::vector<float>*
   gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-SubdivFrame SubdivRenderer::render(const Camera& cam, const Box3& clip, double near_plane, double far_plane,
-                                   bool want_parameters) {
+SubdivFrame SubdivRenderer::render(const Camera& cam, const Box3& clip, double near_plane,
+                                   double far_plane, bool want_parameters) {
   write_parameters_ = want_parameters;
   draw(cam, clip, near_plane, far_plane, nullptr);
   write_parameters_ = false;
   SubdivFrame out;
-  read({0, 0, width_, height_}, &out.pixels, &out.surface, want_parameters ? &out.parameters : nullptr);
+  read({0, 0, width_, height_}, &out.pixels, &out.surface,
+       want_parameters ? &out.parameters : nullptr);
   return out;
 }
 

@@ -30,6 +30,7 @@
 #include "common/subdiv/subdiv_tables.h"
 #include "worker/gl/brick_output.h"
 #include "worker/gl/gl_context.h"
+#include "worker/gl/gl_program.h"
 
 namespace sortlast {
 
@@ -91,7 +92,7 @@ class SubdivRenderer {
   int width_, height_;
   unsigned fbo_ = 0, colour_ = 0, surface_ = 0, params_ = 0;
   unsigned coarse_fbo_ = 0, coarse_ = 0, depth_ = 0, screen_vao_ = 0;
-  unsigned program_ = 0, coarse_program_ = 0;
+  GlProgram program_, coarse_program_;
   bool write_parameters_ = false;
   std::vector<GpuSurface> surfaces_;
 };

@@ -1,7 +1,8 @@
 #pragma once
-// The ray caster's blocks (worker/volume/raycast_shaders.h walks them): the volume's cells cut into
-// blocks of B cells per axis on one grid aligned to the volume (block c spans cells [c B, (c+1) B)),
-// the same grid in every decomposition; a brick holds the blocks its cells touch, cut by its faces.
+// The ray caster's blocks (worker/volume/raycast_march.frag.glsl walks them): the volume's cells
+// cut into blocks of B cells per axis on one grid aligned to the volume (block c spans cells [c B,
+// (c+1) B)), the same grid in every decomposition; a brick holds the blocks its cells touch, cut by
+// its faces.
 // Two things are decided per block, on the CPU, whenever the transfer function changes:
 //   - whether it is empty (all its values map to zero opacity), and its step multiple m, together
 //     its class; kept with the chessboard distance d in blocks to the nearest block of another

@@ -6,14 +6,43 @@
 #include <stdexcept>
 #include <string>
 
-#include "worker/volume/adaptive_gpu_brick.h"
-#include "worker/gl/gl_program.h"
+#include "worker/gl/glsl_files.h"  // generated from worker/gl/*.glsl (cmake/embed_shaders.cmake)
 #include "worker/glow/glow_gl.h"
-#include "worker/volume/preintegration_glsl.h"
-#include "worker/volume/raycast_shaders.h"
+#include "worker/glow/glsl_files.h"
+#include "worker/volume/adaptive_gpu_brick.h"
+#include "worker/volume/glsl_files.h"
 #include "worker/volume/volume_shading.h"
 
 namespace sortlast {
+
+namespace {
+// The program's variants: which flags a brick's draw needs (combinations the scene refuses are
+// refused again in render()).
+enum RaycastVariant : unsigned {
+  kAdaptive = 1,       // ADAPTIVE: the brick's adaptive blocks (addAdaptiveBrick)
+  kPreintegrated = 2,  // PREINTEGRATED: transfer.preintegrated
+  kShading = 4,        // SHADING: render.shading
+  kGlow = 8,           // GLOW: glow emitters inside the volume
+};
+
+// The fragment shader of a variant: worker/volume/raycast_march.frag.glsl describes the chunks.
+ProgramSources raycastSources(unsigned v) {
+  const bool glow = v & kGlow, shading = v & kShading, preint = v & kPreintegrated;
+  ShaderSource fragment;
+  fragment.defineIf(v & kAdaptive, "ADAPTIVE")
+      .defineIf(preint, "PREINTEGRATED")
+      .defineIf(shading, "SHADING")
+      .defineIf(glow, "GLOW")
+      .addIf(glow, glsl::glow_segment)
+      .addIf(glow, glsl::glow_emitters)
+      .addIf(shading, glsl::volume_shading)
+      .add(glsl::raycast_sample_frag)
+      .addIf(preint, glsl::preintegrated_segment)
+      .addIf(glow, glsl::raycast_glow_frag)
+      .add(glsl::raycast_march_frag);
+  return {ShaderSource().add(glsl::fullscreen_vert), fragment};
+}
+}  // namespace
 
 RaycastRenderer::RaycastRenderer(const GlContext& ctx, int width, int height, int block_cells,
                                  const RaycastSettings& settings)
@@ -21,8 +50,9 @@ RaycastRenderer::RaycastRenderer(const GlContext& ctx, int width, int height, in
       block_cells_(std::max(1, block_cells)),
       settings_(settings),
       target_(gl_, width, height),
-      table_(gl_) {
-  program_ = linkProgram(gl_, shaders::kRaycastVertex, shaders::kRaycastFragment);
+      table_(gl_),
+      programs_(gl_, raycastSources) {
+  programs_.get(0);  // the plain program now: a driver that cannot build it fails here
   // A core-profile draw needs a vertex array, though the triangle has no attributes.
   gl_.GenVertexArrays(1, &vao_);
   gl_.check("ray caster setup");
@@ -36,29 +66,12 @@ RaycastRenderer::~RaycastRenderer() {
     if (b.adaptive) gl_.DeleteTextures(1, &b.lookup.table);
   }
   gl_.DeleteVertexArrays(1, &vao_);
-  gl_.DeleteProgram(program_);
-  if (adaptive_program_) gl_.DeleteProgram(adaptive_program_);
-  for (unsigned p : variant_programs_)
-    if (p) gl_.DeleteProgram(p);
-  for (unsigned p : glow_programs_)
-    if (p) gl_.DeleteProgram(p);
 }
 
 void RaycastRenderer::setTransferFunction(const TransferFunction& tf, int table_size,
                                           bool preintegrated) {
   table_.set(tf, table_size, preintegrated);
 }
-
-namespace {
-// The fragment shader with `define` set (the #define must follow the #version line).
-std::string variant(const char* define) {
-  std::string src = shaders::kRaycastFragment;
-  const std::string version = "#version 450 core\n";
-  if (src.rfind(version, 0) != 0) throw std::logic_error("ray caster shader: no #version line");
-  src.insert(version.size(), std::string("#define ") + define + " 1\n");
-  return src;
-}
-}  // namespace
 
 namespace {
 // Integer and single-row textures are read with texelFetch only: no filtering, no mipmaps (a
@@ -88,8 +101,7 @@ int RaycastRenderer::addBrick(const Brick& brick, const GridGeometry& grid, cons
 
 int RaycastRenderer::addAdaptiveBrick(const Brick& brick, const GridGeometry& grid,
                                       const AdaptiveBrickBlocks& blocks) {
-  if (!adaptive_program_)
-    adaptive_program_ = linkProgram(gl_, shaders::kRaycastVertex, variant("ADAPTIVE").c_str());
+  programs_.get(kAdaptive);
   AdaptiveGpuBrick a = uploadAdaptiveBrick(gl_, brick, grid, blocks);
   GpuBrick g;
   g.volume = std::move(a.volume);
@@ -163,7 +175,8 @@ void RaycastRenderer::classify(GpuBrick& g, float delta) {
       for (int x = 0; x < b.count.x; ++x) {
         const size_t i = b.index({x, y, z});
         // Pre-integrated segments reach up to delta/2 <= one voxel beyond the block
-        // (worker/volume/raycast_shaders.h): the whole block's range grown by one sample holds their ends.
+        // (worker/volume/raycast_march.frag.glsl): the whole block's range grown by one sample
+        // holds their ends.
         visible[i] = (table_.preintegrated() && b.global ? table_.visible(b.grown_min[i], b.grown_max[i])
                                                          : table_.visible(b.vmin[i], b.vmax[i]))
                          ? 1 : 0;
@@ -243,26 +256,12 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
   if (g.any || glowing) {
     gl_.Enable(GL_BLEND);
     gl_.BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // the ray's colour over the surface's
-    // Adaptive blocks cannot be shaded (raycast_shaders.h shadedSample); the scene refuses it.
+    // Adaptive blocks cannot be shaded (raycast_sample.frag.glsl sampleAt); the scene refuses it.
     if (g.adaptive && shading_.enabled)
       throw std::logic_error("ray caster: gradient shading of an adaptive brick");
-    const int v = (preint ? 1 : 0) + (shading_.enabled ? 2 : 0);
-    if (glowing && !glow_programs_[v]) {
-      std::string src = preint ? shaders::withPreintegration(shaders::kRaycastFragment)
-                               : std::string(shaders::kRaycastFragment);
-      if (shading_.enabled) src = withShading(src.c_str());
-      glow_programs_[v] = linkProgram(gl_, shaders::kRaycastVertex, shaders::withGlow(src).c_str());
-    }
-    if (!g.adaptive && v != 0 && !variant_programs_[v]) {
-      const std::string src = preint ? shaders::withPreintegration(shaders::kRaycastFragment)
-                                     : std::string(shaders::kRaycastFragment);
-      variant_programs_[v] = linkProgram(gl_, shaders::kRaycastVertex,
-                                         shading_.enabled ? withShading(src.c_str()).c_str() : src.c_str());
-    }
-    const unsigned program = glowing      ? glow_programs_[v]
-                             : g.adaptive ? adaptive_program_
-                             : v != 0     ? variant_programs_[v]
-                                          : program_;
+    const unsigned program =
+        programs_.get((g.adaptive ? kAdaptive : 0) | (preint ? kPreintegrated : 0) |
+                      (shading_.enabled ? kShading : 0) | (glowing ? kGlow : 0));
     gl_.UseProgram(program);
     auto u3 = [&](const char* name, const glm::dvec3& v) {
       gl_.Uniform3f(gl_.GetUniformLocation(program, name), float(v.x), float(v.y), float(v.z));

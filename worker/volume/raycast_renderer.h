@@ -1,9 +1,10 @@
 #pragma once
 // GPU ray casting of bricks, in OpenGL 4.5 core: the alternative to 3D-texture slicing
-// (worker/volume/slicing_renderer.h) with the same inputs and outputs. Each pixel's ray is clipped to the
-// brick's box and sampled front to back on a lattice shared by all bricks (worker/volume/raycast_shaders.h
-// has the rules that keep brick faces seam-free), with the slicing renderer's trilinear texture,
-// transfer-function table and opacity correction, so both converge to the same reference.
+// (worker/volume/slicing_renderer.h) with the same inputs and outputs. Each pixel's ray is clipped
+// to the brick's box and sampled front to back on a lattice shared by all bricks
+// (worker/volume/raycast_march.frag.glsl has the rules that keep brick faces seam-free), with the
+// slicing renderer's trilinear texture, transfer-function table and opacity correction, so both
+// converge to the same reference.
 //
 // What ray casting adds: early ray termination (a ray stops once its opacity reaches
 // `ert_threshold`; it can only act inside a brick, as later bricks are drawn apart), empty-space
@@ -18,9 +19,9 @@
 //
 // Adaptive sampling: a brick added with addAdaptiveBrick() is drawn from its adaptive blocks
 // (common/adaptive_brick.h) with a variant of the program: the blocks are the adaptive ones, each
-// read at its own resolution and sampled at it (worker/volume/raycast_shaders.h has the rule; or at
-// every lattice step: RaycastSettings::own_resolution_steps); the renderer's block_cells does not
-// apply to such a brick.
+// read at its own resolution and sampled at it (worker/volume/raycast_march.frag.glsl has the rule;
+// or at every lattice step: RaycastSettings::own_resolution_steps); the renderer's block_cells does
+// not apply to such a brick.
 #include <memory>
 #include <string>
 #include <utility>
@@ -34,6 +35,7 @@
 #include "worker/gl/brick_output.h"
 #include "worker/gl/float_target.h"
 #include "worker/gl/gl_context.h"
+#include "worker/gl/program_cache.h"
 #include "worker/volume/ray_blocks.h"
 #include "worker/volume/step_rule.h"
 #include "worker/volume/transfer_table.h"
@@ -60,7 +62,8 @@ class RaycastRenderer {
   RaycastRenderer(const RaycastRenderer&) = delete;
   RaycastRenderer& operator=(const RaycastRenderer&) = delete;
 
-  // With `preintegrated`, rays composite pre-integrated segments (worker/volume/raycast_shaders.h).
+  // With `preintegrated`, rays composite pre-integrated segments
+  // (worker/volume/raycast_march.frag.glsl).
   void setTransferFunction(const TransferFunction& tf, int table_size, bool preintegrated = false);
   // A new image size for the next frames (the bricks' textures stay).
   void resize(int width, int height) { target_.resize(width, height); }
@@ -85,7 +88,8 @@ class RaycastRenderer {
   // depth range is not needed (rays are not rasterised); it is taken so both volume renderers
   // have one call. Rays end at `surface`, whose colour goes behind what they gathered.
   // With `glow`, the rays also integrate the emitters inside glow->box (the GLOW variant of the
-  // program, raycast_shaders.h), the rectangle covers that box, and the image comes back in float.
+  // program, worker/volume/raycast_glow.frag.glsl), the rectangle covers that box, and the image
+  // comes back in float.
   RenderedBrick render(int handle, const Camera& cam, double spacing, double near_plane,
                        double far_plane, const SurfaceLayer* surface = nullptr,
                        const GlowPass* glow = nullptr);
@@ -133,12 +137,11 @@ class RaycastRenderer {
   ClassKey rule_key_;
   FloatTarget target_;
   TransferTable table_;
-  unsigned program_ = 0, vao_ = 0;
-  unsigned adaptive_program_ = 0;  // linked with the first adaptive brick
-  // Variants linked when first used: pre-integrated (PREINTEGRATED), shaded (render.shading:
-  // worker/volume/volume_shading.h in front) and both; index preintegrated + 2 * shaded, 0 unused.
-  unsigned variant_programs_[4] = {0, 0, 0, 0};
-  unsigned glow_programs_[4] = {0, 0, 0, 0};  // the same with GLOW (index as above)
+  // The program's variants (raycast_renderer.cpp's recipe: kAdaptive, kPreintegrated, kShading,
+  // kGlow): the plain one linked with the renderer, the adaptive one with the first adaptive brick,
+  // the others when first drawn.
+  ProgramCache programs_;
+  unsigned vao_ = 0;
   std::vector<GpuBrick> bricks_;
 };
 

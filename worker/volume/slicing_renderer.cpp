@@ -5,17 +5,39 @@
 #include <string>
 
 #include "compositing/visibility.h"
-#include "worker/gl/gl_program.h"
-#include "worker/volume/preintegration_glsl.h"
+#include "worker/volume/glsl_files.h"  // generated from worker/volume/*.glsl
 #include "worker/volume/slice_geometry.h"
-#include "worker/volume/slicing_shaders.h"
 #include "worker/volume/volume_shading.h"
 
 namespace sortlast {
 
+namespace {
+enum SlicingVariant : unsigned {
+  kPreintegrated = 1,  // PREINTEGRATED: transfer.preintegrated
+  kShading = 2,        // SHADING: render.shading
+};
+
+// A variant's sources: worker/volume/slicing.frag.glsl describes the chunks.
+ProgramSources slicingSources(unsigned v) {
+  const bool preint = v & kPreintegrated, shading = v & kShading;
+  ShaderSource fragment;
+  fragment.defineIf(preint, "PREINTEGRATED")
+      .defineIf(shading, "SHADING")
+      .addIf(shading, glsl::volume_shading)
+      .add(glsl::slicing_inputs_frag)
+      .addIf(preint, glsl::preintegrated_segment)
+      .add(glsl::slicing_frag);
+  return {ShaderSource().add(glsl::slicing_vert), fragment};
+}
+}  // namespace
+
 SlicingRenderer::SlicingRenderer(const GlContext& ctx, int width, int height, int block_cells)
-    : gl_(ctx.gl()), block_cells_(std::max(1, block_cells)), target_(gl_, width, height), table_(gl_) {
-  program_ = linkProgram(gl_, shaders::kSliceVertex, shaders::kSliceFragment);
+    : gl_(ctx.gl()),
+      block_cells_(std::max(1, block_cells)),
+      target_(gl_, width, height),
+      table_(gl_),
+      programs_(gl_, slicingSources) {
+  programs_.get(0);  // the plain program now: a driver that cannot build it fails here
   gl_.GenVertexArrays(1, &vao_);
   gl_.BindVertexArray(vao_);
   gl_.GenBuffers(1, &vbo_);
@@ -29,9 +51,6 @@ SlicingRenderer::~SlicingRenderer() {
   for (auto& b : bricks_) gl_.DeleteTextures(1, &b.texture);
   gl_.DeleteBuffers(1, &vbo_);
   gl_.DeleteVertexArrays(1, &vao_);
-  gl_.DeleteProgram(program_);
-  for (unsigned p : variant_programs_)
-    if (p) gl_.DeleteProgram(p);
 }
 
 void SlicingRenderer::setTransferFunction(const TransferFunction& tf, int table_size,
@@ -79,14 +98,8 @@ RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spac
   if (!tris.empty()) {
     gl_.Enable(GL_BLEND);
     gl_.BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // premultiplied "over", back to front
-    const int v = (preint ? 1 : 0) + (shading_.enabled ? 2 : 0);
-    if (v != 0 && !variant_programs_[v]) {
-      const std::string src = preint ? shaders::withPreintegration(shaders::kSliceFragment)
-                                     : std::string(shaders::kSliceFragment);
-      variant_programs_[v] = linkProgram(gl_, shaders::kSliceVertex,
-                                         shading_.enabled ? withShading(src.c_str()).c_str() : src.c_str());
-    }
-    const unsigned program = v != 0 ? variant_programs_[v] : program_;
+    const unsigned program =
+        programs_.get((preint ? kPreintegrated : 0) | (shading_.enabled ? kShading : 0));
     gl_.UseProgram(program);
     glm::mat4 vp = cam.viewProjection(near_plane, far_plane);
     gl_.UniformMatrix4fv(gl_.GetUniformLocation(program, "u_view_proj"), 1, GL_FALSE, &vp[0][0]);

@@ -18,6 +18,7 @@
 #include "common/transfer_function.h"
 #include "worker/gl/brick_output.h"
 #include "worker/gl/float_target.h"
+#include "worker/gl/program_cache.h"
 #include "worker/gl/gl_context.h"
 #include "worker/volume/transfer_table.h"
 #include "worker/volume/volume_brick.h"
@@ -31,7 +32,7 @@ class SlicingRenderer {
   SlicingRenderer(const SlicingRenderer&) = delete;
   SlicingRenderer& operator=(const SlicingRenderer&) = delete;
 
-  // With `preintegrated`, fragments draw pre-integrated segments (worker/volume/slicing_shaders.h).
+  // With `preintegrated`, fragments draw pre-integrated segments (worker/volume/slicing.frag.glsl).
   void setTransferFunction(const TransferFunction& tf, int table_size, bool preintegrated = false);
   // A new image size for the next frames (the bricks' textures stay).
   void resize(int width, int height) { target_.resize(width, height); }
@@ -54,10 +55,10 @@ class SlicingRenderer {
   FloatTarget target_;
   TransferTable table_;
   Shading shading_;
-  unsigned program_ = 0, vao_ = 0, vbo_ = 0;
-  // Variants linked when first used: pre-integrated (PREINTEGRATED), shaded (render.shading:
-  // worker/volume/volume_shading.h in front) and both; index preintegrated + 2 * shaded, 0 unused.
-  unsigned variant_programs_[4] = {0, 0, 0, 0};
+  // The program's variants (slicing_renderer.cpp's recipe: kPreintegrated, kShading): the plain
+  // one linked with the renderer, the others when first drawn.
+  ProgramCache programs_;
+  unsigned vao_ = 0, vbo_ = 0;
   std::vector<VolumeBrick> bricks_;
 };
 

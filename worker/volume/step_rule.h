@@ -1,9 +1,9 @@
 #pragma once
 // render.adaptive_step: how many lattice steps one sample of a block stands for. A block takes
 // every m-th lattice sample (m = 2^j), each standing for the m steps around it that the block owns
-// (worker/volume/raycast_shaders.h), with its opacity for their length. The error of one such sample is
-// bounded by how much the transfer function varies over the values the segment can see: if every
-// value along the segment and at its sample lies in [vmin, vmax], then
+// (worker/volume/raycast_march.frag.glsl), with its opacity for their length. The error of one such
+// sample is bounded by how much the transfer function varies over the values the segment can see:
+// if every value along the segment and at its sample lies in [vmin, vmax], then
 //   |tau(v(s)) - tau(v_sample)| <= osc(tau) and |c tau(v(s)) - c tau(v_sample)| <= osc(c tau)
 // over [vmin, vmax] (osc = max - min), so the segment's optical depth, and its emission, are off by
 // at most L osc, L = m delta its length. The rule takes the largest m with

@@ -19,7 +19,7 @@ struct VolumeBlock {
   float vmin, vmax;
   // The range of the block grown by one sample on every side (within the stored box, so the
   // ghost layer counts): every value a pre-integrated segment owned by the block reads, as long as
-  // its ends lie within one voxel of the block (worker/volume/raycast_shaders.h).
+  // its ends lie within one voxel of the block (worker/volume/raycast_march.frag.glsl).
   float gmin, gmax;
 };
 

@@ -1,6 +1,7 @@
 #pragma once
-// Gradient shading (common/shading.h) in the GL volume renderers: the GLSL both fragment programs
-// call, and its uniforms for one brick. One definition, so slicing and ray casting shade alike.
+// Gradient shading (common/shading.h) in the GL volume renderers: the uniforms of the GLSL both
+// fragment programs call (worker/volume/volume_shading.glsl, shadeColour) for one brick. One
+// definition, so slicing and ray casting shade alike.
 //
 // A brick's texture holds its samples and one ghost layer where the volume continues, clamped at
 // its edge. That is enough: a sample the brick owns lies in its domain [lo, hi] (per axis, in
@@ -11,8 +12,6 @@
 // index to the grid, so both take the same one-sided difference there. No ghost layer is added:
 // bricks hold what they held. (Differences two voxels out, which would need a second ghost layer,
 // left a seam of up to 25/255 on 182 pixels in tests/mpi/shading.sh bricks: the test sees one.)
-#include <string>
-
 #include "common/shading.h"
 #include "common/transfer_function.h"
 #include "worker/gl/gl_api.h"
@@ -20,16 +19,14 @@
 
 namespace sortlast {
 
-// The shaded variant of a fragment program: `fragment_src` with "#define SHADING 1", the shading
-// uniforms and
+// The shaded variant of a fragment program (SHADING defined) has volume_shading.glsl's
 //   vec3 shadeColour(vec3 c, sampler3D volume, vec3 tex_coord, vec3 dir)
-// inserted after its #version line: c' of common/shading.h for the sample at `tex_coord` of
-// `volume` (a brick texture) seen along `dir` (unit; either sign). The renderers link it as a
-// second program and draw with the plain one while shading is off: with the shading code in the
+// in front of its own chunks: c' of common/shading.h for the sample at `tex_coord` of `volume` (a
+// brick texture) seen along `dir` (unit; either sign). The renderers link it as a variant of
+// their program and draw with the plain one while shading is off: with the shading code in the
 // one program behind a uniform switch, llvmpipe ran the unshaded frames 2-3x slower (engine,
-// 512^2). Throws std::logic_error if the source does not start with "#version 450 core".
-std::string withShading(const char* fragment_src);
-
+// 512^2).
+//
 // Sets the shaded program's uniforms for brick `b`.
 void setShadingUniforms(const GlApi& gl, unsigned program, const Shading& s, const VolumeBrick& b,
                         const TransferFunction& tf);

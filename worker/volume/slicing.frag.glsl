@@ -1,8 +1,9 @@
-#pragma once
-// GLSL for 3D-texture slicing. The fragment shader classifies the interpolated sample through the
-// transfer-function table (r, g, b, tau) and corrects opacity for the actual distance between
-// slices along this pixel's ray, ds = spacing / cos(angle to the view axis), so that slicing and
-// the reference integrator are the same emission-absorption model. With render.shading a variant
+// 3D-texture slicing's fragment shader, last chunk (worker/volume/slicing_renderer.cpp composes
+// [volume_shading] slicing_inputs [preintegrated_segment] slicing, the bracketed ones by variant).
+// It classifies the interpolated sample through the transfer-function table (r, g, b, tau) and
+// corrects opacity for the actual distance between slices along this pixel's ray,
+// ds = spacing / cos(angle to the view axis), so that slicing and the reference integrator are the
+// same emission-absorption model. With render.shading a variant
 // of the program shades the colour first (shadedSample; with pre-integration, the segment's colour
 // with the gradient at its middle).
 //
@@ -10,44 +11,16 @@
 // segment of its pixel's ray from ds/2 before the slice to ds/2 beyond it, the stretch its
 // midpoint sample stands for, and takes that segment's colour and opacity from the 2D table
 // (common/preintegration.h, built for L0 = spacing) between the values at its ends (with the
-// midpoint's value: see segment() in worker/volume/raycast_shaders.h), with the
+// midpoint's value: see segment() in worker/volume/preintegrated_segment.glsl), with the
 // table's length correction for L = ds (exact for the opacity). Both ends are read from this
 // brick's texture: they lie ds/2 from the fragment, within the ghost layer while the perpendicular
 // reach, (spacing / 2) |dir . n| / (dir . forward), stays under one voxel: spacing <= 2 voxels
 // (the scene enforces it) and up to 15 % beyond at a 60-degree field of view's corners, where the
 // texture's clamped edge is read (measured seams at 2 voxels: 2/255 at most). Segments cross brick
-// faces as the ray caster's do (worker/volume/raycast_shaders.h).
-namespace sortlast::shaders {
-
-inline constexpr const char* kSliceVertex = R"(#version 450 core
-layout(location = 0) in vec3 a_world;
-uniform mat4 u_view_proj;
-out vec3 v_world;
-void main() {
-  v_world = a_world;
-  gl_Position = u_view_proj * vec4(a_world, 1.0);
-}
-)";
-
-inline constexpr const char* kSliceFragment = R"(#version 450 core
-in vec3 v_world;
-uniform sampler3D u_volume;
-uniform sampler1D u_table;
-uniform vec3 u_tex_scale;
-uniform vec3 u_tex_offset;
-uniform vec3 u_eye;
-uniform vec3 u_forward;
-uniform float u_spacing;
-uniform vec2 u_value_map;   // normalised value = v * x + y
-uniform vec2 u_table_map;   // table coordinate = normalised * x + y (texel centres at the ends)
-uniform sampler2D u_surface;  // particle surface (t, normal) per pixel, t = 1e30 on a miss
-uniform int u_has_surface;
-uniform ivec4 u_surface_rect; // x, y, w, h where u_surface is valid (stale elsewhere)
-out vec4 frag;
-// (pre-integration: worker/volume/preintegration_glsl.h inserts segment() here)
+// faces as the ray caster's do (worker/volume/raycast_march.frag.glsl).
 
 // (r, g, b, tau) of the sample at world point p, its colour shaded with the field's gradient in the
-// program's shaded variant (SHADING defined; shadeColour: worker/volume/volume_shading.h, linked in
+// program's shaded variant (SHADING defined; shadeColour: worker/volume/volume_shading.glsl, put in
 // front; light at the eye).
 // A sample of zero tau adds nothing whatever its colour: no gradient is read.
 vec4 shadedSample(vec3 p) {
@@ -89,6 +62,3 @@ void main() {
   frag = vec4(e.rgb * a, a);
 #endif
 }
-)";
-
-}  // namespace sortlast::shaders

@@ -1,6 +1,5 @@
-#pragma once
-// GLSL for the metaball grid ray caster (worker/particles/metaball_grid_renderer.h): one fragment pass per
-// brick; appended to kMetaballCommon (worker/particles/metaball_shaders.h) for the ray, the clip interval,
+// The metaball grid ray caster (worker/particles/metaball_grid_renderer.h): one fragment pass per
+// brick; after worker/particles/metaball_common.glsl for the ray, the clip interval,
 // the sample lattice and the refinement probes, so both methods sample the same points.
 //
 // Where the time goes on llvmpipe: walking cell lists. A ray walks the list of each cell it
@@ -45,9 +44,6 @@
 // - Centres as 3 x 16 bits relative to the cell (8 bytes an entry instead of 16): 0.168 against
 //   0.156 on the layers, 0.49 against 0.47 on the dam break (min of 4 and 3 runs): the unpacking
 //   costs what the smaller loads save; depth moves by up to 2.6e-3 h (rms 3e-5 h) off edges.
-namespace sortlast::shaders {
-
-inline constexpr const char* kGridFragment = R"(
 layout(std430, binding = 1) readonly buffer Offsets { uint offsets[]; };
 // The cells' lists as the particles' centres themselves (xyz, w unused): one load per entry.
 layout(std430, binding = 2) readonly buffer Items { vec4 items[]; };
@@ -266,6 +262,3 @@ void main() {
   o_colour = shade(u_colour, grad, d, nrm);
   o_surface = vec4(t, nrm);
 }
-)";
-
-}  // namespace sortlast::shaders

@@ -1,12 +1,8 @@
-#pragma once
-// GLSL of the glow emitters' segment integral: glowSegment() below is common/glow_integral.h's
+// The glow emitters' segment integral: glowSegment() below is common/glow_integral.h's
 // glowSegment<float>, line by line (the derivation and the float bound: docs/glow.md), so the C++
 // float instantiation that tests/unit/glow_test.cpp checks is the arithmetic the shader does, and
-// tests/unit/glow_glsl_test.cpp checks this text itself on the GL driver. A shader that draws glow
-// includes the string before its main().
-namespace sortlast::shaders {
-
-inline constexpr const char* kGlowSegment = R"(
+// tests/unit/glow_glsl_test.cpp checks this text itself on the GL driver. Every program that draws
+// glow (the glow pass, the ray caster's GLOW variant) puts this chunk before its own.
 // z log1p(y) / y, y = speed z >= 0, inv = 1 / speed (0 when speed = 0): below y = 0.5 the series
 // of 2 atanh(w) / y, w = y / (2 + y) (GLSL has no log1p; log(1 + y) would lose everything to the
 // rounding of 1 + y), above log(1 + y) inv. Both forms are computed and one selected: llvmpipe
@@ -91,6 +87,3 @@ float glowSegment(vec3 centre, vec3 dir, float a, float b, float eps, vec3 o, ve
   }
   return sum;
 }
-)";
-
-}  // namespace sortlast::shaders

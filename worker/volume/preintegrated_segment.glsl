@@ -1,14 +1,7 @@
-#pragma once
-// The pre-integrated variant of a GL volume renderer's fragment shader (transfer.preintegrated;
-// common/preintegration.h): PREINTEGRATED defined, and segment(), the one table lookup both the
-// ray caster and slicing use, put where the shader marks it (after its transfer-function
-// uniforms, which segment() reads).
-#include <stdexcept>
-#include <string>
-
-namespace sortlast::shaders {
-
-inline constexpr const char* kPreintegratedSegment = R"(uniform sampler2D u_preint;     // (premultiplied rgb, optical depth) of segments u_preint_length long
+// The pre-integrated transfer function's lookup (transfer.preintegrated; common/preintegration.h),
+// the one both GL volume renderers use: segment(), after their transfer-function uniforms (which
+// it reads), in the PREINTEGRATED variant of their programs.
+uniform sampler2D u_preint;     // (premultiplied rgb, optical depth) of segments u_preint_length long
 uniform vec2 u_preint_map;      // table coordinate = normalised * x + y (texel centres at the ends)
 uniform float u_preint_length;
 
@@ -38,21 +31,3 @@ vec4 segment(float vf, float vm, float vb, float len) {
   float lo = min(min(vf, vb), vm), hi = max(max(vf, vb), vm);
   return segment(clamp(vf + shift, lo, hi), clamp(vb + shift, lo, hi), len);
 }
-)";
-
-inline constexpr const char* kPreintegratedMarker =
-    "// (pre-integration: worker/volume/preintegration_glsl.h inserts segment() here)\n";
-
-// `fragment_src` with PREINTEGRATED defined after its #version line and segment() at its marker.
-inline std::string withPreintegration(const char* fragment_src) {
-  std::string src = fragment_src;
-  const std::string version = "#version 450 core\n", marker = kPreintegratedMarker;
-  const size_t at = src.find(marker);
-  if (src.rfind(version, 0) != 0 || at == std::string::npos)
-    throw std::logic_error("pre-integrated shader: no #version line or no segment() marker");
-  src.replace(at, marker.size(), kPreintegratedSegment);
-  src.insert(version.size(), "#define PREINTEGRATED 1\n");
-  return src;
-}
-
-}  // namespace sortlast::shaders
