@@ -28,8 +28,8 @@
 using namespace sortlast;
 
 int main(int argc, char** argv) {
-  if (argc != 4) {
-    std::fprintf(stderr, "usage: bench_glow EMITTERS SIZE FRAMES\n");
+  if (argc != 4 && argc != 5) {
+    std::fprintf(stderr, "usage: bench_glow EMITTERS SIZE FRAMES [osmesa|egl]\n");
     return 2;
   }
   const int count = std::atoi(argv[1]), size = std::atoi(argv[2]), frames = std::atoi(argv[3]);
@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
   cam.look_at = {0.0, 0.0, 0.0};
   cam.width = cam.height = size;
 
-  auto ctx = createGlContext("osmesa");
+  auto ctx = createGlContext(argc > 4 ? argv[4] : "osmesa");  // egl: scripts/gpu-check
   const GlApi& gl = ctx->gl();
   // The glow pass's chunks (worker/glow/glow_renderer.cpp) with this benchmark's main.
   unsigned program = linkProgram(gl, ShaderSource().add(glsl::fullscreen_vert),

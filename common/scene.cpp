@@ -500,6 +500,10 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
   if (!s.particle_files.empty()) s.particles.file = s.particle_files[size_t(s.time_step)];
   readGlow(r, s);
   s.surfaces = parseSurfaces(r.get("surfaces"), origin.base_dir);
+  if (s.device >= 0 && s.backend != "egl")
+    throw InputError("scene key 'render.device': device " + std::to_string(s.device) +
+                     " names an EGL device, but render.backend is " + s.backend +
+                     " (set render.backend: egl, or render.device: auto)");
   if (!s.hasVolume() && !s.particles.enabled() && !s.glow.enabled() && s.surfaces.empty())
     throw InputError("the scene has nothing to render: volume.procedural is none with no "
                      "volume.file, neither particles.file nor particles.procedural is set, "

@@ -54,6 +54,7 @@ struct Scene {
   glm::dvec3 background{0.0};
   int bricks_per_axis = 2;
   std::string backend = "osmesa";
+  int device = -1;  // render.device: -1 auto, else a hardware EGL device index
   double sample_spacing = 0.5;  // in units of the smallest voxel spacing
   int block_cells = 64;         // empty-space skipping granularity (slicing)
   int ray_block_cells = 8;      // the ray caster's skipping and step blocks

@@ -464,6 +464,14 @@ std::vector<SceneKey> makeTable() {
        "OpenGL backend: `osmesa` (software) or `egl` (surfaceless platform, or the device "
        "platform on an NVIDIA GPU).",
        Names{member<&Scene::backend>, names({"osmesa", "egl"})}},
+      {"render.device", "auto",
+       "EGL on a node with GPUs: which hardware EGL device a rank renders on (Mesa's software "
+       "device is not counted). `auto`: (the rank's index on its node) mod (the node's devices), "
+       "so a node's ranks spread over its GPUs; N: device N. A device that cannot be opened ends "
+       "the job with its number and the rank; with no hardware device, `auto` falls back to the "
+       "surfaceless platform (llvmpipe). Only with `render.backend: egl` (docs/cluster.md).",
+       Int{member<&Scene::device>, {{"integers in [0, 63]", "must be auto or a device number {allowed}, got {value}"}}},
+       AutoValue{}},
       {"render.sample_spacing", "0.5",
        "Distance between slices (ray casting: between samples along each ray), in units of "
        "the smallest voxel spacing (the paper: 1). The default 0.5, with ray casting and "

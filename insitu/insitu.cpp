@@ -372,6 +372,11 @@ ExecuteReport InSitu::execute() {
   double bytes = (I.samples ? I.samples->bytesHeld() : 0.0) + double(I.particles.size()) * sizeof(glm::vec3);
   report.memory_added_mib = bytes / (1024.0 * 1024.0);
   report.texture_mib = I.texture_bytes / (1024.0 * 1024.0);
+  const GlDeviceInfo& gl = I.session->deviceInfo();
+  report.gl_vendor = gl.vendor;
+  report.gl_renderer = gl.renderer;
+  report.host = gl.host;
+  report.device = gl.device;
   return report;
 }
 

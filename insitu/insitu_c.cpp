@@ -3,6 +3,7 @@
 // it into a return code and a message.
 #include "sortlast/insitu_c.h"
 
+#include <cstdio>
 #include <exception>
 #include <new>
 #include <string>
@@ -183,6 +184,13 @@ int sortlast_insitu_last_report(const sortlast_insitu* vis, sortlast_insitu_repo
   report->images = static_cast<int>(vis->last.images.size());
   report->seconds = vis->last.seconds;
   report->memory_added_mib = vis->last.memory_added_mib;
+  auto copy = [](char* to, size_t n, const std::string& from) {
+    std::snprintf(to, n, "%s", from.c_str());
+  };
+  copy(report->gl_vendor, sizeof report->gl_vendor, vis->last.gl_vendor);
+  copy(report->gl_renderer, sizeof report->gl_renderer, vis->last.gl_renderer);
+  copy(report->host, sizeof report->host, vis->last.host);
+  report->device = vis->last.device;
   return 0;
 }
 

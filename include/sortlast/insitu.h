@@ -81,6 +81,10 @@ struct ExecuteReport {
   // shell fetched from neighbours, the conversion chunk, particle copies (not the GL textures).
   double memory_added_mib = 0;
   double texture_mib = 0;             // this rank's brick texture (R32F; host memory on llvmpipe)
+  // Where this rank renders (render.device, docs/cluster.md): GL_VENDOR, GL_RENDERER, the
+  // hardware EGL device (-1: software) and the host.
+  std::string gl_vendor, gl_renderer, host;
+  int device = -1;
 };
 
 class InSitu {

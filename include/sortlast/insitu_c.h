@@ -109,6 +109,12 @@ typedef struct sortlast_insitu_report {
   int images;              /* files written (on the first rank of the communicator) */
   double seconds;          /* wall time of the execute */
   double memory_added_mib; /* host memory sortlast holds beyond the simulation's (this rank) */
+  /* Where this rank renders (truncated to fit, NUL-terminated): GL_VENDOR, GL_RENDERER, host, and
+   * the hardware EGL device (-1: software rendering). Filled after the first execute. */
+  char gl_vendor[64];
+  char gl_renderer[128];
+  char host[64];
+  int device;
 } sortlast_insitu_report;
 
 /* Fills *report with what the last execute did (all zero before the first). */

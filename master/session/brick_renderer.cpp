@@ -43,8 +43,9 @@ MetaballSettings metaballSettings(const ParticleDesc& desc) {
   return s;
 }
 
-BrickRenderer::BrickRenderer(const std::string& backend, int width, int height)
-    : ctx_(createGlContext(backend)), width_(width), height_(height) {}
+BrickRenderer::BrickRenderer(const std::string& backend, int width, int height,
+                             const DeviceRequest& device)
+    : ctx_(createGlContext(backend, device)), width_(width), height_(height) {}
 
 void BrickRenderer::enableVolume(const TransferFunction& tf, int table_size, int block_cells,
                                  const VolumeMethod& method, bool preintegrated) {

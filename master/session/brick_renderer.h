@@ -52,8 +52,9 @@ struct BrickFrame {
 
 class BrickRenderer {
  public:
-  BrickRenderer(const std::string& backend, int width, int height);
+  BrickRenderer(const std::string& backend, int width, int height, const DeviceRequest& device = {});
   std::string description() const { return ctx_->description(); }
+  const GlDeviceInfo& deviceInfo() const { return ctx_->info(); }
 
   void enableVolume(const TransferFunction& tf, int table_size, int block_cells,
                     const VolumeMethod& method = {}, bool preintegrated = false);

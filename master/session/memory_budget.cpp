@@ -62,8 +62,32 @@ double MemoryNeed::total() const {
   return t;
 }
 
-void MemoryNeed::add(std::string what, double bytes) {
-  if (bytes > 0) parts.push_back({std::move(what), bytes});
+void MemoryNeed::add(std::string what, double bytes, double gpu_bytes) {
+  if (bytes > 0) parts.push_back({std::move(what), bytes, gpu_bytes});
+}
+
+MemoryNeed MemoryNeed::onGpu() const {
+  MemoryNeed n;
+  for (const MemoryPart& p : parts)
+    if (p.gpu_bytes > 0) n.parts.push_back({p.what, p.gpu_bytes, p.gpu_bytes});
+  return n;
+}
+
+MemoryBudget gpuMemoryBudget(const GlDeviceInfo& gpu, int sharing) {
+  MemoryBudget b;
+  if (!(gpu.gpu_free_mib >= 0)) {
+    b.bytes = INFINITY;
+    b.source = "unknown (the driver reports no GPU memory)";
+    return b;
+  }
+  sharing = std::max(sharing, 1);
+  b.bytes = kMemorySafety * gpu.gpu_free_mib * kMiB / sharing;
+  std::ostringstream s;
+  s << mib(b.bytes) << " of GPU memory (90% of the " << mib(gpu.gpu_free_mib * kMiB) << " free on "
+    << gpu.renderer << ", EGL device " << gpu.device << " of host " << gpu.host << ", by "
+    << gpu.gpu_memory_source << ", shared by " << sharing << " rank(s) on that GPU)";
+  b.source = s.str();
+  return b;
 }
 
 MemoryBudget memoryBudget(const Scene& scene, MPI_Comm comm) {
@@ -122,11 +146,12 @@ MemoryNeed imageNeed(const Scene& scene, int width, int height, int rank, int br
   // Per brick frame: the float target (RGBA32F), its read-back, the RGBA8 pixels and their RLE
   // code (at most the pixels' size).
   n.add("image targets (" + std::to_string(width) + " x " + std::to_string(height) + ")",
-        px * (16 + 16 + 4 + 4));
+        px * (16 + 16 + 4 + 4), px * 16);
   if (scene.particles.enabled())  // metaball state, hit, potential, colour and surface images
-    n.add("metaball image targets", px * (scene.particles.method == "grid" ? 16 : 6 * 16 + 4));
+    n.add("metaball image targets", px * (scene.particles.method == "grid" ? 16 : 6 * 16 + 4),
+          px * (scene.particles.method == "grid" ? 16 : 6 * 16 + 4));
   // Glow scenes: the glow pass's own RGBA32F target and its float read-back.
-  if (scene.glow.enabled()) n.add("glow image targets", px * (16 + 16));
+  if (scene.glow.enabled()) n.add("glow image targets", px * (16 + 16), px * 16);
   // Compositing: the brick images this rank holds, a float frame, and on rank 0 the brick images
   // received and the final frame in RGBA8 and float. A brick image covers only its brick's screen
   // rectangle, and a ray crosses at most about 2 d of the d^3 bricks, so the images held sum to
@@ -157,7 +182,7 @@ MemoryNeed sessionNeed(const Scene& scene, const SessionLayout& layout, long lon
                   "bricks' samples with ghosts (%d brick(s), %.3g samples, float)",
                   int(layout.mine.size()), samples);
     n.add(what, 4.0 * samples);
-    n.add("the bricks' 3D textures (R32F)", 4.0 * samples);
+    n.add("the bricks' 3D textures (R32F)", 4.0 * samples, 4.0 * samples);
     if (!scene.volume.isProcedural())
       n.add("one brick's file data while it is read", 8.0 * largest);
     step_host += 4.0 * samples;
@@ -175,7 +200,7 @@ MemoryNeed sessionNeed(const Scene& scene, const SessionLayout& layout, long lon
                            double(particles) * double(layout.mine.size()) / bricks_all * grow);
     n.add(
         "this rank's particles with ghosts (" + std::to_string((long long)held) + ", host and GPU)",
-        2.0 * held * kParticle);
+        2.0 * held * kParticle, held * kParticle);
     if (rank == 0) n.add("the particle set on rank 0", double(particles) * kParticle);
     if (scene.particles.method == "grid") {
       // Cells of edge h/2 (the influence radius) over a brick grown by the reach, at most 2^24;
@@ -186,9 +211,10 @@ MemoryNeed sessionNeed(const Scene& scene, const SessionLayout& layout, long lon
       for (size_t i = 0; i < layout.mine.size(); ++i)
         cells += std::min(std::pow((side + 2 * h) / cell, 3.0), double(1 << 24));
       n.add("metaball grids (host and GPU)",
-            held * ballCellsTouched(h, cell) * kGridEntryBytes + cells * kGridCellBytes);
+            held * ballCellsTouched(h, cell) * kGridEntryBytes + cells * kGridCellBytes,
+            held * ballCellsTouched(h, cell) * 16.0 + cells * 4.0);
       if (anisotropic)
-        n.add("anisotropic kernels (host and GPU)", held * kAnisotropicBytes);
+        n.add("anisotropic kernels (host and GPU)", held * kAnisotropicBytes, held * 3.0 * 16.0);
     }
     if (scene.particles.method == "slices") {
       // A particle's ball (radius h) meets on average (e^3 + 6 e^2 h + 3 pi e h^2 + 4/3 pi h^3) / e^3
@@ -202,7 +228,8 @@ MemoryNeed sessionNeed(const Scene& scene, const SessionLayout& layout, long lon
       for (size_t i = 0; i < layout.mine.size(); ++i) voxels += std::pow((side + 2 * margin) / e + 1, 3.0);
       const double slots = std::min(voxels, entries);
       n.add("metaball slices: samples (GPU), voxel slots and lists (host and GPU)",
-            4.0 * kSliceSlotPoints * slots + 8.0 * voxels + 36.0 * entries);
+            4.0 * kSliceSlotPoints * slots + 8.0 * voxels + 36.0 * entries,
+            4.0 * kSliceSlotPoints * slots + 4.0 * voxels + 16.0 * entries);
     }
     step_host += held * kParticle;
   }

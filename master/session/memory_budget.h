@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "common/scene.h"
+#include "worker/gl/gl_context.h"
 #include "master/session/session_layout.h"
 
 namespace sortlast {
@@ -18,12 +19,18 @@ namespace sortlast {
 struct MemoryPart {
   std::string what;
   double bytes = 0;
+  // Of `bytes`, what a GPU holds in its own memory (textures, render targets, storage buffers).
+  // `bytes` counts them too: on llvmpipe they are host memory, and on a GPU the driver may keep
+  // host copies, so the host check stays an upper bound either way.
+  double gpu_bytes = 0;
 };
 
 struct MemoryNeed {
   std::vector<MemoryPart> parts;
   double total() const;
-  void add(std::string what, double bytes);
+  void add(std::string what, double bytes, double gpu_bytes = 0);
+  // The parts a GPU holds, with their GPU bytes (for checkMemory against a GPU budget).
+  MemoryNeed onGpu() const;
 };
 
 // What one rank may use, and where the figure comes from (for the message).
@@ -49,6 +56,12 @@ MemoryNeed imageNeed(const Scene& scene, int width, int height, int rank, int br
 // Everything a rank of a session holds for the scene.
 MemoryNeed sessionNeed(const Scene& scene, const SessionLayout& layout, long long particles,
                        int rank, bool resident);
+
+// What a rank may put in its GPU's memory: 90% of what the driver reports free when the context
+// is made (GL_NVX_gpu_memory_info, GL_ATI_meminfo), shared by `sharing` ranks of this node on the
+// same device; infinite (no check) when the driver reports nothing (llvmpipe, most non-NVIDIA).
+// The source names the GPU, its device number and host.
+MemoryBudget gpuMemoryBudget(const GlDeviceInfo& gpu, int sharing);
 
 // Throws InputError naming the need, its largest parts and the budget, if need > budget.
 void checkMemory(const MemoryNeed& need, const MemoryBudget& budget, int rank,

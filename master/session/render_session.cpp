@@ -20,6 +20,7 @@
 #include "master/session/brick_renderer.h"
 #include "master/session/collective.h"
 #include "master/session/frame_stats.h"
+#include "master/session/device_report.h"
 #include "master/session/memory_budget.h"
 #include "master/session/particle_loading.h"
 #include "master/session/session_layout.h"
@@ -177,6 +178,8 @@ struct RenderSession::State {
   ImageF glow_frame;
   int frames_rendered = 0;
   MemoryBudget budget;            // what this rank may use (memory_budget.h)
+  MemoryBudget gpu_budget;        // what it may put in its GPU's memory (infinite: not reported)
+  std::vector<GlDeviceInfo> devices;  // rank 0: every rank's GL identity (device_report.h)
   long long particles_total = 0;  // of the first step, for the memory estimates of requests
   // In situ: the step's bricks come from the caller.
   bool external = false;
@@ -191,6 +194,8 @@ struct RenderSession::State {
     return visibilityOrder(layout.assignment, layout.planes, eye);
   }
   Scene resolve(const FrameRequest& request) const;
+  // After the renderer is made on every rank: the GPU budget and every rank's identity on rank 0.
+  void meetDevices();
   void bringGpuTo(const Scene& scene);
   void uploadBricks(const Scene& scene, StepData& d);
 };
@@ -210,6 +215,7 @@ RenderSession::RenderSession(SessionOptions options, MPI_Comm comm) : s_(std::ma
   });
   const Scene& scene = S.base;
   S.budget = memoryBudget(scene, comm);
+  const DeviceRequest device{scene.device, nodeLocalRank(comm), S.rank};
   // Rank 0 reads the whole particle set first: bounded before it is read.
   collectively(comm, [&] {
     if (S.rank == 0) checkMemory(particleSetNeed(scene), S.budget, 0, "the scene's particle set");
@@ -240,7 +246,12 @@ RenderSession::RenderSession(SessionOptions options, MPI_Comm comm) : s_(std::ma
     for (size_t i = 0; i < cams.size(); ++i)
       checkCameraOutside(cams[i], S.layout.bounds,
                          cams.size() > 1 ? " of orbit frame " + std::to_string(i) : "");
-    S.renderer = std::make_unique<BrickRenderer>(scene.backend, scene.camera.width, scene.camera.height);
+    S.renderer = std::make_unique<BrickRenderer>(scene.backend, scene.camera.width, scene.camera.height, device);
+  });
+  S.meetDevices();
+  collectively(comm, [&] {
+    checkMemory(sessionNeed(scene, S.layout, S.particles_total, S.rank, S.opts.resident).onGpu(),
+                S.gpu_budget, S.rank, "the scene's GPU textures and render targets");
   });
   // A batch session never changes step: its cache holds the one step, and only until upload.
   S.cache = std::make_unique<StepCache>(S.opts.resident ? scene.time_cache_mib : 0.0);
@@ -266,6 +277,7 @@ std::unique_ptr<RenderSession> RenderSession::external(SessionOptions options, M
   S->external = true;
   MPI_Comm_rank(comm, &S->rank);
   MPI_Comm_size(comm, &S->size);
+  const int local_rank = nodeLocalRank(comm);
   collectively(comm, [&] {
     S->base = parseScene(S->opts.scene, S->opts.overrides);
     // The simulation's layout frames and bricks its own data only: a surface outside it would be
@@ -274,8 +286,10 @@ std::unique_ptr<RenderSession> RenderSession::external(SessionOptions options, M
       throw InputError("scene key 'surfaces': subdivision surfaces are not drawn in situ (the "
                        "simulation's bricks need not hold them); use `sortlast render` or `serve`");
     checkGlowScene(S->base, true);
-    S->renderer = std::make_unique<BrickRenderer>(S->base.backend, S->base.camera.width, S->base.camera.height);
+    S->renderer = std::make_unique<BrickRenderer>(S->base.backend, S->base.camera.width, S->base.camera.height,
+                                                  DeviceRequest{S->base.device, local_rank, S->rank});
   });
+  S->meetDevices();
   S->budget = memoryBudget(S->base, comm);  // requests' image sizes are checked against it
   S->cache = std::make_unique<StepCache>(0.0);
   return std::unique_ptr<RenderSession>(new RenderSession(std::move(S)));
@@ -293,6 +307,13 @@ RenderSession::~RenderSession() = default;
 const Scene& RenderSession::baseScene() const { return s_->base; }
 MPI_Comm RenderSession::comm() const { return s_->comm; }
 std::string RenderSession::rendererDescription() const { return s_->renderer->description(); }
+const GlDeviceInfo& RenderSession::deviceInfo() const { return s_->renderer->deviceInfo(); }
+
+void RenderSession::State::meetDevices() {
+  const GlDeviceInfo& mine = renderer->deviceInfo();
+  gpu_budget = gpuMemoryBudget(mine, ranksSharingDevice(mine, comm));
+  devices = gatherDeviceInfo(mine, comm);
+}
 long long RenderSession::particleCount() const { return s_->current ? s_->current->root.total : 0; }
 int RenderSession::currentStep() const {
   if (s_->ext) return s_->ext->step;
@@ -359,6 +380,10 @@ Scene RenderSession::State::resolve(const FrameRequest& request) const {
                                    int(layout.mine.size()), d * d * d)
                        : sessionNeed(sc, layout, particles_total, rank, opts.resident),
               budget, rank, "the request");
+  const MemoryNeed gpu_need = external ? imageNeed(sc, sc.camera.width, sc.camera.height, rank,
+                                                   int(layout.mine.size()), d * d * d).onGpu()
+                                       : sessionNeed(sc, layout, particles_total, rank, opts.resident).onGpu();
+  checkMemory(gpu_need, gpu_budget, rank, "the request's GPU textures and render targets");
   return sc;
 }
 
@@ -580,6 +605,7 @@ nlohmann::json RenderSession::describe(const std::vector<std::string>& base) con
   j["ranks"] = S.size;
   j["bricks_per_axis"] = b.bricks_per_axis;
   j["renderer"] = S.renderer->description();
+  j["ranks_gl"] = deviceJson(S.devices);  // each rank's GL_VENDOR, GL_RENDERER, device, host
   j["data_range"] = nullptr;
   j["histogram"] = nullptr;
   if (S.ext) {
@@ -625,6 +651,7 @@ nlohmann::json RenderSession::describe(const std::vector<std::string>& base) con
 nlohmann::json RenderSession::jobStats() const {
   const State& S = *s_;
   nlohmann::json top = nlohmann::json::object();
+  top["ranks_gl"] = deviceJson(S.devices);  // each rank's GL_VENDOR, GL_RENDERER, device, host
   if (S.adaptive && S.current) {
     // Once per step, before its first frame (not in any frame's total_s); slowest rank.
     const AdaptiveRankData& a = S.current->adaptive;

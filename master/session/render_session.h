@@ -28,6 +28,7 @@
 #include "common/surface_image.h"
 #include "compositing/visibility.h"
 #include "master/session/session_layout.h"
+#include "worker/gl/gl_context.h"
 
 namespace sortlast {
 
@@ -106,6 +107,7 @@ class RenderSession {
   long long particleCount() const;        // of the current step
   int currentStep() const;                // the step on the GPU
   std::string rendererDescription() const;
+  const GlDeviceInfo& deviceInfo() const;  // this rank's GL identity (device_report.h)
   // Rank 0: what a client needs to know (bounds, camera, data range, histogram, steps, the base
   // settings, the keys a request may set, limits).
   // `base`: keys applied first, as every request of this client will have them (the in-situ live

@@ -3,6 +3,7 @@
 // parts and the budget.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
 #include <random>
 #include <string>
@@ -104,6 +105,51 @@ TEST(MemoryBudget, RefusesWhatCannotFitNamingTheParts) {
   SessionLayout sl = makeLayout(small, noBox(), 0, 1);
   EXPECT_NO_THROW(checkMemory(sessionNeed(small, sl, 0, 0, false),
                               MemoryBudget{1024.0 * 1024 * 1024, "1 GiB"}, 0, "x"));
+}
+
+// A GPU's memory (issue 27): the textures and render targets, against 90% of what the driver
+// reports free, shared by the node's ranks on that GPU; the refusal names the GPU. Without a
+// report (llvmpipe), no GPU bound.
+TEST(MemoryBudget, CountsTexturesAndTargetsAgainstTheGpuNamingIt) {
+  Scene s = loadScene("", {"volume.procedural=sphere", "volume.dims=[2000,2000,2000]"});
+  SessionLayout layout = makeLayout(s, noBox(), 0, 2);
+  MemoryNeed gpu = sessionNeed(s, layout, 0, 0, false).onGpu();
+  const double samples = 0.5 * 2001.0 * 2001.0 * 2001.0;
+  // The R32F textures (4 bytes a sample) and the float target; not the host's samples.
+  EXPECT_GT(gpu.total(), 4.0 * samples * 0.99);
+  EXPECT_LT(gpu.total(), 4.0 * samples * 1.01);
+  GlDeviceInfo info;
+  info.renderer = "NVIDIA H200/PCIe/SSE2";
+  info.device = 1;
+  info.host = "node7";
+  info.gpu_free_mib = 20000;
+  info.gpu_memory_source = "GL_NVX_gpu_memory_info";
+  MemoryBudget two = gpuMemoryBudget(info, 2);
+  EXPECT_DOUBLE_EQ(two.bytes, 0.9 * 20000 * 1024.0 * 1024.0 / 2);
+  std::string msg = inputErrorOf([&] { checkMemory(gpu, two, 0, "the scene's GPU textures and render targets"); });
+  EXPECT_TRUE(has(msg, "GPU textures") && has(msg, "NVIDIA H200") && has(msg, "EGL device 1 of host node7") &&
+              has(msg, "shared by 2 rank(s)") && has(msg, "3D textures"))
+      << msg;
+  // A small scene fits; an unknown GPU memory bounds nothing.
+  Scene small = loadScene("", {});
+  SessionLayout sl = makeLayout(small, noBox(), 0, 1);
+  EXPECT_NO_THROW(checkMemory(sessionNeed(small, sl, 0, 0, false).onGpu(), two, 0, "x"));
+  EXPECT_TRUE(std::isinf(gpuMemoryBudget(GlDeviceInfo{}, 1).bytes));
+}
+
+// render.device auto: the node's ranks in turn over its hardware devices; none: surfaceless.
+TEST(RenderDevice, AutoSpreadsANodesRanksOverItsDevices) {
+  EXPECT_EQ(autoDevice(0, 4), 0);
+  EXPECT_EQ(autoDevice(3, 4), 3);
+  EXPECT_EQ(autoDevice(5, 4), 1);
+  EXPECT_EQ(autoDevice(2, 1), 0);
+  EXPECT_EQ(autoDevice(0, 0), -1);
+  EXPECT_EQ(loadScene("", {}).device, -1);
+  EXPECT_EQ(loadScene("", {"render.backend=egl", "render.device=3"}).device, 3);
+  std::string msg = inputErrorOf([] { loadScene("", {"render.device=1"}); });
+  EXPECT_TRUE(has(msg, "render.device") && has(msg, "render.backend is osmesa")) << msg;
+  msg = inputErrorOf([] { loadScene("", {"render.backend=egl", "render.device=-1"}); });
+  EXPECT_TRUE(has(msg, "render.device")) << msg;
 }
 
 double partBytes(const MemoryNeed& need, const std::string& prefix) {

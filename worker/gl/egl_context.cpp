@@ -1,9 +1,13 @@
 // EGL backend. On a machine with a GPU, EGL's device platform (EGL_EXT_platform_device) gives a
 // context on the GPU with no window system; elsewhere Mesa's surfaceless platform gives llvmpipe.
 // Mesa also lists a software "device": it is skipped so that surfaceless is used instead.
+// Which hardware device: render.device (DeviceRequest), `auto` spreading a node's ranks over its GPUs.
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 
+#include <unistd.h>
+
+#include <cstdio>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -28,33 +32,51 @@ F eglProc(const char* name) {
 
 class EglContext final : public GlContext {
  public:
-  EglContext() {
+  explicit EglContext(const DeviceRequest& request) {
     const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
     auto get_display = eglProc<PFNEGLGETPLATFORMDISPLAYEXTPROC>("eglGetPlatformDisplayEXT");
     if (!get_display) throw std::runtime_error("EGL: eglGetPlatformDisplayEXT is missing");
-    std::string note;
+    // The hardware devices, in EGL's order (Mesa's software device left out).
+    std::vector<EGLDeviceEXT> hardware;
     if (hasExtension(client, "EGL_EXT_platform_device")) {
       auto query_devices = eglProc<PFNEGLQUERYDEVICESEXTPROC>("eglQueryDevicesEXT");
       auto query_device_string = eglProc<PFNEGLQUERYDEVICESTRINGEXTPROC>("eglQueryDeviceStringEXT");
       EGLint n = 0;
-      EGLDeviceEXT devices[16];
-      if (query_devices && query_device_string && query_devices(16, devices, &n)) {
-        for (EGLint i = 0; i < n && display_ == EGL_NO_DISPLAY; ++i) {
-          const char* ext = query_device_string(devices[i], EGL_EXTENSIONS);
-          if (hasExtension(ext, "EGL_MESA_device_software")) continue;
-          EGLDisplay d = get_display(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
-          if (d != EGL_NO_DISPLAY && eglInitialize(d, nullptr, nullptr)) {
-            display_ = d;
-            note = "egl device " + std::to_string(i);
-          }
-        }
-      }
+      EGLDeviceEXT devices[64];
+      if (query_devices && query_device_string && query_devices(64, devices, &n))
+        for (EGLint i = 0; i < n; ++i)
+          if (!hasExtension(query_device_string(devices[i], EGL_EXTENSIONS), "EGL_MESA_device_software"))
+            hardware.push_back(devices[i]);
+    }
+    info_.devices = int(hardware.size());
+    const int want = request.device == DeviceRequest::kAuto
+                         ? autoDevice(request.local_rank, info_.devices)
+                         : request.device;
+    if (want >= 0) {
+      // A device asked for (or auto's pick) that is missing or does not open ends the job: falling
+      // back to another device, or to llvmpipe, would silently put two ranks on one GPU or run a
+      // hundred times slower.
+      const std::string which = "render.device " + std::to_string(want) +
+                                (request.device == DeviceRequest::kAuto ? " (auto: node-local rank " + std::to_string(request.local_rank) + ")" : std::string()) +
+                                " on rank " + std::to_string(request.rank) + " (host " + host() + ")";
+      if (want >= info_.devices)
+        throw std::runtime_error(which + ": this node has " + std::to_string(info_.devices) +
+                                 " hardware EGL device(s)" +
+                                 (info_.devices > 0 ? " (0 to " + std::to_string(info_.devices - 1) + ")" : std::string()));
+      EGLDisplay d = get_display(EGL_PLATFORM_DEVICE_EXT, hardware[size_t(want)], nullptr);
+      if (d == EGL_NO_DISPLAY || !eglInitialize(d, nullptr, nullptr))
+        throw std::runtime_error(which + ": EGL device " + std::to_string(want) + " of " +
+                                 std::to_string(info_.devices) + " cannot be opened (EGL error 0x" +
+                                 hex(eglGetError()) + ")");
+      display_ = d;
+      info_.backend = "egl device";
+      info_.device = want;
     }
     if (display_ == EGL_NO_DISPLAY && hasExtension(client, "EGL_MESA_platform_surfaceless")) {
       EGLDisplay d = get_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
       if (d != EGL_NO_DISPLAY && eglInitialize(d, nullptr, nullptr)) {
         display_ = d;
-        note = "egl surfaceless";
+        info_.backend = "egl surfaceless";
       }
     }
     if (display_ == EGL_NO_DISPLAY)
@@ -77,7 +99,7 @@ class EglContext final : public GlContext {
       throw std::runtime_error("EGL: cannot make a surfaceless context current (error 0x" +
                                hex(eglGetError()) + ")");
     gl_.load([](const char* name) { return reinterpret_cast<void*>(eglGetProcAddress(name)); });
-    finishSetup(note);
+    finishSetup();
   }
   ~EglContext() override {
     if (display_ != EGL_NO_DISPLAY) {
@@ -88,6 +110,10 @@ class EglContext final : public GlContext {
   }
 
  private:
+  static std::string host() {
+    char b[256] = {};
+    return gethostname(b, sizeof b - 1) == 0 ? std::string(b) : std::string("?");
+  }
   static std::string hex(EGLint e) {
     char b[16];
     std::snprintf(b, sizeof b, "%x", unsigned(e));
@@ -99,6 +125,8 @@ class EglContext final : public GlContext {
 
 }  // namespace
 
-std::unique_ptr<GlContext> createEglContext() { return std::make_unique<EglContext>(); }
+std::unique_ptr<GlContext> createEglContext(const DeviceRequest& request) {
+  return std::make_unique<EglContext>(request);
+}
 
 }  // namespace sortlast

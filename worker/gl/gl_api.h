@@ -21,6 +21,7 @@ using PfnDrawArrays = void(APIENTRYP)(GLenum, GLint, GLsizei);
 #define SORTLAST_GL_FUNCTIONS(X)                                \
   X(GetError, PFNGLGETERRORPROC)                                \
   X(GetString, PFNGLGETSTRINGPROC)                              \
+  X(GetStringi, PFNGLGETSTRINGIPROC)                            \
   X(GetIntegerv, PFNGLGETINTEGERVPROC)                          \
   X(Viewport, PFNGLVIEWPORTPROC)                                \
   X(Scissor, PFNGLSCISSORPROC)                                  \
