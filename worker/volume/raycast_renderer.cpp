@@ -23,6 +23,7 @@ enum RaycastVariant : unsigned {
   kPreintegrated = 2,  // PREINTEGRATED: transfer.preintegrated
   kShading = 4,        // SHADING: render.shading
   kGlow = 8,           // GLOW: glow emitters inside the volume
+  kFloatTaps = 16,     // FLOAT_TAPS: shading's gradient taps in float (floatGradientTaps)
 };
 
 // The fragment shader of a variant: worker/volume/raycast_march.frag.glsl describes the chunks.
@@ -32,6 +33,7 @@ ProgramSources raycastSources(unsigned v) {
   fragment.defineIf(v & kAdaptive, "ADAPTIVE")
       .defineIf(preint, "PREINTEGRATED")
       .defineIf(shading, "SHADING")
+      .defineIf(shading && (v & kFloatTaps), "FLOAT_TAPS")
       .defineIf(glow, "GLOW")
       .addIf(glow, glsl::glow_segment)
       .addIf(glow, glsl::glow_emitters)
@@ -47,6 +49,7 @@ ProgramSources raycastSources(unsigned v) {
 RaycastRenderer::RaycastRenderer(const GlContext& ctx, int width, int height, int block_cells,
                                  const RaycastSettings& settings)
     : gl_(ctx.gl()),
+      float_taps_(floatGradientTaps(ctx.info())),
       block_cells_(std::max(1, block_cells)),
       settings_(settings),
       target_(gl_, width, height),
@@ -261,7 +264,8 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
       throw std::logic_error("ray caster: gradient shading of an adaptive brick");
     const unsigned program =
         programs_.get((g.adaptive ? kAdaptive : 0) | (preint ? kPreintegrated : 0) |
-                      (shading_.enabled ? kShading : 0) | (glowing ? kGlow : 0));
+                      (shading_.enabled ? kShading | (float_taps_ ? kFloatTaps : 0) : 0) |
+                      (glowing ? kGlow : 0));
     gl_.UseProgram(program);
     auto u3 = [&](const char* name, const glm::dvec3& v) {
       gl_.Uniform3f(gl_.GetUniformLocation(program, name), float(v.x), float(v.y), float(v.z));

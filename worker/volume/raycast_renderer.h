@@ -126,6 +126,7 @@ class RaycastRenderer {
   void classify(GpuBrick& g, float delta);
 
   const GlApi& gl_;
+  bool float_taps_;  // volume_shading.h: floatGradientTaps
   int block_cells_;
   RaycastSettings settings_;
   Shading shading_;

@@ -15,6 +15,7 @@ namespace {
 enum SlicingVariant : unsigned {
   kPreintegrated = 1,  // PREINTEGRATED: transfer.preintegrated
   kShading = 2,        // SHADING: render.shading
+  kFloatTaps = 4,      // FLOAT_TAPS: shading's gradient taps in float (floatGradientTaps)
 };
 
 // A variant's sources: worker/volume/slicing.frag.glsl describes the chunks.
@@ -23,6 +24,7 @@ ProgramSources slicingSources(unsigned v) {
   ShaderSource fragment;
   fragment.defineIf(preint, "PREINTEGRATED")
       .defineIf(shading, "SHADING")
+      .defineIf(shading && (v & kFloatTaps), "FLOAT_TAPS")
       .addIf(shading, glsl::volume_shading)
       .add(glsl::slicing_inputs_frag)
       .addIf(preint, glsl::preintegrated_segment)
@@ -33,6 +35,7 @@ ProgramSources slicingSources(unsigned v) {
 
 SlicingRenderer::SlicingRenderer(const GlContext& ctx, int width, int height, int block_cells)
     : gl_(ctx.gl()),
+      float_taps_(floatGradientTaps(ctx.info())),
       block_cells_(std::max(1, block_cells)),
       target_(gl_, width, height),
       table_(gl_),
@@ -99,7 +102,8 @@ RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spac
     gl_.Enable(GL_BLEND);
     gl_.BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // premultiplied "over", back to front
     const unsigned program =
-        programs_.get((preint ? kPreintegrated : 0) | (shading_.enabled ? kShading : 0));
+        programs_.get((preint ? kPreintegrated : 0) |
+                      (shading_.enabled ? kShading | (float_taps_ ? kFloatTaps : 0) : 0));
     gl_.UseProgram(program);
     glm::mat4 vp = cam.viewProjection(near_plane, far_plane);
     gl_.UniformMatrix4fv(gl_.GetUniformLocation(program, "u_view_proj"), 1, GL_FALSE, &vp[0][0]);

@@ -1,5 +1,8 @@
 #include "worker/volume/volume_shading.h"
 
+#include <cstdlib>
+#include <string>
+
 namespace sortlast {
 
 void setShadingUniforms(const GlApi& gl, unsigned program, const Shading& s, const VolumeBrick& b,
@@ -12,6 +15,11 @@ void setShadingUniforms(const GlApi& gl, unsigned program, const Shading& s, con
   const glm::dvec3 scale = 0.5 / b.spacing;
   gl.Uniform3f(at("u_gradient_scale"), float(scale.x), float(scale.y), float(scale.z));
   gl.Uniform1f(at("u_flat_gradient"), float(flatGradient(tf.rangeLo(), tf.rangeHi(), b.spacing)));
+}
+
+bool floatGradientTaps(const GlDeviceInfo& device) {
+  if (const char* force = std::getenv("SORTLAST_FLOAT_TAPS")) return std::string(force) == "1";
+  return device.device >= 0;
 }
 
 }  // namespace sortlast

@@ -15,6 +15,7 @@
 #include "common/shading.h"
 #include "common/transfer_function.h"
 #include "worker/gl/gl_api.h"
+#include "worker/gl/gl_context.h"
 #include "worker/volume/volume_brick.h"
 
 namespace sortlast {
@@ -30,5 +31,13 @@ namespace sortlast {
 // Sets the shaded program's uniforms for brick `b`.
 void setShadingUniforms(const GlApi& gl, unsigned program, const Shading& s, const VolumeBrick& b,
                         const TransferFunction& tf);
+
+// Whether the shaded program takes its gradient taps by interpolating the 8 texels in float
+// (FLOAT_TAPS in volume_shading.glsl) rather than from the texture unit: on a hardware device
+// (EGL's device platform), whose fixed-point filtering weights make the gradient noisy, and not
+// on llvmpipe, which filters in float already and would only run slower. The environment
+// variable SORTLAST_FLOAT_TAPS=1 or 0 forces it either way (tests/mpi/shading.sh checks the float
+// taps on llvmpipe against its own filtering).
+bool floatGradientTaps(const GlDeviceInfo& device);
 
 }  // namespace sortlast
