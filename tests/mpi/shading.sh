@@ -15,8 +15,8 @@
 #   onoff      shading changes the image (a lot: measured 21.9 dB and 147/255 from unshaded on
 #              neghip); with ka = 1, kd = ks = 0 (the identity model) it gives the unshaded image
 #              bit for bit, so turning it on changes nothing but the colours it shades; shading
-#              with adaptive sampling is refused, naming both keys; the float gradient taps of
-#              hardware GPUs (SORTLAST_FLOAT_TAPS=1) give llvmpipe's image within 1/255
+#              with adaptive sampling is refused, naming both keys; the float filter of
+#              hardware GPUs (SORTLAST_FLOAT_FILTER=1) gives llvmpipe's image within 1/255
 # Bounds are ~1.5 dB under the values measured on llvmpipe, given at each check.
 source "$(dirname "$0")/lib.sh" "$1"
 DATA=$2
@@ -108,11 +108,11 @@ onoff)
     p=$(psnr_of "$WORK/off.png" "$WORK/on.png")
     at_least 30 "$p" "$method: shaded and unshaded images agree to $p dB: shading hardly acts"
     echo "$method: shaded vs unshaded $p dB; the identity model is bit-identical"
-    # The gradient taps GPUs take in float (FLOAT_TAPS, worker/volume/volume_shading.h): on
+    # The float filter of hardware GPUs (FLOAT_FILTER, worker/volume/volume_filter.glsl): on
     # llvmpipe, which filters in float itself, the same image (measured: bit-identical).
-    SORTLAST_FLOAT_TAPS=1 render 2 "$DATA/neghip.yaml" "$WORK/float_taps.png" "${m[@]}" --set render.shading=true
-    "$S" compare "$WORK/on.png" "$WORK/float_taps.png" --max-diff 1 \
-      || fail "$method: the float gradient taps differ from llvmpipe's filtering"
+    SORTLAST_FLOAT_FILTER=1 render 2 "$DATA/neghip.yaml" "$WORK/float_filter.png" "${m[@]}" --set render.shading=true
+    "$S" compare "$WORK/on.png" "$WORK/float_filter.png" --max-diff 1 \
+      || fail "$method: the float filter differs from llvmpipe's filtering"
   done
   # Refused with adaptive sampling, on every rank, naming both keys.
   if out=$(run_np 2 render "$DATA/neghip.yaml" -q -o "$WORK/x.png" --set render.method=raycast \

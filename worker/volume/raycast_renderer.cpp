@@ -23,7 +23,7 @@ enum RaycastVariant : unsigned {
   kPreintegrated = 2,  // PREINTEGRATED: transfer.preintegrated
   kShading = 4,        // SHADING: render.shading
   kGlow = 8,           // GLOW: glow emitters inside the volume
-  kFloatTaps = 16,     // FLOAT_TAPS: shading's gradient taps in float (floatGradientTaps)
+  kFloatFilter = 16,    // FLOAT_FILTER: the volume filtered in float (volume_shading.h floatFilter)
 };
 
 // The fragment shader of a variant: worker/volume/raycast_march.frag.glsl describes the chunks.
@@ -33,10 +33,11 @@ ProgramSources raycastSources(unsigned v) {
   fragment.defineIf(v & kAdaptive, "ADAPTIVE")
       .defineIf(preint, "PREINTEGRATED")
       .defineIf(shading, "SHADING")
-      .defineIf(shading && (v & kFloatTaps), "FLOAT_TAPS")
+      .defineIf(v & kFloatFilter, "FLOAT_FILTER")
       .defineIf(glow, "GLOW")
       .addIf(glow, glsl::glow_segment)
       .addIf(glow, glsl::glow_emitters)
+      .add(glsl::volume_filter)
       .addIf(shading, glsl::volume_shading)
       .add(glsl::raycast_sample_frag)
       .addIf(preint, glsl::preintegrated_segment)
@@ -49,13 +50,13 @@ ProgramSources raycastSources(unsigned v) {
 RaycastRenderer::RaycastRenderer(const GlContext& ctx, int width, int height, int block_cells,
                                  const RaycastSettings& settings)
     : gl_(ctx.gl()),
-      float_taps_(floatGradientTaps(ctx.info())),
+      float_filter_(floatFilter(ctx.info())),
       block_cells_(std::max(1, block_cells)),
       settings_(settings),
       target_(gl_, width, height),
       table_(gl_),
       programs_(gl_, raycastSources) {
-  programs_.get(0);  // the plain program now: a driver that cannot build it fails here
+  programs_.get(float_filter_ ? kFloatFilter : 0);  // the plain program now: a driver that cannot build it fails here
   // A core-profile draw needs a vertex array, though the triangle has no attributes.
   gl_.GenVertexArrays(1, &vao_);
   gl_.check("ray caster setup");
@@ -264,7 +265,7 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
       throw std::logic_error("ray caster: gradient shading of an adaptive brick");
     const unsigned program =
         programs_.get((g.adaptive ? kAdaptive : 0) | (preint ? kPreintegrated : 0) |
-                      (shading_.enabled ? kShading | (float_taps_ ? kFloatTaps : 0) : 0) |
+                      (shading_.enabled ? kShading : 0) | (float_filter_ ? kFloatFilter : 0) |
                       (glowing ? kGlow : 0));
     gl_.UseProgram(program);
     auto u3 = [&](const char* name, const glm::dvec3& v) {

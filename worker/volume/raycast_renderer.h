@@ -126,7 +126,7 @@ class RaycastRenderer {
   void classify(GpuBrick& g, float delta);
 
   const GlApi& gl_;
-  bool float_taps_;  // volume_shading.h: floatGradientTaps
+  bool float_filter_;  // volume_shading.h: floatFilter
   int block_cells_;
   RaycastSettings settings_;
   Shading shading_;

@@ -62,7 +62,7 @@ int blockStep(ivec3 idx, uint g) {
 #else
 // The volume's value at world point p. The one place that reads the volume: a multi-resolution
 // lookup would replace this function alone.
-float sampleVolume(vec3 p) { return texture(u_volume, p * u_tex_scale + u_tex_offset).r; }
+float sampleVolume(vec3 p) { return volumeAt(u_volume, p * u_tex_scale + u_tex_offset); }
 // The step multiple of non-empty block idx of class g (1 + log2 m; worker/volume/step_rule.h).
 int blockStep(ivec3 idx, uint g) { return 1 << int(g - 1u); }
 #endif

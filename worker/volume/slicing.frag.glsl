@@ -25,7 +25,7 @@
 // A sample of zero tau adds nothing whatever its colour: no gradient is read.
 vec4 shadedSample(vec3 p) {
   vec3 tc = p * u_tex_scale + u_tex_offset;
-  float v = texture(u_volume, tc).r;
+  float v = volumeAt(u_volume, tc);
   float x = clamp(v * u_value_map.x + u_value_map.y, 0.0, 1.0);
   vec4 e = texture(u_table, x * u_table_map.x + u_table_map.y);
 #ifdef SHADING
@@ -45,9 +45,9 @@ void main() {
   vec3 d = v_world - u_eye;
   float ds = u_spacing * length(d) / dot(d, u_forward);
   vec3 half_step = (0.5 * ds / length(d)) * d;
-  float vf = texture(u_volume, (v_world - half_step) * u_tex_scale + u_tex_offset).r;
-  float vm = texture(u_volume, v_world * u_tex_scale + u_tex_offset).r;
-  float vb = texture(u_volume, (v_world + half_step) * u_tex_scale + u_tex_offset).r;
+  float vf = volumeAt(u_volume, (v_world - half_step) * u_tex_scale + u_tex_offset);
+  float vm = volumeAt(u_volume, v_world * u_tex_scale + u_tex_offset);
+  float vb = volumeAt(u_volume, (v_world + half_step) * u_tex_scale + u_tex_offset);
   vec4 e = segment(vf, vm, vb, ds);
 #ifdef SHADING
   if (e.a > 0.0)

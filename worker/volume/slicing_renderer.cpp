@@ -15,7 +15,7 @@ namespace {
 enum SlicingVariant : unsigned {
   kPreintegrated = 1,  // PREINTEGRATED: transfer.preintegrated
   kShading = 2,        // SHADING: render.shading
-  kFloatTaps = 4,      // FLOAT_TAPS: shading's gradient taps in float (floatGradientTaps)
+  kFloatFilter = 4,     // FLOAT_FILTER: the volume filtered in float (volume_shading.h floatFilter)
 };
 
 // A variant's sources: worker/volume/slicing.frag.glsl describes the chunks.
@@ -24,7 +24,8 @@ ProgramSources slicingSources(unsigned v) {
   ShaderSource fragment;
   fragment.defineIf(preint, "PREINTEGRATED")
       .defineIf(shading, "SHADING")
-      .defineIf(shading && (v & kFloatTaps), "FLOAT_TAPS")
+      .defineIf(v & kFloatFilter, "FLOAT_FILTER")
+      .add(glsl::volume_filter)
       .addIf(shading, glsl::volume_shading)
       .add(glsl::slicing_inputs_frag)
       .addIf(preint, glsl::preintegrated_segment)
@@ -35,12 +36,12 @@ ProgramSources slicingSources(unsigned v) {
 
 SlicingRenderer::SlicingRenderer(const GlContext& ctx, int width, int height, int block_cells)
     : gl_(ctx.gl()),
-      float_taps_(floatGradientTaps(ctx.info())),
+      float_filter_(floatFilter(ctx.info())),
       block_cells_(std::max(1, block_cells)),
       target_(gl_, width, height),
       table_(gl_),
       programs_(gl_, slicingSources) {
-  programs_.get(0);  // the plain program now: a driver that cannot build it fails here
+  programs_.get(float_filter_ ? kFloatFilter : 0);  // the plain program now: a driver that cannot build it fails here
   gl_.GenVertexArrays(1, &vao_);
   gl_.BindVertexArray(vao_);
   gl_.GenBuffers(1, &vbo_);
@@ -103,7 +104,7 @@ RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spac
     gl_.BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // premultiplied "over", back to front
     const unsigned program =
         programs_.get((preint ? kPreintegrated : 0) |
-                      (shading_.enabled ? kShading | (float_taps_ ? kFloatTaps : 0) : 0));
+                      (shading_.enabled ? kShading : 0) | (float_filter_ ? kFloatFilter : 0));
     gl_.UseProgram(program);
     glm::mat4 vp = cam.viewProjection(near_plane, far_plane);
     gl_.UniformMatrix4fv(gl_.GetUniformLocation(program, "u_view_proj"), 1, GL_FALSE, &vp[0][0]);

@@ -51,7 +51,7 @@ class SlicingRenderer {
 
  private:
   const GlApi& gl_;
-  bool float_taps_;  // volume_shading.h: floatGradientTaps
+  bool float_filter_;  // volume_shading.h: floatFilter
   int block_cells_;
   FloatTarget target_;
   TransferTable table_;

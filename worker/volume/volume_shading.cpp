@@ -17,8 +17,8 @@ void setShadingUniforms(const GlApi& gl, unsigned program, const Shading& s, con
   gl.Uniform1f(at("u_flat_gradient"), float(flatGradient(tf.rangeLo(), tf.rangeHi(), b.spacing)));
 }
 
-bool floatGradientTaps(const GlDeviceInfo& device) {
-  if (const char* force = std::getenv("SORTLAST_FLOAT_TAPS")) return std::string(force) == "1";
+bool floatFilter(const GlDeviceInfo& device) {
+  if (const char* force = std::getenv("SORTLAST_FLOAT_FILTER")) return std::string(force) == "1";
   return device.device >= 0;
 }
 

@@ -32,12 +32,13 @@ namespace sortlast {
 void setShadingUniforms(const GlApi& gl, unsigned program, const Shading& s, const VolumeBrick& b,
                         const TransferFunction& tf);
 
-// Whether the shaded program takes its gradient taps by interpolating the 8 texels in float
-// (FLOAT_TAPS in volume_shading.glsl) rather than from the texture unit: on a hardware device
-// (EGL's device platform), whose fixed-point filtering weights make the gradient noisy, and not
-// on llvmpipe, which filters in float already and would only run slower. The environment
-// variable SORTLAST_FLOAT_TAPS=1 or 0 forces it either way (tests/mpi/shading.sh checks the float
-// taps on llvmpipe against its own filtering).
-bool floatGradientTaps(const GlDeviceInfo& device);
+// Whether the volume programs filter the brick texture in float (FLOAT_FILTER in
+// volume_filter.glsl: 8 texel fetches a value) rather than by the texture unit: on a hardware
+// device (EGL's device platform), whose fixed-point filtering weights a sharp transfer function
+// or the gradient magnifies, and not on llvmpipe, which filters in float already and would only
+// run slower. SORTLAST_FLOAT_FILTER=1 or 0 forces it either way (tests/mpi/shading.sh checks the
+// float filter on llvmpipe against llvmpipe's own; scripts/gpu-check measures both on a GPU).
+// Adaptive bricks (their atlas) keep the texture unit's filter.
+bool floatFilter(const GlDeviceInfo& device);
 
 }  // namespace sortlast
