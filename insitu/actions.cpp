@@ -110,7 +110,7 @@ void checkFrameKey(const YAML::Node& at, const std::string& key, const Where& w)
     w.fail(
         at, "scene." + key,
         "fixed by the simulation's data and decomposition (volume.*, bricks.*, the particles' "
-        "data keys, render.backend, adaptive.* cannot be set in situ); a render may set camera.*, "
+        "data keys, render.backend (the top-level backend: sets it), adaptive.* cannot be set in situ); a render may set camera.*, "
         "image.*, transfer.*, compositing.*, render.method, render.sample_spacing, "
         "render.ert_threshold, render.shading* and the particles' shading keys "
         "(docs/insitu_actions.md)");
@@ -285,9 +285,25 @@ Actions parseActions(const std::string& yaml_text, const std::string& source_nam
     throw InputError(source_name + ": not valid YAML: " + e.what());
   }
   if (!root.IsMap()) w.fail(root, "", "expected a map with renders: (and on_error, serve)");
-  checkKeys(root, {"on_error", "serve", "serve_token", "renders"}, "", w);
+  checkKeys(root, {"on_error", "serve", "serve_token", "backend", "device", "renders"}, "", w);
 
   Actions a;
+  // A simulation on GPU nodes renders on them: the backend and device of the whole session (not a
+  // render's: every render shares the session's GL context).
+  if (root["backend"]) {
+    const std::string b = stringOf(root["backend"], "backend", w);
+    if (b != "osmesa" && b != "egl") w.fail(root["backend"], "backend", "expected osmesa or egl, got '" + b + "'");
+    a.session_overrides.push_back("render.backend=" + b);
+  }
+  if (root["device"]) {
+    const std::string d = stringOf(root["device"], "device", w);
+    a.session_overrides.push_back("render.device=" + d);
+    try {
+      parseScene(SceneText{}, a.session_overrides);
+    } catch (const InputError& e) {
+      w.fail(root["device"], "device", e.what());
+    }
+  }
   if (root["on_error"]) {
     std::string mode = stringOf(root["on_error"], "on_error", w);
     if (mode != "report" && mode != "abort")

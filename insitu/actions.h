@@ -36,6 +36,9 @@ struct Actions {
   bool abort_on_error = false;  // on_error: abort
   std::string serve;            // live view address (host:port), empty: none
   std::string serve_token;
+  // The session's GL backend and device (scene keys render.backend, render.device; docs/cluster.md):
+  // the only session-wide scene keys an actions file sets, as "key=value" overrides.
+  std::vector<std::string> session_overrides;
   std::vector<RenderAction> renders;
 };
 

@@ -303,6 +303,7 @@ std::unique_ptr<InSitu::Impl> InSitu::open(MPI_Comm user_comm, const std::string
     });
     SessionOptions so;
     so.quiet = true;
+    so.overrides = impl->actions.session_overrides;
     impl->session = RenderSession::external(so, impl->comm);
     if (!impl->actions.serve.empty())
       collectively(impl->comm, [&] {

@@ -164,6 +164,13 @@ struct BadCase {
 // One render around a fragment of its map (the fragment indented like `name:`).
 std::string oneRender(const std::string& fragment) { return "renders:\n  - name: v\n" + fragment; }
 
+// A simulation on GPU nodes: the session's backend and device (docs/cluster.md).
+TEST(InsituActions, BackendAndDeviceAreTheSessions) {
+  Actions a = parseActions("backend: egl\ndevice: auto\n" + oneRender("    output: v_{step}.png\n"), "a.yaml");
+  EXPECT_EQ(a.session_overrides, (std::vector<std::string>{"render.backend=egl", "render.device=auto"}));
+  EXPECT_TRUE(parseActions(oneRender("    output: v_{step}.png\n"), "a.yaml").session_overrides.empty());
+}
+
 TEST(InsituActions, BadActionsNameTheKeyAndTheFile) {
   const std::vector<BadCase> cases = {
       {"invalid YAML", "renders: [", {"bad.yaml", "not valid YAML"}},
@@ -176,6 +183,12 @@ TEST(InsituActions, BadActionsNameTheKeyAndTheFile) {
       {"bad on_error",
        "on_error: ignore\n" + oneRender("    output: v_{step}.png\n"),
        {"key 'on_error'", "ignore"}},
+      {"bad backend",
+       "backend: vulkan\n" + oneRender("    output: v_{step}.png\n"),
+       {"key 'backend'", "vulkan"}},
+      {"a device without the EGL backend",
+       "device: 1\n" + oneRender("    output: v_{step}.png\n"),
+       {"key 'device'", "render.backend is osmesa"}},
       {"unknown render key",
        oneRender("    outptu: v_{step}.png\n"),
        {"bad.yaml:3:", "render 'v'", "key 'outptu'"}},
