@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # What a user gets: an orbit writes a numbered series with progress lines; --stats writes one JSON
-# object per frame with per-rank timings and byte counts; --quiet is quiet; EXR output works.
+# object per frame with per-rank timings and byte counts, and each rank's GL identity (ranks_gl); --quiet is quiet; EXR output works.
 # Usage: outputs.sh SORTLAST DATA_DIR
 source "$(dirname "$0")/lib.sh" "$1"
 small=(--set image.width=96 --set image.height=64 --set "volume.dims=[48,48,48]")
@@ -21,6 +21,13 @@ for f in s["frames"]:
     assert abs(f["rle_ratio"] - f["bytes_rle"] / f["bytes_raw"]) < 1e-9
     assert f["total_s"] > 0 and f["composite_s"] >= 0
     assert sum(f["bricks_rendered"]) + sum(f["bricks_skipped"]) == 8
+# Where each rank rendered (issue 27): every rank's GL identity, gathered on rank 0, in rank order.
+import socket
+g = s["ranks_gl"]
+assert [r["rank"] for r in g] == [0, 1], g
+for r in g:
+    assert r["backend"] == "osmesa" and r["device"] == -1 and r["renderer"] and r["vendor"], r
+    assert r["host"] == socket.gethostname(), (r["host"], socket.gethostname())
 print("stats ok:", len(s["frames"]), "frames")
 PY
 # The orbit's frames differ from each other (the camera moves).
