@@ -203,10 +203,16 @@ std::vector<SceneKey> makeTable() {
   const Check kDensity{"in [0, 1e9]", "must be {allowed}, got {value}"};
   return {
       {"volume.file", "\"\"",
-       "Data file. Empty: a procedural volume (`volume.procedural`). `.vti`/`.vtk`: a VTK image "
-       "file (dims and spacing come from the file). Anything else: raw samples, x fastest, no "
+       "Data file. Empty: a procedural volume (`volume.procedural`). `.vti`: a VTK XML image, each "
+       "rank reading its bricks' extent; `.vtk`: a legacy VTK image, read whole by rank 0 and "
+       "scattered; `.nrrd`/`.nhdr`: NRRD (raw or gzip encoding, read per brick; docs/data.md). "
+       "For these the file gives dims, spacing and type. Anything else: raw samples, x fastest, no "
        "header unless `volume.header_bytes`. Relative paths are relative to the scene file.",
        Text{member<&Scene::volume, &VolumeDesc::file>, true}},
+      {"volume.format", "auto",
+       "How `volume.file` is read: `raw`, `vtk` (.vti or legacy .vtk), `nrrd`, or `auto`: by its "
+       "extension (`.vti`/`.vtk` vtk, `.nrrd`/`.nhdr` nrrd, anything else raw).",
+       Names{member<&Scene::volume, &VolumeDesc::format>, names({"auto", "raw", "vtk", "nrrd"})}},
       {"volume.procedural", "blobs",
        "Procedural field when there is no file: `blobs` (shells, blobs and a torus), "
        "`marschner_lobb` (the Marschner-Lobb test signal), `sphere` (1 - r), or `none`: no "
@@ -225,7 +231,8 @@ std::vector<SceneKey> makeTable() {
                           {{"uint8", SampleType::kUint8},
                            {"uint16", SampleType::kUint16},
                            {"int16", SampleType::kInt16},
-                           {"float32", SampleType::kFloat32}},
+                           {"float32", SampleType::kFloat32},
+                           {"float64", SampleType::kFloat64}},
                           "{key}: unknown type '{text}' (known: {list})"}},
       {"volume.spacing", "[1, 1, 1]", "Distance between samples along x, y, z (world units).",
        Vector<glm::dvec3>{member<&Scene::volume, &VolumeDesc::grid, &GridGeometry::spacing>,

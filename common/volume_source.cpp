@@ -1,5 +1,9 @@
 #include "common/volume_source.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+#include <zlib.h>
+
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -7,6 +11,7 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "common/nrrd_header.h"
 
 namespace sortlast {
 
@@ -16,13 +21,23 @@ int sampleTypeBytes(SampleType t) {
     case SampleType::kUint16:
     case SampleType::kInt16: return 2;
     case SampleType::kFloat32: return 4;
+    case SampleType::kFloat64: return 8;
   }
   return 1;
 }
 
+VolumeFormat VolumeDesc::formatOf() const {
+  const std::string ext = std::filesystem::path(file).extension().string();
+  if (format == "raw") return VolumeFormat::kRaw;
+  if (format == "nrrd" || (format == "auto" && (ext == ".nrrd" || ext == ".nhdr"))) return VolumeFormat::kNrrd;
+  if (format == "vtk" || (format == "auto" && (ext == ".vti" || ext == ".vtk")))
+    return ext == ".vtk" ? VolumeFormat::kLegacyVtk : VolumeFormat::kVti;
+  return VolumeFormat::kRaw;
+}
+
 bool VolumeDesc::isVtk() const {
-  auto ext = std::filesystem::path(file).extension().string();
-  return ext == ".vti" || ext == ".vtk";
+  const VolumeFormat f = formatOf();
+  return f == VolumeFormat::kVti || f == VolumeFormat::kLegacyVtk;
 }
 
 namespace {
@@ -38,7 +53,7 @@ void checkFinite(float v, const glm::ivec3& ijk, const std::string& file) {
 }
 
 float decode(const unsigned char* p, SampleType t, bool big_endian) {
-  unsigned char b[4];
+  unsigned char b[8];
   int n = sampleTypeBytes(t);
   for (int i = 0; i < n; ++i) b[i] = big_endian ? p[n - 1 - i] : p[i];
   switch (t) {
@@ -46,13 +61,19 @@ float decode(const unsigned char* p, SampleType t, bool big_endian) {
     case SampleType::kUint16: { uint16_t v; std::memcpy(&v, b, 2); return v; }
     case SampleType::kInt16: { int16_t v; std::memcpy(&v, b, 2); return v; }
     case SampleType::kFloat32: { float v; std::memcpy(&v, b, 4); return v; }
+    case SampleType::kFloat64: { double v; std::memcpy(&v, b, 8); return float(v); }
   }
   return 0.0f;
 }
 
+bool isFloat(SampleType t) { return t == SampleType::kFloat32 || t == SampleType::kFloat64; }
+
+// The file the samples are in: a NRRD header's data file, else volume.file.
+const std::string& dataPath(const VolumeDesc& d) { return d.data_file.empty() ? d.file : d.data_file; }
+
 std::vector<float> readRawBox(const VolumeDesc& d, const IndexBox& box) {
-  std::ifstream in(d.file, std::ios::binary);
-  if (!in) throw InputError("volume.file " + d.file + ": cannot open");
+  std::ifstream in(dataPath(d), std::ios::binary);
+  if (!in) throw InputError("volume.file " + d.file + ": cannot open " + dataPath(d));
   const glm::ivec3 n = d.grid.dims, s = box.size();
   const int bytes = sampleTypeBytes(d.type);
   std::vector<float> out(size_t(box.count()));
@@ -67,11 +88,95 @@ std::vector<float> readRawBox(const VolumeDesc& d, const IndexBox& box) {
                                 std::to_string(y) + " z=" + std::to_string(z) + " (truncated?)");
       for (int x = 0; x < s.x; ++x) {
         float v = decode(&row[size_t(x) * bytes], d.type, d.big_endian);
-        if (d.type == SampleType::kFloat32) checkFinite(v, {box.lo.x + x, y, z}, d.file);
+        if (isFloat(d.type)) checkFinite(v, {box.lo.x + x, y, z}, d.file);
         out[o++] = v;
       }
     }
   return out;
+}
+
+// NRRD gzip: one stream from the start of the compressed data, skipping (decompressing and
+// dropping) what lies before each row of the box: a box costs the decompression of the file up
+// to its last row, so a rank's bricks each decompress the front of the file again.
+std::vector<float> readGzipBox(const VolumeDesc& d, const IndexBox& box) {
+  const std::string& path = dataPath(d);
+  const int fd = ::open(path.c_str(), O_RDONLY);
+  if (fd < 0) throw InputError("volume.file " + d.file + ": cannot open " + path);
+  if (::lseek(fd, off_t(d.header_bytes), SEEK_SET) < 0) {
+    ::close(fd);
+    throw InputError("volume.file " + d.file + ": cannot seek to the gzip data");
+  }
+  gzFile gz = gzdopen(fd, "rb");
+  if (!gz) {
+    ::close(fd);
+    throw InputError("volume.file " + d.file + ": cannot read the gzip data");
+  }
+  struct Closer { gzFile g; ~Closer() { gzclose(g); } } closer{gz};
+  gzbuffer(gz, 1 << 18);
+  const glm::ivec3 n = d.grid.dims, s = box.size();
+  const int bytes = sampleTypeBytes(d.type);
+  std::vector<float> out(size_t(box.count()));
+  std::vector<unsigned char> row(size_t(s.x) * bytes);
+  size_t o = 0;
+  for (int z = box.lo.z; z <= box.hi.z; ++z)
+    for (int y = box.lo.y; y <= box.hi.y; ++y) {
+      const long long first = (box.lo.x + 1LL * n.x * (y + 1LL * n.y * z)) * bytes;
+      if (gzseek(gz, z_off_t(d.gzip_skip + first), SEEK_SET) < 0 ||
+          gzread(gz, row.data(), unsigned(row.size())) != int(row.size())) {
+        int err = 0;
+        const char* msg = gzerror(gz, &err);
+        throw InputError("volume.file " + d.file + ": gzip data ends or is corrupt before row y=" +
+                         std::to_string(y) + " z=" + std::to_string(z) +
+                         (err != Z_OK && err != Z_STREAM_END && msg ? std::string(" (") + msg + ")" : std::string(" (truncated?)")));
+      }
+      for (int x = 0; x < s.x; ++x) {
+        float v = decode(&row[size_t(x) * bytes], d.type, d.big_endian);
+        if (isFloat(d.type)) checkFinite(v, {box.lo.x + x, y, z}, d.file);
+        out[o++] = v;
+      }
+    }
+  return out;
+}
+
+// Bytes from the start of `path` past `lines` text lines (a NRRD line skip).
+long long skipLines(const std::string& path, long long start, int lines, const std::string& file) {
+  std::ifstream in(path, std::ios::binary);
+  in.seekg(start);
+  std::string line;
+  long long at = start;
+  for (int i = 0; i < lines; ++i) {
+    if (!std::getline(in, line)) throw InputError("volume.file " + file + ": NRRD 'line skip' " + std::to_string(lines) + " runs past the end of " + path);
+    at += (long long)line.size() + 1;
+  }
+  return at;
+}
+
+// A NRRD header's layout into the description: dims, spacing, type, where the samples are.
+void describeNrrd(VolumeDesc& d) {
+  const NrrdHeader h = readNrrdHeader(d.file);
+  d.grid.dims = h.sizes;
+  d.grid.spacing = h.spacing;
+  d.type = h.type;
+  d.big_endian = h.big_endian;
+  d.gzip = h.gzip;
+  d.data_file = h.data_file.empty() ? d.file : (std::filesystem::path(d.file).parent_path() / h.data_file).string();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(d.data_file, ec))
+    throw InputError("volume.file " + d.file + ": NRRD field 'data file': no such file " + d.data_file);
+  const long long start = skipLines(d.data_file, h.data_file.empty() ? h.header_bytes : 0, h.line_skip, d.file);
+  const long long size = (long long)std::filesystem::file_size(d.data_file, ec);
+  const long long need = d.grid.sampleCount() * sampleTypeBytes(d.type);
+  if (h.gzip) {
+    d.header_bytes = start;
+    d.gzip_skip = h.byte_skip;
+    return;  // the stream's length is known only by reading it: a short one fails at its row
+  }
+  d.header_bytes = h.byte_skip == -1 ? size - need : start + h.byte_skip;
+  if (d.header_bytes < 0 || size - d.header_bytes < need)
+    throw InputError("volume.file " + d.file + ": NRRD data in " + d.data_file + " has " +
+                     std::to_string(std::max(0LL, size - std::max(0LL, d.header_bytes))) + " bytes after the header and skips, but sizes " +
+                     dimsText(d.grid.dims) + " of " + std::to_string(sampleTypeBytes(d.type)) +
+                     "-byte samples need " + std::to_string(need) + " (truncated?)");
 }
 
 std::vector<float> proceduralBox(const VolumeDesc& d, const IndexBox& box) {
@@ -94,8 +199,11 @@ void validateVolume(VolumeDesc& d) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(d.file, ec))
       throw InputError("volume.file " + d.file + ": no such file");
-    if (d.isVtk()) {
+    const VolumeFormat format = d.formatOf();
+    if (format == VolumeFormat::kVti || format == VolumeFormat::kLegacyVtk) {
       readVtkGeometry(d);
+    } else if (format == VolumeFormat::kNrrd) {
+      describeNrrd(d);
     } else {
       auto size = (long long)std::filesystem::file_size(d.file, ec);
       long long need = d.header_bytes + d.grid.sampleCount() * sampleTypeBytes(d.type);
@@ -116,8 +224,19 @@ void validateVolume(VolumeDesc& d) {
 
 std::vector<float> readSamples(const VolumeDesc& d, const IndexBox& box) {
   if (d.isProcedural()) return proceduralBox(d, box);
-  if (d.isVtk()) throw std::logic_error("readSamples: VTK volumes are read whole (readWholeVtk)");
-  return readRawBox(d, box);
+  switch (d.formatOf()) {
+    case VolumeFormat::kLegacyVtk:
+      throw std::logic_error("readSamples: legacy VTK volumes are read whole (readWholeVtk)");
+    case VolumeFormat::kVti: return readVtiBox(d, box);
+    case VolumeFormat::kNrrd: return d.gzip ? readGzipBox(d, box) : readRawBox(d, box);
+    case VolumeFormat::kRaw: return readRawBox(d, box);
+  }
+  return {};
+}
+
+std::vector<float> readWholeVolume(const VolumeDesc& d) {
+  if (d.readsWhole()) return readWholeVtk(d);
+  return readSamples(d, {{0, 0, 0}, d.grid.dims - 1});
 }
 
 std::vector<float> extractBox(const std::vector<float>& whole, const glm::ivec3& n,

@@ -21,7 +21,7 @@ namespace sortlast {
 namespace {
 
 vtkSmartPointer<vtkImageData> loadImage(const std::string& file, bool metadata_only) {
-  bool xml = file.size() > 4 && file.substr(file.size() - 4) == ".vti";
+  bool xml = !(file.size() > 4 && file.substr(file.size() - 4) == ".vtk");
   if (xml) {
     vtkNew<vtkXMLImageDataReader> r;
     if (!r->CanReadFile(file.c_str()))
@@ -50,7 +50,58 @@ vtkSmartPointer<vtkImageData> loadImage(const std::string& file, bool metadata_o
   return r->GetOutput();
 }
 
+// The image's scalars (or its first point array).
+vtkDataArray* scalarsOf(vtkImageData* img, const std::string& file) {
+  vtkDataArray* a = img->GetPointData() ? img->GetPointData()->GetScalars() : nullptr;
+  if (!a && img->GetPointData() && img->GetPointData()->GetNumberOfArrays() > 0)
+    a = img->GetPointData()->GetArray(0);
+  if (!a) throw InputError("volume.file " + file + ": no point scalars in the image");
+  return a;
+}
+
 }  // namespace
+
+std::vector<float> readVtiBox(const VolumeDesc& d, const IndexBox& box) {
+  vtkNew<vtkXMLImageDataReader> r;
+  if (!r->CanReadFile(d.file.c_str()))
+    throw InputError("volume.file " + d.file + ": not a readable VTK XML image (.vti) file");
+  r->SetFileName(d.file.c_str());
+  r->UpdateInformation();
+  int whole[6];
+  r->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  // The box in the file's extent (which need not start at 0); VTK reads the pieces that meet it
+  // and fills an image of this extent alone.
+  int ext[6] = {whole[0] + box.lo.x, whole[0] + box.hi.x, whole[2] + box.lo.y,
+                whole[2] + box.hi.y, whole[4] + box.lo.z, whole[4] + box.hi.z};
+  static_cast<vtkAlgorithm*>(r.GetPointer())->UpdateExtent(ext);  // (the reader hides the name)
+  vtkImageData* img = r->GetOutput();
+  vtkDataArray* a = scalarsOf(img, d.file);
+  int got[6];
+  img->GetExtent(got);
+  for (int k = 0; k < 3; ++k)
+    if (got[2 * k] > ext[2 * k] || got[2 * k + 1] < ext[2 * k + 1])
+      throw InputError("volume.file " + d.file + ": VTK returned extent [" + std::to_string(got[2 * k]) + ", " +
+                       std::to_string(got[2 * k + 1]) + "] on axis " + std::to_string(k) +
+                       ", which does not hold the brick's [" + std::to_string(ext[2 * k]) + ", " +
+                       std::to_string(ext[2 * k + 1]) + "] (a truncated file?)");
+  const long long gx = got[1] - got[0] + 1, gy = got[3] - got[2] + 1;
+  if (a->GetNumberOfTuples() != gx * gy * (got[5] - got[4] + 1))
+    throw InputError("volume.file " + d.file + ": the scalar array has " + std::to_string(a->GetNumberOfTuples()) +
+                     " values for the extent read (a truncated file?)");
+  std::vector<float> out(size_t(box.count()));
+  size_t o = 0;
+  for (int z = ext[4]; z <= ext[5]; ++z)
+    for (int y = ext[2]; y <= ext[3]; ++y)
+      for (int x = ext[0]; x <= ext[1]; ++x) {
+        const double v = a->GetComponent((x - got[0]) + gx * ((y - got[2]) + gy * (long long)(z - got[4])), 0);
+        if (!std::isfinite(v))
+          throw InputError("volume.file " + d.file + ": NaN or infinite value at voxel [" +
+                           std::to_string(x - whole[0]) + ", " + std::to_string(y - whole[2]) + ", " +
+                           std::to_string(z - whole[4]) + "]");
+        out[o++] = float(v);
+      }
+  return out;
+}
 
 void readVtkGeometry(VolumeDesc& d) {
   auto img = loadImage(d.file, true);
@@ -64,10 +115,7 @@ void readVtkGeometry(VolumeDesc& d) {
 
 std::vector<float> readWholeVtk(const VolumeDesc& d) {
   auto img = loadImage(d.file, false);
-  vtkDataArray* a = img->GetPointData() ? img->GetPointData()->GetScalars() : nullptr;
-  if (!a && img->GetPointData() && img->GetPointData()->GetNumberOfArrays() > 0)
-    a = img->GetPointData()->GetArray(0);
-  if (!a) throw InputError("volume.file " + d.file + ": no point scalars in the image");
+  vtkDataArray* a = scalarsOf(img, d.file);
   long long n = d.grid.sampleCount();
   if (a->GetNumberOfTuples() != n)
     throw InputError("volume.file " + d.file + ": scalar array has " +

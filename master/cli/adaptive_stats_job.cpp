@@ -37,9 +37,7 @@ int runAdaptiveStatsJob(const AdaptiveStatsOptions& options) {
                             : int(std::max(1u, std::thread::hardware_concurrency()));
     validateVolume(scene.volume);
     const GridGeometry& grid = scene.volume.grid;
-    const IndexBox all{{0, 0, 0}, grid.dims - 1};
-    const std::vector<float> samples =
-        scene.volume.isVtk() ? readWholeVtk(scene.volume) : readSamples(scene.volume, all);
+    const std::vector<float> samples = readWholeVolume(scene.volume);
 
     AdaptiveOptions ao;
     ao.blocks_per_axis = scene.adaptive_blocks;

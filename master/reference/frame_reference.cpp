@@ -64,9 +64,7 @@ FrameReference::FrameReference(Scene scene, int threads)
   if (scene.hasVolume()) {
     validateVolume(scene.volume);
     VolumeInput in{{scene.volume.grid, {}}, {}, 0.0};
-    IndexBox all{{0, 0, 0}, scene.volume.grid.dims - 1};
-    in.vol.samples =
-        scene.volume.isVtk() ? readWholeVtk(scene.volume) : readSamples(scene.volume, all);
+    in.vol.samples = readWholeVolume(scene.volume);
     if (scene.reference_field == "adaptive") {
       AdaptiveOptions options;
       options.blocks_per_axis = scene.adaptive_blocks;

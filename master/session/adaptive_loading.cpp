@@ -49,8 +49,7 @@ AdaptiveRankData loadAdaptiveBricks(const Scene& scene, const std::vector<Brick>
   collectively(comm, [&] {
     double t0 = MPI_Wtime();
     const VolumeDesc& desc = scene.volume;
-    const IndexBox all{{0, 0, 0}, desc.grid.dims - 1};
-    std::vector<float> whole = desc.isVtk() ? readWholeVtk(desc) : readSamples(desc, all);
+    std::vector<float> whole = readWholeVolume(desc);
     auto [lo, hi] = std::minmax_element(whole.begin(), whole.end());
     out.data_min = *lo, out.data_max = *hi;
     double t1 = MPI_Wtime();

@@ -183,8 +183,15 @@ MemoryNeed sessionNeed(const Scene& scene, const SessionLayout& layout, long lon
                   int(layout.mine.size()), samples);
     n.add(what, 4.0 * samples);
     n.add("the bricks' 3D textures (R32F)", 4.0 * samples, 4.0 * samples);
-    if (!scene.volume.isProcedural())
+    if (scene.volume.readsWhole()) {
+      // Legacy .vtk: rank 0 reads the whole image (VTK's array of the file's type, then a float
+      // copy) and keeps each brick it sends until the sends complete.
+      if (rank == 0)
+        n.add("the whole legacy .vtk volume on rank 0 (read and scattered)",
+              double(scene.volume.grid.sampleCount()) * (8.0 + 4.0 + 4.0));
+    } else if (!scene.volume.isProcedural()) {
       n.add("one brick's file data while it is read", 8.0 * largest);
+    }
     step_host += 4.0 * samples;
   }
   if (scene.particles.enabled() && particles > 0) {

@@ -17,7 +17,7 @@ std::vector<std::vector<float>> loadOwnBricks(const VolumeDesc& desc, const std:
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   std::vector<std::vector<float>> out(mine.size());
-  if (!desc.isVtk()) {
+  if (!desc.readsWhole()) {  // each rank reads its own bricks
     collectively(comm, [&] {
       for (size_t i = 0; i < mine.size(); ++i) out[i] = readSamples(desc, bricks[mine[i]].stored);
     });
