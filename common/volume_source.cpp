@@ -15,17 +15,6 @@
 
 namespace sortlast {
 
-int sampleTypeBytes(SampleType t) {
-  switch (t) {
-    case SampleType::kUint8: return 1;
-    case SampleType::kUint16:
-    case SampleType::kInt16: return 2;
-    case SampleType::kFloat32: return 4;
-    case SampleType::kFloat64: return 8;
-  }
-  return 1;
-}
-
 VolumeFormat VolumeDesc::formatOf() const {
   const std::string ext = std::filesystem::path(file).extension().string();
   if (format == "raw") return VolumeFormat::kRaw;

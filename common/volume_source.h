@@ -10,7 +10,16 @@
 namespace sortlast {
 
 enum class SampleType { kUint8, kUint16, kInt16, kFloat32, kFloat64 };
-int sampleTypeBytes(SampleType t);
+constexpr int sampleTypeBytes(SampleType t) {
+  switch (t) {
+    case SampleType::kUint8: return 1;
+    case SampleType::kUint16:
+    case SampleType::kInt16: return 2;
+    case SampleType::kFloat32: return 4;
+    case SampleType::kFloat64: return 8;
+  }
+  return 1;
+}
 
 // How volume.file is read (volume.format; `auto`: by the file's extension, formatOf()).
 enum class VolumeFormat { kRaw, kVti, kLegacyVtk, kNrrd };
