@@ -652,6 +652,10 @@ nlohmann::json RenderSession::jobStats() const {
   const State& S = *s_;
   nlohmann::json top = nlohmann::json::object();
   top["ranks_gl"] = deviceJson(S.devices);  // each rank's GL_VENDOR, GL_RENDERER, device, host
+  if (S.current && !S.current->read_s.empty()) {
+    top["volume_read_s"] = S.current->read_s;  // per rank: its bricks, from the file
+    top["peak_rss_after_read_mb"] = S.current->read_peak_rss_mb;
+  }
   if (S.adaptive && S.current) {
     // Once per step, before its first frame (not in any frame's total_s); slowest rank.
     const AdaptiveRankData& a = S.current->adaptive;

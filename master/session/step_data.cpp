@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "master/session/collective.h"
+#include "master/session/frame_stats.h"  // peakRssMiB
 #include "master/session/volume_loading.h"
 
 namespace sortlast {
@@ -71,7 +72,15 @@ StepData loadStep(const Scene& scene, const SessionLayout& layout, bool adaptive
       d.adaptive = loadAdaptiveBricks(step_scene, layout.volume_bricks, layout.mine, comm);
       d.data_min = d.adaptive.data_min, d.data_max = d.adaptive.data_max;
     } else {
+      const double t0 = MPI_Wtime();
       d.samples = loadOwnBricks(desc, layout.volume_bricks, layout.mine, layout.assignment, comm);
+      const double mine_s[2] = {MPI_Wtime() - t0, peakRssMiB()};
+      std::vector<double> all(rank == 0 ? 2 * size_t(size) : 0);
+      MPI_Gather(mine_s, 2, MPI_DOUBLE, all.data(), 2, MPI_DOUBLE, 0, comm);
+      for (size_t r = 0; r < all.size() / 2; ++r) {
+        d.read_s.push_back(all[2 * r]);
+        d.read_peak_rss_mb.push_back(all[2 * r + 1]);
+      }
       std::tie(d.data_min, d.data_max) = globalRange(d.samples, comm);
       std::vector<long long> mine(kHistogramBins, 0);
       for (size_t i = 0; i < layout.mine.size(); ++i)

@@ -28,6 +28,9 @@ struct StepData {
   std::vector<glm::vec3> particles;         // this rank's region's particles and ghosts
   double scattered_h = 0;                   // the ghost margin `particles` were chosen with
   double cost_mib = 0;                      // the largest any rank holds for this step
+  // Rank 0: every rank's seconds reading its volume bricks (ghosts included) and its peak resident
+  // memory just after (MiB): --stats' volume_read_s and peak_rss_after_read_mb (scripts/bench-io).
+  std::vector<double> read_s, read_peak_rss_mb;
   bool dropped = false;                     // dropHostCopies() was called
 
   // Drops what the GPU holds now (a batch render needs no second copy).
