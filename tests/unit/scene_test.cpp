@@ -291,7 +291,7 @@ TEST(SceneKeys, ErrorsKeepTheirWording) {
   const std::pair<const char*, const char*> cases[] = {
       {"volume.dims=[1,2,3]", "scene key 'volume.dims': entries must be integers in [2, 2^20]"},
       {"volume.type=auto",
-       "volume.type: unknown type 'auto' (known: uint8, uint16, int16, float32)"},
+       "volume.type: unknown type 'auto' (known: uint8, uint16, int16, float32, float64)"},
       {"volume.spacing=[0,0,0]",
        "scene key 'volume.spacing': 0 is outside [1e-12, 1e18], the lengths float math on the GPU can hold"},
       {"volume.byte_order=auto",
