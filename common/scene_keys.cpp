@@ -205,14 +205,45 @@ std::vector<SceneKey> makeTable() {
       {"volume.file", "\"\"",
        "Data file. Empty: a procedural volume (`volume.procedural`). `.vti`: a VTK XML image, each "
        "rank reading its bricks' extent; `.vtk`: a legacy VTK image, read whole by rank 0 and "
-       "scattered; `.nrrd`/`.nhdr`: NRRD (raw or gzip encoding, read per brick; docs/data.md). "
-       "For these the file gives dims, spacing and type. Anything else: raw samples, x fastest, no "
-       "header unless `volume.header_bytes`. Relative paths are relative to the scene file.",
+       "scattered; `.nrrd`/`.nhdr`: NRRD (raw or gzip encoding, read per brick; docs/data.md); "
+       "`.h5`/`.hdf5`: an HDF5 dataset (`volume.dataset`), each rank reading its bricks "
+       "collectively through MPI-IO; `.nc`: a NetCDF variable (`volume.variable`), read per brick "
+       "(docs/data_hdf5_netcdf.md). For these the file gives dims, spacing and type. Anything else: "
+       "raw samples, x fastest, no header unless `volume.header_bytes`. Relative paths are relative "
+       "to the scene file.",
        Text{member<&Scene::volume, &VolumeDesc::file>, true}},
       {"volume.format", "auto",
-       "How `volume.file` is read: `raw`, `vtk` (.vti or legacy .vtk), `nrrd`, or `auto`: by its "
-       "extension (`.vti`/`.vtk` vtk, `.nrrd`/`.nhdr` nrrd, anything else raw).",
-       Names{member<&Scene::volume, &VolumeDesc::format>, names({"auto", "raw", "vtk", "nrrd"})}},
+       "How `volume.file` is read: `raw`, `vtk` (.vti or legacy .vtk), `nrrd`, `hdf5`, `netcdf`, or "
+       "`auto`: by its extension (`.vti`/`.vtk` vtk, `.nrrd`/`.nhdr` nrrd, `.h5`/`.hdf5` hdf5, `.nc` "
+       "netcdf, anything else raw).",
+       Names{member<&Scene::volume, &VolumeDesc::format>,
+             names({"auto", "raw", "vtk", "nrrd", "hdf5", "netcdf"})}},
+      {"volume.dataset", "\"\"",
+       "HDF5: the path of the 3-D dataset to read (`/fields/density`). Empty: the file's only 3-D "
+       "dataset (a file with several needs this key). Its type gives the samples' (uint8, uint16, "
+       "int16, float32, float64; others are refused).",
+       Text{member<&Scene::volume, &VolumeDesc::dataset>}},
+      {"volume.variable", "\"\"",
+       "NetCDF: the variable to read, 3-D, or 4-D with a single record along an unlimited (or "
+       "`time`) first dimension. Empty: the file's only such variable. Coordinate variables (1-D, "
+       "named like a dimension) give the spacing when uniform (within 1e-6 relative; non-uniform "
+       "ones are refused); samples equal to `_FillValue` or `missing_value` are refused.",
+       Text{member<&Scene::volume, &VolumeDesc::variable>}},
+      {"volume.axis_order", "zyx",
+       "HDF5 and NetCDF: which axis each dimension of the array is, slowest (first) to fastest "
+       "(last). Both store arrays in C order, so `zyx` (what NumPy's `a[z, y, x]` writes) makes "
+       "the last dimension x; `xyz` makes the first dimension x (an array written from Fortran, or "
+       "NumPy's `a[x, y, z]`).",
+       Names{member<&Scene::volume, &VolumeDesc::axis_order>, names({"zyx", "xyz"})}},
+      {"volume.spacing_attribute", "\"\"",
+       "HDF5: the attribute (of the dataset, else of the root group) holding the spacing, three "
+       "numbers in the dataset's dimension order (`zyx`: [dz, dy, dx]). Empty: `volume.spacing`.",
+       Text{member<&Scene::volume, &VolumeDesc::spacing_attribute>}},
+      {"volume.origin_attribute", "\"\"",
+       "HDF5: the attribute holding the origin (three numbers, dimension order). It is read and "
+       "checked (finite numbers) but does not move the volume: sortlast centres every volume on "
+       "the world origin.",
+       Text{member<&Scene::volume, &VolumeDesc::origin_attribute>}},
       {"volume.procedural", "blobs",
        "Procedural field when there is no file: `blobs` (shells, blobs and a torus), "
        "`marschner_lobb` (the Marschner-Lobb test signal), `sphere` (1 - r), or `none`: no "
