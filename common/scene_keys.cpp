@@ -276,7 +276,8 @@ std::vector<SceneKey> makeTable() {
       {"particles.file", "\"\"",
        "Particle centres, rendered as metaballs. `.vtk` (legacy polydata or unstructured grid), "
        "`.vtp`/`.vtu` (VTK XML): the points; `.csv`: x,y,z per line (optional header line, `#` "
-       "comments, extra columns ignored); anything else: raw little-endian float32 x,y,z "
+       "comments, extra columns ignored); `.h5`/`.hdf5`: an HDF5 snapshot "
+       "(`particles.dataset`); anything else: raw little-endian float32 x,y,z "
        "triples. Empty: `particles.procedural`. Relative paths are relative to the scene file.",
        Text{member<&Scene::particles, &ParticleDesc::file>, true}},
       {"particles.procedural", "none",
@@ -292,10 +293,18 @@ std::vector<SceneKey> makeTable() {
        "frame the union of every step's particles (rank 0 reads each step once at start).",
        Structured{"list of file names, or a glob pattern"}},
       {"particles.format", "auto",
-       "Format of `particles.file`: `vtk`, `raw`, `csv`, or `auto` (by extension: "
-       "`.vtk`/`.vtp`/`.vtu` vtk, `.csv` csv, anything else raw).",
+       "Format of `particles.file`: `vtk`, `raw`, `csv`, `hdf5`, or `auto` (by extension: "
+       "`.vtk`/`.vtp`/`.vtu` vtk, `.csv` csv, `.h5`/`.hdf5` hdf5, anything else raw).",
        Names{member<&Scene::particles, &ParticleDesc::format>,
-             names({"auto", "vtk", "raw", "csv"})}},
+             names({"auto", "vtk", "raw", "csv", "hdf5"})}},
+      {"particles.dataset", "/PartType0/Coordinates",
+       "HDF5 snapshots (Gadget/SWIFT/AREPO layout): the N x 3 float32 or float64 dataset of "
+       "positions.",
+       Text{member<&Scene::particles, &ParticleDesc::dataset>}},
+      {"particles.radius_dataset", "\"\"",
+       "Per-particle radii from an HDF5 dataset (`SmoothingLength`): not supported, setting it is "
+       "an error (every particle has `particles.radius`).",
+       Text{member<&Scene::particles, &ParticleDesc::radius_dataset>}},
       // At most 2^31: 24 GiB of centres is surely a typo.
       {"particles.count", "auto",
        "Procedural sets: number of particles (`auto`: 4096). Files: the number the file must "
