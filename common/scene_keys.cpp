@@ -232,8 +232,8 @@ std::vector<SceneKey> makeTable() {
       {"volume.axis_order", "zyx",
        "HDF5 and NetCDF: which axis each dimension of the array is, slowest (first) to fastest "
        "(last). Both store arrays in C order, so `zyx` (what NumPy's `a[z, y, x]` writes) makes "
-       "the last dimension x; `xyz` makes the first dimension x (an array written from Fortran, or "
-       "NumPy's `a[x, y, z]`).",
+       "the last dimension x (a Fortran `a(nx, ny, nz)` written through the Fortran API is stored "
+       "so too); `xyz` makes the first dimension x (NumPy's `a[x, y, z]`).",
        Names{member<&Scene::volume, &VolumeDesc::axis_order>, names({"zyx", "xyz"})}},
       {"volume.spacing_attribute", "\"\"",
        "HDF5: the attribute (of the dataset, else of the root group) holding the spacing, three "
