@@ -7,7 +7,8 @@
 #              on 1 and 3 ranks (chunked also on 4; attributes on 3), read collectively through
 #              MPI-IO; the CPU reference (independent reads) of the transposed, the chunked and a
 #              .dat with volume.format hdf5 equals raw's. Bad files are refused naming the file,
-#              the dataset and the problem (a NaN met by one of 3 ranks ends all three).
+#              the dataset and the problem (a NaN met by one of 3 ranks ends all three; so does a
+#              damaged gzip chunk met by one of 2 inside the collective read).
 #   netcdf:    float32 with uniform coordinate variables (spacing from them) on 1 and 3 ranks, and
 #              a 4-D ubyte variable of one record on 1 and 4 ranks; bad files refused.
 #   particles: /PartType0/Coordinates (float32 on 1 and 2 ranks, float64 on 1) render like the raw
@@ -76,6 +77,14 @@ nan = a.astype(np.float32)
 nan[50, 40, 30] = np.nan  # voxel [x, y, z] = [30, 40, 50]
 with h5py.File(out + "/nan.h5", "w") as f: f["v"] = nan
 open(out + "/text.h5", "w").write("not HDF5\n" * 100)
+# A damaged gzip chunk (the last of four slabs of 16 z planes): the ranks reading it fail inside
+# the collective H5Dread, the others do not.
+with h5py.File(out + "/bad_chunk.h5", "w") as f:
+    offset = f.create_dataset("v", data=a.astype(np.float32), chunks=(16, 64, 64), compression="gzip").id.get_chunk_info(3).byte_offset
+b = bytearray(open(out + "/bad_chunk.h5", "rb").read())
+for i in range(offset + 20, offset + 200):
+    b[i] ^= 0x5A
+open(out + "/bad_chunk.h5", "wb").write(b)
 b = open(out + "/u8.h5", "rb").read()
 open(out + "/truncated.h5", "wb").write(b[: len(b) // 2])
 PY
@@ -103,7 +112,7 @@ PY
   w=$WORK
   expect_error "--set volume.file=$w/two.h5" "$w/two.h5" "2 3-D datasets" "/fields/density, /fields/other" "volume.dataset"
   expect_error "--set volume.file=$w/truncated.h5" "$w/truncated.h5" "truncated"
-  expect_error "--set volume.file=$w/nan.h5" "$w/nan.h5" "dataset /v" "NaN at voxel [30, 40, 50]"
+  expect_error "--set volume.file=$w/bad_chunk.h5" "$w/bad_chunk.h5" "dataset /v" "read of a brick failed" "inflate"
   refused "--set volume.file=$w/two.h5 --set volume.dataset=/fields/nope" "$w/two.h5" "dataset /fields/nope" "no such dataset"
   refused "--set volume.file=$w/rank2.h5" "$w/rank2.h5" "no 3-D dataset"
   refused "--set volume.file=$w/rank2.h5 --set volume.dataset=/v" "dataset /v" "2 dimension(s), not 3"
