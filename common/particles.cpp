@@ -27,15 +27,16 @@ constexpr long long kDefaultProceduralCount = 4096;
 
 std::string formatOf(const ParticleDesc& d) {
   if (d.format != "auto") {
-    if (d.format != "vtk" && d.format != "raw" && d.format != "csv")
+    if (d.format != "vtk" && d.format != "raw" && d.format != "csv" && d.format != "hdf5")
       throw InputError("particles.format: unknown format '" + d.format +
-                       "' (known: auto, vtk, raw, csv)");
+                       "' (known: auto, vtk, raw, csv, hdf5)");
     return d.format;
   }
   std::string ext = std::filesystem::path(d.file).extension().string();
   for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
   if (ext == ".vtk" || ext == ".vtp" || ext == ".vtu") return "vtk";
   if (ext == ".csv") return "csv";
+  if (ext == ".h5" || ext == ".hdf5") return "hdf5";
   return "raw";
 }
 
@@ -194,6 +195,10 @@ ParticleSet loadParticles(const ParticleDesc& d) {
   if (format == "csv") s.positions = parseCsvParticles(readWholeFile(d.file, std::ios::in), d.file, d.count);
   if (format == "vtk") {
     s.positions = readVtkParticles(d.file);
+    checkLoaded(s.positions, d.file, d.count);
+  }
+  if (format == "hdf5") {
+    s.positions = readHdf5Particles(d.file, d.dataset);
     checkLoaded(s.positions, d.file, d.count);
   }
   return s;

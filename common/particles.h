@@ -18,8 +18,11 @@ namespace sortlast {
 struct ParticleDesc {
   std::string file;                 // empty: procedural (or none)
   std::string procedural = "none";  // none | layers | splash
-  // auto | vtk | raw | csv (auto: by extension, .vtk/.vtp/.vtu -> vtk, .csv -> csv, else raw)
+  // auto | vtk | raw | csv | hdf5 (auto: by extension, .vtk/.vtp/.vtu -> vtk, .csv -> csv,
+  // .h5/.hdf5 -> hdf5, else raw)
   std::string format = "auto";
+  std::string dataset = "/PartType0/Coordinates";  // hdf5: the N x 3 positions
+  std::string radius_dataset;  // hdf5: per-particle radii (refused: not supported)
   // Procedural: number of particles (-1: 4096). File: the count it must hold (-1: whatever it
   // holds; a raw file's size must then be a multiple of 12 bytes).
   long long count = -1;
@@ -98,5 +101,8 @@ Box3 fieldBoundInside(const Box3& clip, const std::vector<glm::vec3>& particles,
 // Points of a VTK file (legacy .vtk polydata / unstructured grid, XML .vtp / .vtu); what
 // loadParticles uses for format vtk. Only vtk_particles.cpp sees VTK's headers.
 std::vector<glm::vec3> readVtkParticles(const std::string& file);
+// Positions of an HDF5 snapshot: the N x 3 float32 or float64 `dataset` (particles.dataset);
+// common/hdf5_particles.cpp, the only file of these that sees HDF5's headers.
+std::vector<glm::vec3> readHdf5Particles(const std::string& file, const std::string& dataset);
 
 }  // namespace sortlast

@@ -247,6 +247,9 @@ void checkParticles(const Reader& r, ParticleDesc& p) {
         "(set particles.procedural to none to read the file)");
   if (r.isAuto("particles.count") && p.file.empty() && p.procedural != "none")
     p.count = kDefaultProceduralParticles;
+  if (!p.radius_dataset.empty())
+    throw InputError("scene key 'particles.radius_dataset': per-particle radii (" + p.radius_dataset +
+                     ") are not supported: every particle has particles.radius; remove the key");
   validateAnisotropic(p.anisotropic);
   if (p.anisotropicOn() && p.method != "grid")
     throw InputError("scene key 'particles.smoothing': anisotropic needs particles.method: grid (the " +

@@ -205,14 +205,45 @@ std::vector<SceneKey> makeTable() {
       {"volume.file", "\"\"",
        "Data file. Empty: a procedural volume (`volume.procedural`). `.vti`: a VTK XML image, each "
        "rank reading its bricks' extent; `.vtk`: a legacy VTK image, read whole by rank 0 and "
-       "scattered; `.nrrd`/`.nhdr`: NRRD (raw or gzip encoding, read per brick; docs/data.md). "
-       "For these the file gives dims, spacing and type. Anything else: raw samples, x fastest, no "
-       "header unless `volume.header_bytes`. Relative paths are relative to the scene file.",
+       "scattered; `.nrrd`/`.nhdr`: NRRD (raw or gzip encoding, read per brick; docs/data.md); "
+       "`.h5`/`.hdf5`: an HDF5 dataset (`volume.dataset`), each rank reading its bricks "
+       "collectively through MPI-IO; `.nc`: a NetCDF variable (`volume.variable`), read per brick "
+       "(docs/data_hdf5_netcdf.md). For these the file gives dims, spacing and type. Anything else: "
+       "raw samples, x fastest, no header unless `volume.header_bytes`. Relative paths are relative "
+       "to the scene file.",
        Text{member<&Scene::volume, &VolumeDesc::file>, true}},
       {"volume.format", "auto",
-       "How `volume.file` is read: `raw`, `vtk` (.vti or legacy .vtk), `nrrd`, or `auto`: by its "
-       "extension (`.vti`/`.vtk` vtk, `.nrrd`/`.nhdr` nrrd, anything else raw).",
-       Names{member<&Scene::volume, &VolumeDesc::format>, names({"auto", "raw", "vtk", "nrrd"})}},
+       "How `volume.file` is read: `raw`, `vtk` (.vti or legacy .vtk), `nrrd`, `hdf5`, `netcdf`, or "
+       "`auto`: by its extension (`.vti`/`.vtk` vtk, `.nrrd`/`.nhdr` nrrd, `.h5`/`.hdf5` hdf5, `.nc` "
+       "netcdf, anything else raw).",
+       Names{member<&Scene::volume, &VolumeDesc::format>,
+             names({"auto", "raw", "vtk", "nrrd", "hdf5", "netcdf"})}},
+      {"volume.dataset", "\"\"",
+       "HDF5: the path of the 3-D dataset to read (`/fields/density`). Empty: the file's only 3-D "
+       "dataset (a file with several needs this key). Its type gives the samples' (uint8, uint16, "
+       "int16, float32, float64; others are refused).",
+       Text{member<&Scene::volume, &VolumeDesc::dataset>}},
+      {"volume.variable", "\"\"",
+       "NetCDF: the variable to read, 3-D, or 4-D with a single record along an unlimited (or "
+       "`time`) first dimension. Empty: the file's only such variable. Coordinate variables (1-D, "
+       "named like a dimension) give the spacing when uniform (within 1e-6 relative; non-uniform "
+       "ones are refused); samples equal to `_FillValue` or `missing_value` are refused.",
+       Text{member<&Scene::volume, &VolumeDesc::variable>}},
+      {"volume.axis_order", "zyx",
+       "HDF5 and NetCDF: which axis each dimension of the array is, slowest (first) to fastest "
+       "(last). Both store arrays in C order, so `zyx` (what NumPy's `a[z, y, x]` writes) makes "
+       "the last dimension x (a Fortran `a(nx, ny, nz)` written through the Fortran API is stored "
+       "so too); `xyz` makes the first dimension x (NumPy's `a[x, y, z]`).",
+       Names{member<&Scene::volume, &VolumeDesc::axis_order>, names({"zyx", "xyz"})}},
+      {"volume.spacing_attribute", "\"\"",
+       "HDF5: the attribute (of the dataset, else of the root group) holding the spacing, three "
+       "numbers in the dataset's dimension order (`zyx`: [dz, dy, dx]). Empty: `volume.spacing`.",
+       Text{member<&Scene::volume, &VolumeDesc::spacing_attribute>}},
+      {"volume.origin_attribute", "\"\"",
+       "HDF5: the attribute holding the origin (three numbers, dimension order). It is read and "
+       "checked (finite numbers) but does not move the volume: sortlast centres every volume on "
+       "the world origin.",
+       Text{member<&Scene::volume, &VolumeDesc::origin_attribute>}},
       {"volume.procedural", "blobs",
        "Procedural field when there is no file: `blobs` (shells, blobs and a torus), "
        "`marschner_lobb` (the Marschner-Lobb test signal), `sphere` (1 - r), or `none`: no "
@@ -245,7 +276,8 @@ std::vector<SceneKey> makeTable() {
       {"particles.file", "\"\"",
        "Particle centres, rendered as metaballs. `.vtk` (legacy polydata or unstructured grid), "
        "`.vtp`/`.vtu` (VTK XML): the points; `.csv`: x,y,z per line (optional header line, `#` "
-       "comments, extra columns ignored); anything else: raw little-endian float32 x,y,z "
+       "comments, extra columns ignored); `.h5`/`.hdf5`: an HDF5 snapshot "
+       "(`particles.dataset`); anything else: raw little-endian float32 x,y,z "
        "triples. Empty: `particles.procedural`. Relative paths are relative to the scene file.",
        Text{member<&Scene::particles, &ParticleDesc::file>, true}},
       {"particles.procedural", "none",
@@ -261,10 +293,18 @@ std::vector<SceneKey> makeTable() {
        "frame the union of every step's particles (rank 0 reads each step once at start).",
        Structured{"list of file names, or a glob pattern"}},
       {"particles.format", "auto",
-       "Format of `particles.file`: `vtk`, `raw`, `csv`, or `auto` (by extension: "
-       "`.vtk`/`.vtp`/`.vtu` vtk, `.csv` csv, anything else raw).",
+       "Format of `particles.file`: `vtk`, `raw`, `csv`, `hdf5`, or `auto` (by extension: "
+       "`.vtk`/`.vtp`/`.vtu` vtk, `.csv` csv, `.h5`/`.hdf5` hdf5, anything else raw).",
        Names{member<&Scene::particles, &ParticleDesc::format>,
-             names({"auto", "vtk", "raw", "csv"})}},
+             names({"auto", "vtk", "raw", "csv", "hdf5"})}},
+      {"particles.dataset", "/PartType0/Coordinates",
+       "HDF5 snapshots (Gadget/SWIFT/AREPO layout): the N x 3 float32 or float64 dataset of "
+       "positions.",
+       Text{member<&Scene::particles, &ParticleDesc::dataset>}},
+      {"particles.radius_dataset", "\"\"",
+       "Per-particle radii from an HDF5 dataset (`SmoothingLength`): not supported, setting it is "
+       "an error (every particle has `particles.radius`).",
+       Text{member<&Scene::particles, &ParticleDesc::radius_dataset>}},
       // At most 2^31: 24 GiB of centres is surely a typo.
       {"particles.count", "auto",
        "Procedural sets: number of particles (`auto`: 4096). Files: the number the file must "

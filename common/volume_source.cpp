@@ -5,6 +5,7 @@
 #include <zlib.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -18,6 +19,8 @@ namespace sortlast {
 VolumeFormat VolumeDesc::formatOf() const {
   const std::string ext = std::filesystem::path(file).extension().string();
   if (format == "raw") return VolumeFormat::kRaw;
+  if (format == "hdf5" || (format == "auto" && (ext == ".h5" || ext == ".hdf5"))) return VolumeFormat::kHdf5;
+  if (format == "netcdf" || (format == "auto" && ext == ".nc")) return VolumeFormat::kNetcdf;
   if (format == "nrrd" || (format == "auto" && (ext == ".nrrd" || ext == ".nhdr"))) return VolumeFormat::kNrrd;
   if (format == "vtk" || (format == "auto" && (ext == ".vti" || ext == ".vtk")))
     return ext == ".vtk" ? VolumeFormat::kLegacyVtk : VolumeFormat::kVti;
@@ -193,6 +196,10 @@ void validateVolume(VolumeDesc& d) {
       readVtkGeometry(d);
     } else if (format == VolumeFormat::kNrrd) {
       describeNrrd(d);
+    } else if (format == VolumeFormat::kHdf5) {
+      describeHdf5(d);
+    } else if (format == VolumeFormat::kNetcdf) {
+      describeNetcdf(d);
     } else {
       auto size = (long long)std::filesystem::file_size(d.file, ec);
       long long need = d.header_bytes + d.grid.sampleCount() * sampleTypeBytes(d.type);
@@ -219,6 +226,8 @@ std::vector<float> readSamples(const VolumeDesc& d, const IndexBox& box) {
     case VolumeFormat::kVti: return readVtiBox(d, box);
     case VolumeFormat::kNrrd: return d.gzip ? readGzipBox(d, box) : readRawBox(d, box);
     case VolumeFormat::kRaw: return readRawBox(d, box);
+    case VolumeFormat::kHdf5: return readHdf5Box(d, box);
+    case VolumeFormat::kNetcdf: return readNetcdfBox(d, box);
   }
   return {};
 }
@@ -226,6 +235,45 @@ std::vector<float> readSamples(const VolumeDesc& d, const IndexBox& box) {
 std::vector<float> readWholeVolume(const VolumeDesc& d) {
   if (d.readsWhole()) return readWholeVtk(d);
   return readSamples(d, {{0, 0, 0}, d.grid.dims - 1});
+}
+
+namespace {
+
+template <class T>
+void unpackAs(const T* in, bool xyz, const IndexBox& box, float* out, const std::string& where,
+              const std::vector<std::pair<std::string, double>>& fills) {
+  const glm::ivec3 s = box.size();
+  size_t o = 0;
+  for (int z = 0; z < s.z; ++z)
+    for (int y = 0; y < s.y; ++y)
+      for (int x = 0; x < s.x; ++x) {
+        const size_t i = xyz ? (size_t(x) * s.y + y) * s.z + z : (size_t(z) * s.y + y) * s.x + x;
+        const T v = in[i];
+        for (const auto& [name, value] : fills)
+          if (double(v) == value)
+            throw InputError(where + ": " + name + " (" + std::to_string(value) + ") at voxel " +
+                             dimsText(box.lo + glm::ivec3(x, y, z)) +
+                             ": sortlast does not render missing samples (they are not made "
+                             "transparent); fill them with a value the transfer function hides");
+        const float f = float(v);
+        if (!std::isfinite(f))
+          throw InputError(where + ": " + (std::isnan(f) ? "NaN" : "infinite value") + " at voxel " +
+                           dimsText(box.lo + glm::ivec3(x, y, z)));
+        out[o++] = f;
+      }
+}
+
+}  // namespace
+
+void unpackBox(const void* in, SampleType type, bool xyz, const IndexBox& box, float* out,
+               const std::string& where, const std::vector<std::pair<std::string, double>>& fills) {
+  switch (type) {
+    case SampleType::kUint8: return unpackAs(static_cast<const uint8_t*>(in), xyz, box, out, where, fills);
+    case SampleType::kUint16: return unpackAs(static_cast<const uint16_t*>(in), xyz, box, out, where, fills);
+    case SampleType::kInt16: return unpackAs(static_cast<const int16_t*>(in), xyz, box, out, where, fills);
+    case SampleType::kFloat32: return unpackAs(static_cast<const float*>(in), xyz, box, out, where, fills);
+    case SampleType::kFloat64: return unpackAs(static_cast<const double*>(in), xyz, box, out, where, fills);
+  }
 }
 
 std::vector<float> extractBox(const std::vector<float>& whole, const glm::ivec3& n,

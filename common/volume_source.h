@@ -2,6 +2,7 @@
 // Where the volume's samples come from, and reading any sub-box of them. Every reader returns just
 // the samples of the box asked for (x fastest), so a rank never holds more than its own bricks.
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/box.h"
@@ -22,11 +23,11 @@ constexpr int sampleTypeBytes(SampleType t) {
 }
 
 // How volume.file is read (volume.format; `auto`: by the file's extension, formatOf()).
-enum class VolumeFormat { kRaw, kVti, kLegacyVtk, kNrrd };
+enum class VolumeFormat { kRaw, kVti, kLegacyVtk, kNrrd, kHdf5, kNetcdf };
 
 struct VolumeDesc {
   std::string file;                     // empty: procedural
-  std::string format = "auto";          // volume.format: auto | raw | vtk | nrrd
+  std::string format = "auto";          // volume.format: auto | raw | vtk | nrrd | hdf5 | netcdf
   std::string procedural = "blobs";     // blobs | marschner_lobb | sphere
   GridGeometry grid{{128, 128, 128}, {1.0, 1.0, 1.0}};
   SampleType type = SampleType::kUint8;
@@ -37,6 +38,18 @@ struct VolumeDesc {
   std::string data_file;
   bool gzip = false;        // header_bytes is then where the gzip stream starts in data_file
   long long gzip_skip = 0;  // bytes of the decompressed stream before the samples
+  // HDF5 and NetCDF (common/hdf5_volume.cpp, common/netcdf_volume.cpp). Both store arrays in C
+  // order (the last dimension fastest): `zyx` (the default) reads the first dimension as z, the
+  // last as x; `xyz` the first as x (a Fortran-order writer's array, or one transposed).
+  std::string dataset;            // HDF5 path (volume.dataset; found by validateVolume if empty)
+  std::string variable;           // NetCDF variable (volume.variable; found if empty)
+  std::string axis_order = "zyx";  // volume.axis_order: zyx | xyz
+  std::string spacing_attribute;  // HDF5: the attribute holding the spacing (empty: scene keys)
+  std::string origin_attribute;   // HDF5: the attribute holding the origin (checked, not used)
+  // Filled in by validateVolume from a NetCDF file: the record of a 4-D variable (-1: 3-D) and
+  // the values that mark missing samples (_FillValue, missing_value), which are refused.
+  int record = -1;
+  std::vector<std::pair<std::string, double>> fill_values;  // (attribute, value)
 
   bool isProcedural() const { return file.empty(); }
   VolumeFormat formatOf() const;
@@ -44,6 +57,7 @@ struct VolumeDesc {
   // every other format is read per brick by the brick's owner.
   bool readsWhole() const { return !isProcedural() && formatOf() == VolumeFormat::kLegacyVtk; }
   bool isVtk() const;  // .vti or legacy .vtk (format vtk): dims and spacing from the file
+  bool xyz() const { return axis_order == "xyz"; }
 };
 
 // Checks what can be checked without reading samples (file exists, size matches dims and type)
@@ -63,6 +77,24 @@ void readVtkGeometry(VolumeDesc& desc);
 std::vector<float> readWholeVtk(const VolumeDesc& desc);
 // A .vti file's samples of `box` only: VTK's XML reader asked for the box's extent.
 std::vector<float> readVtiBox(const VolumeDesc& desc, const IndexBox& box);
+// HDF5 (common/hdf5_volume.cpp): the dataset found and checked (rank 3, type), dims, type,
+// spacing and origin from it; and one box read independently (the default file driver). The
+// session's ranks read their bricks collectively instead (master/session/hdf5_loading.h).
+void describeHdf5(VolumeDesc& desc);
+std::vector<float> readHdf5Box(const VolumeDesc& desc, const IndexBox& box);
+// NetCDF (common/netcdf_volume.cpp): the variable found and checked, dims, type, spacing from
+// uniform coordinate variables, fill values; one box by nc_get_vara.
+void describeNetcdf(VolumeDesc& desc);
+std::vector<float> readNetcdfBox(const VolumeDesc& desc, const IndexBox& box);
+
+// The samples of `box` from an array read in C order over the box (slowest axis z, or x when
+// `xyz`) in the file's type `type`, into `out` as float, x fastest. `in` may be `out` itself for
+// float32 zyx (then element i is read before it is written). Refuses NaN, infinite values and any
+// of `fills`, naming the voxel: `where` starts the message ("volume.file F: dataset /d").
+void unpackBox(const void* in, SampleType type, bool xyz, const IndexBox& box, float* out,
+               const std::string& where,
+               const std::vector<std::pair<std::string, double>>& fills = {});
+
 // Any format: the whole volume (the CPU reference and adaptive sampling's preprocessing).
 std::vector<float> readWholeVolume(const VolumeDesc& desc);
 

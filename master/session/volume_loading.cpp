@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "master/session/collective.h"
+#include "master/session/hdf5_loading.h"
 
 namespace sortlast {
 
@@ -17,6 +18,11 @@ std::vector<std::vector<float>> loadOwnBricks(const VolumeDesc& desc, const std:
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   std::vector<std::vector<float>> out(mine.size());
+  if (!desc.isProcedural() && desc.formatOf() == VolumeFormat::kHdf5) {  // collectively, MPI-IO
+    std::vector<IndexBox> boxes;
+    for (int id : mine) boxes.push_back(bricks[size_t(id)].stored);
+    return readHdf5Collective(desc, boxes, comm);
+  }
   if (!desc.readsWhole()) {  // each rank reads its own bricks
     collectively(comm, [&] {
       for (size_t i = 0; i < mine.size(); ++i) out[i] = readSamples(desc, bricks[mine[i]].stored);

@@ -1,7 +1,8 @@
 #pragma once
-// Getting each rank its own bricks' samples, and nothing more. Raw and procedural volumes are read
-// by each rank for its bricks only (one seek per row); VTK files are read whole by rank 0 and the
-// bricks sent to their owners (VTK has no sub-box reader for these formats).
+// Getting each rank its own bricks' samples, and nothing more. Every format but legacy .vtk is read
+// by each rank for its bricks only (readSamples; HDF5 collectively through MPI-IO,
+// master/session/hdf5_loading.h); legacy .vtk is read whole by rank 0 and the bricks sent to their
+// owners (VTK's legacy reader cannot read a part).
 #include <mpi.h>
 
 #include <vector>

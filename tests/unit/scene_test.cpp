@@ -300,7 +300,7 @@ TEST(SceneKeys, ErrorsKeepTheirWording) {
       {"particles.procedural=auto",
        "scene key 'particles.procedural': expected none, layers or splash, got 'auto'"},
       {"particles.format=abc",
-       "scene key 'particles.format': expected auto, vtk, raw or csv, got 'abc'"},
+       "scene key 'particles.format': expected auto, vtk, raw, csv or hdf5, got 'abc'"},
       {"particles.count=-1",
        "scene key 'particles.count': must be auto or in [0, 2147483648], got -1"},
       {"particles.spacing=0", "scene key 'particles.spacing': must be a finite number > 0"},
