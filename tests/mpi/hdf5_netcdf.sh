@@ -13,10 +13,15 @@
 #              a 4-D ubyte variable of one record on 1 and 4 ranks; bad files refused.
 #   particles: /PartType0/Coordinates (float32 on 1 and 2 ranks, float64 on 1) render like the raw
 #              particle file; bad snapshots and particles.radius_dataset refused.
-# Usage: hdf5_netcdf.sh SORTLAST DATA_DIR hdf5|netcdf|particles
+# Scope `short` (the sanitizer build): for hdf5, the chunked file and the NaN on 3 ranks, the damaged
+# chunk on 2, the transposed file through the reference; for netcdf, the coordinates file on 3
+# ranks and the fill value on 2.
+# Usage: hdf5_netcdf.sh SORTLAST DATA_DIR hdf5|netcdf|particles [full|short]
 source "$(dirname "$0")/lib.sh" "$1"
 data=$2
 mode=$3
+scope=${4:-full}
+short() { [ "$scope" = short ]; }
 raw="$data/neghip_64x64x64_uint8.raw"
 common=(--set image.width=96 --set image.height=80 --set "camera.position=[55,38,85]" --set transfer.preset=sharp
         --set "transfer.range=[0,255]")
@@ -88,6 +93,20 @@ open(out + "/bad_chunk.h5", "wb").write(b)
 b = open(out + "/u8.h5", "rb").read()
 open(out + "/truncated.h5", "wb").write(b[: len(b) // 2])
 PY
+  w=$WORK
+  if short; then
+    raw_images "[1,1,1]" 3
+    same 3 two --set volume.file="$w/two.h5" --set volume.dataset=/fields/density
+    "$SORTLAST" reference -q -o "$w/ref_raw.png" --set volume.file="$raw" --set "volume.dims=[64,64,64]" "${common[@]}" || fail "reference raw"
+    "$SORTLAST" reference -q -o "$w/ref.png" --set volume.file="$w/xyz.h5" --set volume.axis_order=xyz "${common[@]}" || fail "reference xyz"
+    "$SORTLAST" compare "$w/ref_raw.png" "$w/ref.png" --max-diff 0 >/dev/null || fail "reference of xyz.h5 differs"
+    expect_error "--set volume.file=$w/bad_chunk.h5" "$w/bad_chunk.h5" "dataset /v" "read of a brick failed" "inflate"
+    rc=0
+    run_np 3 render -q -o "$w/x.png" --set volume.file="$w/nan.h5" "${common[@]}" 2>"$w/err" || rc=$?
+    [ "$rc" != 0 ] && [ "$rc" != 124 ] && grep -qF "NaN at voxel [30, 40, 50]" "$w/err" || fail "NaN on 3 ranks: exit $rc: $(cat "$w/err")"
+    echo "short scope: chunked+gzip on 3 ranks, xyz through the reference, a damaged chunk and a NaN refused"
+    exit 0
+  fi
   raw_images "[1,1,1]" 1 3 4
   for np in 1 3; do
     same $np u8 --set volume.file="$WORK/u8.h5"
@@ -163,6 +182,14 @@ with new("int.nc") as f:
     f.createVariable("density", "i4", ("z", "y", "x"))[:] = a
 open(out + "/text.nc", "w").write("not NetCDF\n" * 100)
 PY
+  w=$WORK
+  if short; then
+    raw_images "[1,1,2]" 3
+    same 3 coords --set volume.file="$w/coords.nc"
+    expect_error "--set volume.file=$w/fill.nc" "$w/fill.nc" "variable density" "_FillValue" "voxel [30, 20, 10]"
+    echo "short scope: coordinates file on 3 ranks, a fill value refused"
+    exit 0
+  fi
   raw_images "[1,1,2]" 1 3 4
   for np in 1 3; do same $np coords --set volume.file="$WORK/coords.nc"; done
   echo "NetCDF float32 with uniform coordinate variables (z step 2) renders like raw with volume.spacing [1, 1, 2]"
