@@ -149,6 +149,8 @@ if rend:
 open(os.path.join(out, "summary.md"), "w").write("\n".join(md) + "\n")
 print("\n".join(md))
 
+if not comp:
+    sys.exit(0)
 # Chart: compositing seconds against bandwidth; top row 8 nodes at each size (float), bottom row
 # 1024² on 2 and 4 nodes (float) and 8 nodes in RGBA8.
 panels = [(8, s, "float") for s in sizes][:3] + [(2, 1024, "float"), (4, 1024, "float"), (8, 1024, "rgba8")]
