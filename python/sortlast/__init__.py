@@ -40,7 +40,7 @@ def _overrides(keys):
 
 def _scene_source(scene):
     """(path, yaml text, name): a file path, a dict (written as YAML text) or None (built-in)."""
-    if scene is None or scene == "default":
+    if scene is None:
         return "", "", ""
     if isinstance(scene, dict):
         # Relative paths in it resolve from the working directory.

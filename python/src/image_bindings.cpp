@@ -1,6 +1,7 @@
 // Frames out of Python the way `sortlast render` writes them (common/image.h): over the scene's
 // background, PNG (8-bit) or EXR (float). The Image type's _repr_png_ and save() use these.
 #include <pybind11/numpy.h>
+#include <pybind11/stl.h>
 
 #include <array>
 

@@ -13,9 +13,9 @@ case $(basename "$TEST") in
 test_render.py)
   # A small default scene and one with a real volume, frame 0, PNG and EXR, with --stats.
   small=(--set image.width=96 --set image.height=64 --set "volume.dims=[32,32,32]")
-  run_np "$NP" render default -q "${small[@]}" -o ref_default.png --stats ref_default.json || fail "render"
-  run_np "$NP" render default -q "${small[@]}" -o ref_default.exr || fail "render exr"
-  run_np "$NP" render default -q "${small[@]}" --set "camera.position=[200,120,300]" \
+  run_np "$NP" render -q "${small[@]}" -o ref_default.png --stats ref_default.json || fail "render"
+  run_np "$NP" render -q "${small[@]}" -o ref_default.exr || fail "render exr"
+  run_np "$NP" render -q "${small[@]}" --set "camera.position=[200,120,300]" \
     --set transfer.preset=sharp -o ref_keys.png || fail "render keys"
   ;;
 test_insitu.py)
@@ -24,5 +24,8 @@ test_insitu.py)
     > /dev/null || fail "gray_scott (C++)"
   ;;
 esac
-timeout 120 "${MPIRUN[@]}" -np "$NP" python3 -m pytest -q -p no:cacheprovider -x "$HERE/$TEST" "${@:6}" ||
-  fail "pytest $TEST on $NP ranks"
+status=0
+timeout 120 "${MPIRUN[@]}" -np "$NP" python3 -m pytest -q -p no:cacheprovider --color=no -x "$HERE/$TEST" "${@:6}" ||
+  status=$?
+if [ -n "${KEEP_WORK:-}" ]; then cp -r "$WORK" "$KEEP_WORK"; fi  # the images, to look at
+[ "$status" = 0 ] || fail "pytest $TEST on $NP ranks"

@@ -32,7 +32,7 @@ def test_bad_frame_keeps_session(comm, rank):
         s.frame()
 
 
-def actions(work, on_error="skip"):
+def actions(work, on_error="report"):
     return f"""
 on_error: {on_error}
 renders:
@@ -95,4 +95,4 @@ def test_nan_abort_then_next_step(comm, rank, work):
         report = vis.execute()
         assert report["rendered"] and not report["error"]
         if rank == 0:
-            assert report["images"] == [f"{work}/err_1.png"]
+            assert report["images"] == [f"{work}/err_000001.png"]

