@@ -71,17 +71,18 @@ def main():
     import matplotlib.pyplot as plt
 
     fig = plt.figure(figsize=(12, 6.5))
-    grid = fig.add_gridspec(2, a.frames + 2)
+    grid = fig.add_gridspec(2, a.frames)
     finest = frames[spacings[-1]]
     for f in range(a.frames):
         ax = fig.add_subplot(grid[0, f])
         ax.imshow(np.clip(over_background(finest[f]), 0, 1))
         ax.set_title(f"orbit {f}", fontsize=8)
         ax.axis("off")
-    ax = fig.add_subplot(grid[1, : a.frames + 2])
+    ax = fig.add_subplot(grid[1, :])
     ax.plot([r[1] * 1e3 for r in rows], [r[2] for r in rows], "o-")
     for spacing, sec, q in rows:
         ax.annotate(f"spacing {spacing:g}", (sec * 1e3, q), textcoords="offset points", xytext=(6, -10), fontsize=8)
+    ax.margins(x=0.1, y=0.1)
     ax.set_xlabel("frame time, median over the orbit (ms, --stats total_s)")
     ax.set_ylabel("PSNR vs spacing 0.125 (dB)")
     ax.grid(True, alpha=0.3)
