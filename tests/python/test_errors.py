@@ -96,3 +96,24 @@ def test_nan_abort_then_next_step(comm, rank, work):
         assert report["rendered"] and not report["error"]
         if rank == 0:
             assert report["images"] == [f"{work}/err_000001.png"]
+
+
+def test_published_array_outlives_its_names(comm, rank, work):
+    """The module holds the published array: dropping the simulation's last name of it before
+    execute() does not free it, and numpy refuses to resize it meanwhile."""
+    import gc
+    with sortlast.InSitu.from_text(comm, actions(work)) as vis:
+        grid, z0 = block(comm, np.float64)
+        expected = grid.copy()
+        vis.publish(0, 0.0, grid=grid, origin=(0, 0, z0))
+        with pytest.raises(ValueError):
+            grid.resize((4, 4, 4))  # referenced elsewhere: refused
+        del grid
+        gc.collect()
+        np.zeros_like(expected)  # reuse freed memory, if any had been freed
+        report = vis.execute()
+        assert report["rendered"] and not report["error"]
+        vis.publish(1, 1.0, grid=expected, origin=(0, 0, z0))
+        again = vis.execute()
+    if rank == 0:
+        assert open(report["images"][0], "rb").read() == open(again["images"][0], "rb").read()
