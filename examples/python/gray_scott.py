@@ -155,8 +155,10 @@ def run(size=64, steps=2000, every=20, width=512, out="gray_scott_out", actions=
             report = vis.execute()
             images += report["images"]
             if log and comm.Get_rank() == 0:
-                print(f"step {step} sim_s {sim_s:.6f} vis_s {report['seconds']:.6f}"
-                      + (f" error {report['error']}" if report["error"] else ""), flush=True)
+                r = report  # the C++ examples' line (examples/common/example_cli.h)
+                print(f"step {step} sim_s {sim_s:.6f} vis_s {r['seconds']:.6f} "
+                      f"mem_mib {r['memory_added_mib'] + r['texture_mib']:.3f} added_mib {r['memory_added_mib']:.3f} "
+                      f"texture_mib {r['texture_mib']:.3f}" + (f" error {r['error']}" if r["error"] else ""), flush=True)
     sim.cart.Free()
     return images
 
