@@ -2,7 +2,6 @@
 it on the same ranks), byte for byte; one field published as C-ordered, Fortran-ordered and
 strided arrays, with and without ghost layers, gives one image; slabs and MPI.Compute_dims blocks
 agree; the arrays are referenced (not copied) until execute() returns."""
-import sys
 
 import numpy as np
 from mpi4py import MPI
@@ -30,16 +29,18 @@ renders:
 """
 
 
-def render(comm, out, **publish):
+def render_all(comm, out, cases):
+    """Each case {name: publish keywords} as one step of one InSitu; {name: image file}."""
+    images = {}
     with sortlast.InSitu.from_text(comm, actions(out)) as vis:
-        vis.publish(0, 0.0, **publish)
-        grid = publish.get("grid")
-        if grid is not None:
-            assert any(a is grid for a in vis._v.held), "the array is held until execute()"
-        report = vis.execute()
-        assert not vis._v.held
-    assert report["rendered"] and not report["error"], report["error"]
-    return report["images"]
+        for step, (name, publish) in enumerate(cases.items()):
+            vis.publish(step, float(step), **publish)
+            assert any(a is publish["grid"] for a in vis._v.held), "the array is held until execute()"
+            report = vis.execute()
+            assert not vis._v.held
+            assert report["rendered"] and not report["error"], report["error"]
+            images[name] = report["images"][0] if report["images"] else None
+    return images
 
 
 def owned_range(n, parts, i):
@@ -72,11 +73,11 @@ def test_layouts_give_one_image(comm, rank, work):
     gx, gy, gzz = np.meshgrid(np.arange(-1, N + 1), np.arange(-1, N + 1), gz, indexing="ij", sparse=True)
     ghosted = np.ascontiguousarray(field(gx, gy, gzz).transpose(2, 1, 0)).T
     float32 = dense.astype(np.float32)
-    images = {}
-    for name, kw in {"dense": dict(grid=dense), "c": dict(grid=c_order), "strided": dict(grid=strided),
-                     "ghosts": dict(grid=ghosted, ghosts=1), "f32_c": dict(grid=np.ascontiguousarray(float32)),
-                     "f32": dict(grid=float32)}.items():
-        images[name] = render(comm, str(work / name), origin=(0, 0, z0), **kw)
+    cases = {"dense": dict(grid=dense), "c": dict(grid=c_order), "strided": dict(grid=strided),
+             "ghosts": dict(grid=ghosted, ghosts=1), "f32_c": dict(grid=np.ascontiguousarray(float32)),
+             "f32": dict(grid=float32)}
+    for kw in cases.values():
+        kw["origin"] = (0, 0, z0)
     # A 3-D decomposition (MPI.Compute_dims) of the same field.
     dims = MPI.Compute_dims(n, 3)
     cart = comm.Create_cart(dims, reorder=False)
@@ -84,16 +85,16 @@ def test_layouts_give_one_image(comm, rank, work):
     box = [owned_range(N, dims[a], c[a]) for a in range(3)]
     cart.Free()
     xb, yb, zb = np.meshgrid(*(np.arange(*b) for b in box), indexing="ij", sparse=True)
-    images["blocks"] = render(comm, str(work / "blocks"), grid=np.asfortranarray(field(xb, yb, zb)),
-                              origin=[b[0] for b in box])
+    cases["blocks"] = dict(grid=np.asfortranarray(field(xb, yb, zb)), origin=[b[0] for b in box])
+    images = render_all(comm, str(work / "layout"), cases)
     if rank != 0:
         return
-    png = {k: open(v[0], "rb").read() for k, v in images.items()}
+    png = {k: open(v, "rb").read() for k, v in images.items()}
     for k in ("c", "strided", "ghosts"):
         assert png[k] == png["dense"], k
     assert png["f32_c"] == png["f32"]
     import matplotlib.image as mpimg
-    a, b = (mpimg.imread(images[k][0]) for k in ("dense", "blocks"))
+    a, b = (mpimg.imread(images[k]) for k in ("dense", "blocks"))
     assert a[..., :3].max() > 0.1, "an empty frame"
     # Decompositions agree within 2/255 (tests/insitu/examples.sh `near`), rounding noise spread
     # over the blob, no seam: measured on 3 ranks (z slabs against x slabs), 234 of the 2304
