@@ -1,5 +1,7 @@
 """Bad input raises the right exception on every rank with the C++ message, and the next call
 works: scenes, requests, actions, published arrays, NaN with on_error: abort."""
+import os
+
 import numpy as np
 import pytest
 
@@ -66,20 +68,35 @@ def test_bad_actions(comm, work):
     (lambda g: np.broadcast_to(np.float32(1), g.shape), "broadcast"),
     (lambda g: g.tolist(), "numpy array"),
 ])
-def test_bad_arrays_raise_everywhere(comm, rank, work, bad, message):
+def test_bad_arrays_raise_everywhere(comm, rank, shared_vis, bad, message):
+    vis, step = shared_vis
     grid, z0 = block(comm)
     last = comm.Get_size() - 1
-    with sortlast.InSitu.from_text(comm, actions(work)) as vis:
-        # Only the last rank's array is bad: every rank raises, naming it.
-        with pytest.raises(sortlast.InSituError, match=message) as e:
-            vis.publish(0, 0.0, grid=bad(grid) if rank == last else grid, origin=(0, 0, z0))
-        if comm.Get_size() > 1:
-            assert f"rank {last}" in str(e.value)
-        with pytest.raises(sortlast.InSituError, match="ghosts"):
-            vis.publish(0, 0.0, grid=grid, ghosts="x", origin=(0, 0, z0))
-        vis.publish(1, 1.0, grid=grid, origin=(0, 0, z0))
-        report = vis.execute()
-        assert report["rendered"] and not report["error"]
+    # Only the last rank's array is bad: every rank raises, naming it.
+    with pytest.raises(sortlast.InSituError, match=message) as e:
+        vis.publish(step, 0.0, grid=bad(grid) if rank == last else grid, origin=(0, 0, z0))
+    if comm.Get_size() > 1:
+        assert f"rank {last}" in str(e.value)
+    with pytest.raises(sortlast.InSituError, match="ghosts"):
+        vis.publish(step, 0.0, grid=grid, ghosts="x", origin=(0, 0, z0))
+    vis.publish(step, 1.0, grid=grid, origin=(0, 0, z0))
+    report = vis.execute()
+    assert report["rendered"] and not report["error"]
+
+
+@pytest.fixture(scope="module")
+def _vis():
+    """One InSitu for the bad-array cases (each case then renders a good step on it)."""
+    from mpi4py import MPI
+    vis = sortlast.InSitu.from_text(MPI.COMM_WORLD, actions(os.environ["SORTLAST_TEST_WORK"]))
+    yield vis, iter(range(1000))
+    vis.close()
+
+
+@pytest.fixture
+def shared_vis(_vis):
+    vis, steps = _vis
+    return vis, next(steps)
 
 
 def test_nan_abort_then_next_step(comm, rank, work):
