@@ -135,14 +135,14 @@ for g in gbits:
             break
 
 if rend:
-    md += ["", "## The whole renderer (engine, ramp, d = 2, 1024² unless stated)", "",
+    md += ["", "## The whole renderer (engine, ramp, d = 2)", "",
            "Median over the frames after the first. rank 0's transfer_s includes waiting for the other "
            "ranks to finish rendering (the nodes share two cores), so total_s and the difference "
            "between bandwidths say more than transfer_s alone.", "",
-           "| nodes | Gbit/s | precision | strategy | RLE | rank 0 transfer_s | composite_s | total_s | max render_s | MB sent |",
-           "|---|---|---|---|---|---|---|---|---|---|"]
-    for r in rend:
-        md.append(f"| {r['nodes']} | {float(r['gbit']):g} | {r['precision']} | {r['strategy']} | {r['rle']} | "
+           "| nodes | Gbit/s | image | precision | strategy | RLE | rank 0 transfer_s | composite_s | total_s | max render_s | MB sent |",
+           "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in sorted(rend, key=lambda r: (int(r["nodes"]), int(r["size"]), float(r["gbit"]))):
+        md.append(f"| {r['nodes']} | {float(r['gbit']):g} | {r['size']}² | {r['precision']} | {r['strategy']} | {r['rle']} | "
                   f"{float(r['rank0_transfer_s']):.3f} | {float(r['composite_s']):.3f} | {float(r['total_s']):.3f} | "
                   f"{float(r['max_render_s']):.3f} | {int(r['bytes_sent']) / 1e6:.2f} |")
 
@@ -156,31 +156,35 @@ if not comp:
 panels = [(8, s, "float") for s in sizes][:3] + [(2, 1024, "float"), (4, 1024, "float"), (8, 1024, "rgba8")]
 dat = os.path.join(out, "compositing.dat")
 series = [(n, rle) for n in names for rle in ("on", "off")]
+blocks = {}  # (panel, series) -> index in the data file, where there are points
 with open(dat, "w") as f:
-    for (nodes, size, prec) in panels:
-        for (n, rle) in series:
-            f.write(f"# {nodes} nodes {size} {prec} {n} rle-{rle}\n")
-            for g in gbits:
-                r = sec(nodes, g, size, n, prec, rle)
-                if r:
-                    f.write(f"{g} {r['seconds']}\n")
-            f.write("\n\n")
+    idx = 0
+    for p, (nodes, size, prec) in enumerate(panels):
+        for i, (n, rle) in enumerate(series):
+            pts = [(g, r["seconds"]) for g in gbits if (r := sec(nodes, g, size, n, prec, rle))]
+            if pts:
+                f.write(f"# {nodes} nodes {size} {prec} {n} rle-{rle}\n")
+                f.writelines(f"{g} {t}\n" for g, t in pts)
+                f.write("\n\n")
+                blocks[(p, i)] = idx
+                idx += 1
 colors = {"direct": "#d62728", "binary-swap k=2": "#1f77b4", "radix-k k=4": "#2ca02c"}
 png = os.path.join(out, "compositing.png")
 script = [f'set terminal pngcairo size 1500,900 font ",10"', f'set output "{png}"',
-          'set multiplot layout 2,3 title "Compositing the engine CT\'s brick images over shaped TCP links (cluster rehearsal, bench\\_compositing)"',
-          'set logscale xy', 'set xrange [0.8:125]', 'set xtics ("1" 1, "10" 10, "100" 100)',
+          'set multiplot layout 2,3 title "Compositing the engine CT\'s brick images over shaped TCP links (cluster rehearsal, bench-compositing\'s layers)"',
+          'set logscale xy', f'set xrange [{min(gbits) * 0.8}:125]', 'set xtics ("0.1" 0.1, "1" 1, "10" 10, "100" 100)',
           'set xlabel "link bandwidth per node (Gbit/s)"', 'set ylabel "seconds per composite"', 'set grid',
           'set key top right font ",9"']
 for p, (nodes, size, prec) in enumerate(panels):
-    script.append(f'set title "{nodes} nodes, {size}x{size}, {prec}"')
     plots = []
     for i, (n, rle) in enumerate(series):
-        idx = p * len(series) + i
-        dt = 1 if rle == "on" else 2
-        plots.append(f"'{dat}' index {idx} using 1:2 with linespoints lw 2 dt {dt} pt 7 lc rgb '{colors.get(n, 'black')}' "
-                     f"title '{n} RLE {rle}'")
-    script.append("plot " + ", ".join(plots))
+        if (p, i) in blocks:
+            dt = 1 if rle == "on" else 2
+            plots.append(f"'{dat}' index {blocks[(p, i)]} using 1:2 with linespoints lw 2 dt {dt} pt 7 "
+                         f"lc rgb '{colors.get(n, 'black')}' title '{n} RLE {rle}'")
+    if plots:
+        script.append(f'set title "{nodes} nodes, {size}x{size}, {prec}"')
+        script.append("plot " + ", ".join(plots))
 script.append("unset multiplot")
 subprocess.run(["gnuplot"], input="\n".join(script) + "\n", text=True, check=True)
 print(f"wrote {os.path.join(out, 'summary.md')} and {png}", file=sys.stderr)

@@ -59,7 +59,7 @@ orbit_fault() {
   # Open MPI names the node by its address (--host), or the rank that died.
   grep -qE "node ${addrs[1]}( |$)|rank 1 " "$out/log" || { cat "$out/log"; fail "$name: no message naming node ${addrs[1]} or rank 1"; }
   frames_complete "$out" "$name" "${sets[@]}"
-  echo "ok: $name mid-orbit ($strategy, 3 nodes): every process gone ${took} s after the fault, status $rc, $FRAMES frames written, each shared memory's frame bit for bit: $(grep -m1 -A3 -E 'lost communication|noticed|disconnected' "$out/log" | grep -m1 -oE "Remote daemon.*|mpirun noticed.*|Peer host.*")"
+  echo "ok: $name mid-orbit ($strategy, 3 nodes): every process gone ${took} s after the fault, status $rc, $FRAMES frames written, each shared memory's frame bit for bit: $(grep -m1 -oE "(Remote daemon|Peer host|mpirun noticed).*(node |host: *)${addrs[1]}.*|mpirun noticed.*rank 1 .*" "$out/log")"
 }
 
 case $mode in
