@@ -40,12 +40,27 @@ orbit_fault() {
   local name=$1 strategy=$2 out=$WORK/$1 mp rc=0 pids took
   local sets=(--set image.width=96 --set image.height=96 --set compositing.strategy="$strategy"
               --set camera.orbit.frames=5000)
+  # Open MPI's start across the namespaces now and then hangs waiting for one node's daemon (seen
+  # in CI with another test's mpirun beside it, and by scripts/bench-cluster; cause not found:
+  # docs/cluster-rehearsal.md). That is the launch, not the fault this test is about: a job with
+  # no frame 2 after 30 s while still running is killed and started again, at most 3 times.
   mkdir -p "$out"
-  timeout 120 "$CLUSTER_MPIRUN" -np 3 "$SORTLAST" render "$data/neghip.yaml" -q -o "$out/f.png" \
-    "${sets[@]}" >"$out/log" 2>&1 &
-  mp=$!
-  for _ in $(seq 600); do [ -e "$out/f_0002.png" ] && break; kill -0 "$mp" 2>/dev/null || break; sleep 0.1; done
-  [ -e "$out/f_0002.png" ] || { cat "$out/log"; fail "$name: no frame 2 within 60 s"; }
+  local try
+  for try in 1 2 3; do
+    rm -f "$out"/f_*.png
+    timeout 120 "$CLUSTER_MPIRUN" -np 3 "$SORTLAST" render "$data/neghip.yaml" -q -o "$out/f.png" \
+      "${sets[@]}" >"$out/log" 2>&1 &
+    mp=$!
+    for _ in $(seq 300); do [ -e "$out/f_0002.png" ] && break; kill -0 "$mp" 2>/dev/null || break; sleep 0.1; done
+    [ -e "$out/f_0002.png" ] && break
+    kill -0 "$mp" 2>/dev/null || { cat "$out/log"; fail "$name: the job ended before frame 2"; }
+    echo "$name: launch $try hung (no frame 2 after 30 s): killed, started again"
+    kill -KILL "$mp" 2>/dev/null || true
+    pkill -KILL -f "$CLUSTER_MPIRUN" 2>/dev/null || true
+    for n in $CLUSTER_NODES; do for p in $(ip netns pids "$n"); do kill -KILL "$p" 2>/dev/null || true; done; done
+    wait "$mp" 2>/dev/null || true
+  done
+  [ -e "$out/f_0002.png" ] || { cat "$out/log"; fail "$name: no frame 2 in 3 launches of 30 s"; }
   pids=$(job_pids)
   T0=$(now)
   case $name in
