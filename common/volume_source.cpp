@@ -60,6 +60,18 @@ float decode(const unsigned char* p, SampleType t, bool big_endian) {
 
 bool isFloat(SampleType t) { return t == SampleType::kFloat32 || t == SampleType::kFloat64; }
 
+// One row of the file's samples (x from x0, at y, z) into `out`, checking float ones are finite.
+void decodeRow(const VolumeDesc& d, const std::vector<unsigned char>& row, int x0, int y, int z,
+               float*& out) {
+  const int bytes = sampleTypeBytes(d.type);
+  const int count = int(row.size()) / bytes;
+  for (int x = 0; x < count; ++x) {
+    const float v = decode(&row[size_t(x) * bytes], d.type, d.big_endian);
+    if (isFloat(d.type)) checkFinite(v, {x0 + x, y, z}, d.file);
+    *out++ = v;
+  }
+}
+
 // The file the samples are in: a NRRD header's data file, else volume.file.
 const std::string& dataPath(const VolumeDesc& d) { return d.data_file.empty() ? d.file : d.data_file; }
 
@@ -70,7 +82,7 @@ std::vector<float> readRawBox(const VolumeDesc& d, const IndexBox& box) {
   const int bytes = sampleTypeBytes(d.type);
   std::vector<float> out(size_t(box.count()));
   std::vector<unsigned char> row(size_t(s.x) * bytes);
-  size_t o = 0;
+  float* o = out.data();
   for (int z = box.lo.z; z <= box.hi.z; ++z)
     for (int y = box.lo.y; y <= box.hi.y; ++y) {
       long long first = box.lo.x + 1LL * n.x * (y + 1LL * n.y * z);
@@ -78,11 +90,7 @@ std::vector<float> readRawBox(const VolumeDesc& d, const IndexBox& box) {
       in.read(reinterpret_cast<char*>(row.data()), std::streamsize(row.size()));
       if (!in) throw InputError("volume.file " + d.file + ": read failed at row y=" +
                                 std::to_string(y) + " z=" + std::to_string(z) + " (truncated?)");
-      for (int x = 0; x < s.x; ++x) {
-        float v = decode(&row[size_t(x) * bytes], d.type, d.big_endian);
-        if (isFloat(d.type)) checkFinite(v, {box.lo.x + x, y, z}, d.file);
-        out[o++] = v;
-      }
+      decodeRow(d, row, box.lo.x, y, z, o);
     }
   return out;
 }
@@ -109,7 +117,7 @@ std::vector<float> readGzipBox(const VolumeDesc& d, const IndexBox& box) {
   const int bytes = sampleTypeBytes(d.type);
   std::vector<float> out(size_t(box.count()));
   std::vector<unsigned char> row(size_t(s.x) * bytes);
-  size_t o = 0;
+  float* o = out.data();
   for (int z = box.lo.z; z <= box.hi.z; ++z)
     for (int y = box.lo.y; y <= box.hi.y; ++y) {
       const long long first = (box.lo.x + 1LL * n.x * (y + 1LL * n.y * z)) * bytes;
@@ -121,11 +129,7 @@ std::vector<float> readGzipBox(const VolumeDesc& d, const IndexBox& box) {
                          std::to_string(y) + " z=" + std::to_string(z) +
                          (err != Z_OK && err != Z_STREAM_END && msg ? std::string(" (") + msg + ")" : std::string(" (truncated?)")));
       }
-      for (int x = 0; x < s.x; ++x) {
-        float v = decode(&row[size_t(x) * bytes], d.type, d.big_endian);
-        if (isFloat(d.type)) checkFinite(v, {box.lo.x + x, y, z}, d.file);
-        out[o++] = v;
-      }
+      decodeRow(d, row, box.lo.x, y, z, o);
     }
   return out;
 }

@@ -1,4 +1,5 @@
 #include "master/session/adaptive_loading.h"
+#include "master/session/device_report.h"  // nodePlace
 
 #include <algorithm>
 #include <atomic>
@@ -25,11 +26,7 @@ namespace {
 // Cores for this rank's build: the node's, shared among the ranks on it (each builds the same
 // volume at the same time).
 int buildThreads(MPI_Comm comm) {
-  MPI_Comm node;
-  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
-  int on_node = 1;
-  MPI_Comm_size(node, &on_node);
-  MPI_Comm_free(&node);
+  const int on_node = nodePlace(comm).size;
   return std::max(1, int(std::max(1u, std::thread::hardware_concurrency())) / on_node);
 }
 

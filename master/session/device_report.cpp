@@ -4,13 +4,14 @@
 
 namespace sortlast {
 
-int nodeLocalRank(MPI_Comm comm) {
+NodePlace nodePlace(MPI_Comm comm) {
   MPI_Comm node;
   MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
-  int local = 0;
-  MPI_Comm_rank(node, &local);
+  NodePlace p;
+  MPI_Comm_rank(node, &p.rank);
+  MPI_Comm_size(node, &p.size);
   MPI_Comm_free(&node);
-  return local;
+  return p;
 }
 
 int ranksSharingDevice(const GlDeviceInfo& mine, MPI_Comm comm) {

@@ -12,8 +12,13 @@
 
 namespace sortlast {
 
-// This rank's index among the ranks of its node (MPI_COMM_TYPE_SHARED). Collective.
-int nodeLocalRank(MPI_Comm comm);
+// This rank's index among the ranks of its node (MPI_COMM_TYPE_SHARED), and how many ranks the
+// node has. Collective.
+struct NodePlace {
+  int rank = 0, size = 1;
+};
+NodePlace nodePlace(MPI_Comm comm);
+inline int nodeLocalRank(MPI_Comm comm) { return nodePlace(comm).rank; }
 
 // How many ranks of this node render on the same hardware device as this one (1 for software
 // rendering: llvmpipe has no device memory of its own). Collective.

@@ -9,6 +9,7 @@
 
 #include "common/anisotropic_kernels.h"
 #include "common/error.h"
+#include "master/session/device_report.h"  // nodePlace
 #include "worker/particles/metaball_slices.h"  // kSliceVoxelCells, kSliceSlotPoints
 
 namespace sortlast {
@@ -91,11 +92,7 @@ MemoryBudget gpuMemoryBudget(const GlDeviceInfo& gpu, int sharing) {
 }
 
 MemoryBudget memoryBudget(const Scene& scene, MPI_Comm comm) {
-  MPI_Comm node;
-  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
-  int on_node = 1;
-  MPI_Comm_size(node, &on_node);
-  MPI_Comm_free(&node);
+  const int on_node = nodePlace(comm).size;
   MemoryBudget b;
   if (scene.memory_limit_mib) {
     b.bytes = *scene.memory_limit_mib * kMiB;
