@@ -40,10 +40,10 @@ orbit_fault() {
   local name=$1 strategy=$2 out=$WORK/$1 mp rc=0 pids took
   local sets=(--set image.width=96 --set image.height=96 --set compositing.strategy="$strategy"
               --set camera.orbit.frames=5000)
-  # Open MPI's start across the namespaces now and then hangs waiting for one node's daemon (seen
-  # in CI with another test's mpirun beside it, and by scripts/bench-cluster; cause not found:
-  # docs/cluster-rehearsal.md). That is the launch, not the fault this test is about: a job with
-  # no frame 2 after 30 s while still running is killed and started again, at most 3 times.
+  # Open MPI's start across the namespaces hung about 1 launch in 30 while every node shared this
+  # machine's host name and session folder (fixed in the rehearsal's agent: 0 of 120 since;
+  # docs/cluster-rehearsal.md). A launch is not the fault this test is about, so one that still
+  # has no frame 2 after 30 s while running is killed and started again, at most 3 times.
   mkdir -p "$out"
   local try
   for try in 1 2 3; do
