@@ -1,6 +1,6 @@
 // Particle snapshots in HDF5, the layout SPH and cosmology codes write (Gadget, SWIFT, AREPO):
 // an N x 3 dataset of positions, /PartType0/Coordinates unless particles.dataset names another.
-// Read whole by the caller's rank (rank 0 loads every particle format; the session scatters).
+// A session reads it in shares, each rank a contiguous run of rows (master/session/particle_loading.cpp).
 #include <vector>
 
 #include "common/error.h"
@@ -11,7 +11,8 @@ namespace sortlast {
 
 using hdf5::Id;
 
-std::vector<glm::vec3> readHdf5Particles(const std::string& file, const std::string& dataset) {
+std::vector<glm::vec3> readHdf5Particles(const std::string& file, const std::string& dataset, int part, int parts,
+                                         long long* total) {
   hdf5::quiet();
   const std::string f = "particles.file " + file, w = f + ": dataset " + dataset;
   if (H5Fis_hdf5(file.c_str()) <= 0) throw InputError(f + ": not an HDF5 file (no HDF5 signature)");
@@ -38,15 +39,22 @@ std::vector<glm::vec3> readHdf5Particles(const std::string& file, const std::str
                      (c == H5T_INTEGER ? (H5Tget_sign(type.get()) == H5T_SGN_NONE ? "uint" : "int") + std::to_string(bytes * 8)
                       : c == H5T_FLOAT ? "float" + std::to_string(bytes * 8) : std::string("other than numbers")) +
                      " are not supported (float32, float64)");
-  std::vector<glm::vec3> out(static_cast<size_t>(dims[0]));
+  if (total) *total = (long long)dims[0];
+  // Rows [n * part / parts, n * (part + 1) / parts): the shares are contiguous and in part order.
+  const hsize_t first = hsize_t((unsigned long long)dims[0] * unsigned(part) / unsigned(parts));
+  const hsize_t end = hsize_t((unsigned long long)dims[0] * unsigned(part + 1) / unsigned(parts));
+  std::vector<glm::vec3> out(static_cast<size_t>(end - first));
   if (!out.empty()) {
+    const hsize_t start[2] = {first, 0}, count[2] = {end - first, 3};
+    H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start, nullptr, count, nullptr);
+    Id memory(H5Screate_simple(2, count, nullptr), H5Sclose);
     // float64 positions are rounded to float32 here (every format's positions are held as float).
     if (bytes == 4) {
-      if (H5Dread(ds.get(), H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
+      if (H5Dread(ds.get(), H5T_NATIVE_FLOAT, memory.get(), space.get(), H5P_DEFAULT, out.data()) < 0)
         throw InputError(w + ": reading the positions failed (a truncated or damaged file?)" + hdf5::because());
     } else {
       std::vector<double> v(out.size() * 3);
-      if (H5Dread(ds.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) < 0)
+      if (H5Dread(ds.get(), H5T_NATIVE_DOUBLE, memory.get(), space.get(), H5P_DEFAULT, v.data()) < 0)
         throw InputError(w + ": reading the positions failed (a truncated or damaged file?)" + hdf5::because());
       for (size_t i = 0; i < out.size(); ++i)
         out[i] = {float(v[3 * i]), float(v[3 * i + 1]), float(v[3 * i + 2])};

@@ -220,6 +220,40 @@ void describeHdf5(VolumeDesc& d) {
     hdf5::readTriple(file.get(), ds.get(), d, "volume.origin_attribute", d.origin_attribute);
 }
 
+namespace {
+// H5Lexists on each component of an absolute path in turn (it fails, rather than answering no,
+// where a group on the way is missing).
+bool pathExists(hid_t file, const std::string& path) {
+  for (size_t slash = path.find('/', 1);; slash = path.find('/', slash + 1)) {
+    const std::string part = path.substr(0, slash);
+    if (!part.empty() && part != "/" && H5Lexists(file, part.c_str(), H5P_DEFAULT) <= 0) return false;
+    if (slash == std::string::npos) return true;
+  }
+}
+}  // namespace
+
+std::string hdf5StepPath(const std::string& dataset, int step) {
+  std::string out = dataset;
+  for (size_t at = out.find("{step}"); at != std::string::npos; at = out.find("{step}", at))
+    out.replace(at, 6, std::to_string(step));
+  return out;
+}
+
+int countHdf5Steps(const VolumeDesc& d) {
+  hdf5::quiet();
+  const std::string f = "volume.file " + d.file;
+  if (H5Fis_hdf5(d.file.c_str()) <= 0) throw InputError(f + ": not an HDF5 file (no HDF5 signature)");
+  Id file(H5Fopen(d.file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  if (!file.ok()) throw InputError(f + ": cannot open as HDF5 (a truncated or damaged file?)" + hdf5::because());
+  const std::string dataset = d.dataset.front() == '/' ? d.dataset : "/" + d.dataset;
+  int steps = 0;
+  while (steps < (1 << 20) && pathExists(file.get(), hdf5StepPath(dataset, steps))) ++steps;
+  if (steps == 0)
+    throw InputError(f + ": volume.dataset " + d.dataset + ": no dataset " + hdf5StepPath(dataset, 0) +
+                     " for step 0 (a series' steps are numbered 0, 1, 2, ... without padding)");
+  return steps;
+}
+
 std::vector<float> readHdf5Box(const VolumeDesc& d, const IndexBox& box) {
   hdf5::quiet();
   Id file(H5Fopen(d.file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);

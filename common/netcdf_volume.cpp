@@ -164,20 +164,25 @@ void describeNetcdf(VolumeDesc& d) {
   const Var v = inquire(f.id, id);
   int first = 0;  // the first spatial dimension
   d.record = -1;
+  d.records = 1;
   if (v.ndims == 4) {
     if (!isTimeSeries(f.id, v))
       throw InputError(w + ": the variable has 4 dimensions, and the first (" + dimName(f.id, v.dims[0]) +
                        ") is neither unlimited nor named time");
+    // A time series: time.step picks the record (scene.cpp counts them as the scene's steps).
     const size_t records = dimLength(f.id, v.dims[0]);
-    if (records != 1)
-      throw InputError(w + ": the variable holds " + std::to_string(records) + " records along " +
-                       dimName(f.id, v.dims[0]) + "; a time series inside one NetCDF file is not supported: "
-                       "write one file per step (a single record each) and list them in volume.files");
-    d.record = 0;
+    if (records == 0) throw InputError(w + ": the variable has no records along " + dimName(f.id, v.dims[0]));
+    if (records > size_t(1) << 20)
+      throw InputError(w + ": " + std::to_string(records) + " records along " + dimName(f.id, v.dims[0]) + ", beyond 2^20");
+    d.records = int(records);
+    if (d.step < 0 || d.step >= d.records)
+      throw InputError(w + ": time step " + std::to_string(d.step) + " is out of range: the variable holds " +
+                       std::to_string(records) + " record(s) along " + dimName(f.id, v.dims[0]));
+    d.record = d.step;
     first = 1;
   } else if (v.ndims != 3) {
     throw InputError(w + ": the variable has " + std::to_string(v.ndims) +
-                     " dimension(s), not 3 (or 4 with a single time record first)");
+                     " dimension(s), not 3 (or 4 with a time dimension first)");
   }
   switch (v.type) {
     case NC_UBYTE: d.type = SampleType::kUint8; break;

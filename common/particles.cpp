@@ -15,6 +15,7 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 #include <string_view>
 
 #include "common/error.h"
@@ -122,27 +123,28 @@ std::vector<glm::vec3> readCsv(std::string_view all, const std::string& file) {
   return out;
 }
 
-void checkFinite(const std::vector<glm::vec3>& ps, const std::string& file) {
+// `first`: the index in the file of ps[0] (a rank's share), so messages name the file's index.
+void checkFinite(const std::vector<glm::vec3>& ps, const std::string& file, long long first = 0) {
   for (size_t i = 0; i < ps.size(); ++i) {
     const glm::vec3& p = ps[i];
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
       throw InputError(
           "particles.file " + file + ": " +
           (std::isnan(p.x) || std::isnan(p.y) || std::isnan(p.z) ? "NaN" : "infinite") +
-          " position at particle " + std::to_string(i));
+          " position at particle " + std::to_string(first + (long long)i));
   }
 }
 
 // The GPU computes in float, squaring distances: a coordinate beyond kMaxCoordinate would
 // overflow float (3.4e38) there. Procedural sets too (particles.spacing scales them).
-void checkMagnitude(const std::vector<glm::vec3>& ps, const std::string& what) {
+void checkMagnitude(const std::vector<glm::vec3>& ps, const std::string& what, long long first = 0) {
   for (size_t i = 0; i < ps.size(); ++i)
     for (int a = 0; a < 3; ++a)
       if (std::abs(double(ps[i][a])) > kMaxCoordinate) {
         char value[32];
         std::snprintf(value, sizeof value, "%g", double(ps[i][a]));
         throw InputError(
-            what + ": particle " + std::to_string(i) + " has coordinate " + value +
+            what + ": particle " + std::to_string(first + (long long)i) + " has coordinate " + value +
             ", beyond +-1e18 (float math on the GPU squares distances and would overflow)");
       }
 }
@@ -167,6 +169,23 @@ Box3 ParticleSet::bounds() const {
     b.hi = glm::max(b.hi, glm::dvec3(p));
   }
   return b;
+}
+
+bool readsInShares(const ParticleDesc& d) { return !d.file.empty() && formatOf(d) == "hdf5"; }
+
+ParticleSet loadParticleShare(const ParticleDesc& d, int part, int parts, long long* total) {
+  if (!readsInShares(d)) throw std::logic_error("loadParticleShare: only HDF5 particle files are read in shares");
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(d.file, ec)) throw InputError("particles.file " + d.file + ": no such file");
+  ParticleSet s;
+  s.positions = readHdf5Particles(d.file, d.dataset, part, parts, total);
+  const long long first = (long long)((unsigned long long)*total * unsigned(part) / unsigned(parts));
+  if (d.count >= 0 && *total != d.count)
+    throw InputError("particles.file " + d.file + ": holds " + std::to_string(*total) +
+                     (*total == 1 ? " particle" : " particles") + ", but particles.count is " + std::to_string(d.count));
+  checkFinite(s.positions, d.file, first);
+  checkMagnitude(s.positions, "particles.file " + d.file, first);
+  return s;
 }
 
 ParticleSet loadParticles(const ParticleDesc& d) {

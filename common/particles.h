@@ -78,6 +78,11 @@ struct ParticleSet {
 // not desc.count (when given), NaN or infinite position (naming its index), malformed CSV (naming
 // the line), unknown format or procedural name. A file with no particles gives an empty set.
 ParticleSet loadParticles(const ParticleDesc& desc);
+// Formats read by every rank, a contiguous share each (HDF5 snapshots), rather than whole by one.
+bool readsInShares(const ParticleDesc& desc);
+// Share `part` of `parts` of such a file (the same checks as loadParticles, particles named by
+// their index in the file); *total receives the file's particle count. Throws InputError.
+ParticleSet loadParticleShare(const ParticleDesc& desc, int part, int parts, long long* total);
 
 // Procedural sets, in units where neighbouring particles are `spacing` apart, centred at the
 // origin (the centres' bounding box), bit-identical on every machine (an integer hash, no std::
@@ -103,6 +108,9 @@ Box3 fieldBoundInside(const Box3& clip, const std::vector<glm::vec3>& particles,
 std::vector<glm::vec3> readVtkParticles(const std::string& file);
 // Positions of an HDF5 snapshot: the N x 3 float32 or float64 `dataset` (particles.dataset);
 // common/hdf5_particles.cpp, the only file of these that sees HDF5's headers.
-std::vector<glm::vec3> readHdf5Particles(const std::string& file, const std::string& dataset);
+// Share `part` of `parts` (rows n*part/parts up to n*(part+1)/parts, n the dataset's rows; 0 of 1:
+// all of them); *total (if given) receives n.
+std::vector<glm::vec3> readHdf5Particles(const std::string& file, const std::string& dataset, int part = 0,
+                                         int parts = 1, long long* total = nullptr);
 
 }  // namespace sortlast

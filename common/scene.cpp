@@ -495,11 +495,39 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
     throw InputError("scene keys 'volume.files' and 'particles.files' name " +
                      std::to_string(s.volume_files.size()) + " and " +
                      std::to_string(s.particle_files.size()) + " steps: a series needs one of each per step");
-  s.time_steps = int(std::max({size_t(1), s.volume_files.size(), s.particle_files.size()}));
+  // Steps inside one file: the records of a 4-D NetCDF variable (the file's metadata is read here,
+  // on every parse, so time.step is checked against it before any rank loads a step) ...
+  size_t records = 0;
+  if (!vol.file.empty() && s.volume_files.empty() && vol.formatOf() == VolumeFormat::kNetcdf) {
+    VolumeDesc probe = vol;
+    describeNetcdf(probe);
+    if (probe.records > 1) records = size_t(probe.records);
+    if (records > 0 && !s.particle_files.empty() && s.particle_files.size() != records)
+      throw InputError("volume.file " + vol.file + " holds " + std::to_string(records) +
+                       " time steps (records of " + probe.variable + ") and particles.files names " +
+                       std::to_string(s.particle_files.size()) + ": a series needs one of each per step");
+  }
+  // ... or an HDF5 volume.dataset with {step} (one dataset per step).
+  const bool hdf5_series = vol.dataset.find("{step}") != std::string::npos;
+  if (hdf5_series && !s.volume_files.empty())
+    throw InputError("volume.dataset " + vol.dataset + ": {step} makes one file a time series; with "
+                     "volume.files (one file per step) name the dataset without {step}");
+  if (hdf5_series && !vol.file.empty()) {
+    if (vol.formatOf() != VolumeFormat::kHdf5)
+      throw InputError("volume.dataset " + vol.dataset + ": {step} needs an HDF5 volume.file, not " + vol.file);
+    records = size_t(countHdf5Steps(vol));
+    if (!s.particle_files.empty() && s.particle_files.size() != records)
+      throw InputError("volume.file " + vol.file + " holds " + std::to_string(records) + " time steps (datasets " +
+                       vol.dataset + ") and particles.files names " + std::to_string(s.particle_files.size()) +
+                       ": a series needs one of each per step");
+  }
+  s.time_steps = int(std::max({size_t(1), s.volume_files.size(), s.particle_files.size(), records}));
   if (s.time_step < 0 || s.time_step >= s.time_steps)
     throw InputError("scene key 'time.step': " + std::to_string(s.time_step) + " is out of range: the scene has " +
                      std::to_string(s.time_steps) + " time step(s), 0 ... " + std::to_string(s.time_steps - 1));
   if (!s.volume_files.empty()) vol.file = s.volume_files[size_t(s.time_step)];
+  if (records > 0) vol.step = s.time_step;
+  if (hdf5_series && !vol.file.empty()) vol.dataset = hdf5StepPath(vol.dataset, s.time_step);
   if (!s.particle_files.empty()) s.particles.file = s.particle_files[size_t(s.time_step)];
   readGlow(r, s);
   s.surfaces = parseSurfaces(r.get("surfaces"), origin.base_dir);

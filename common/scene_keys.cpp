@@ -221,11 +221,13 @@ std::vector<SceneKey> makeTable() {
       {"volume.dataset", "\"\"",
        "HDF5: the path of the 3-D dataset to read (`/fields/density`). Empty: the file's only 3-D "
        "dataset (a file with several needs this key). Its type gives the samples' (uint8, uint16, "
-       "int16, float32, float64; others are refused).",
+       "int16, float32, float64; others are refused). With `{step}` (`/step_{step}/density`) the "
+       "file is a time series: steps 0, 1, 2, ... (no padding) while their datasets exist, "
+       "`time.step` picks one.",
        Text{member<&Scene::volume, &VolumeDesc::dataset>}},
       {"volume.variable", "\"\"",
-       "NetCDF: the variable to read, 3-D, or 4-D with a single record along an unlimited (or "
-       "`time`) first dimension. Empty: the file's only such variable. Coordinate variables (1-D, "
+       "NetCDF: the variable to read, 3-D, or 4-D with an unlimited (or `time`) first dimension: "
+       "a time series, one step per record (`time.step` picks it). Empty: the file's only such variable. Coordinate variables (1-D, "
        "named like a dimension) give the spacing when uniform (within 1e-6 relative; non-uniform "
        "ones are refused); samples equal to `_FillValue` or `missing_value` are refused.",
        Text{member<&Scene::volume, &VolumeDesc::variable>}},
@@ -636,8 +638,9 @@ std::vector<SceneKey> makeTable() {
        "pixel travels (to measure what RLE saves).",
        Flag{member<&Scene::rle>}},
       {"time.step", "0",
-       "The time step to render, 0 ... steps - 1 (a scene with `volume.files` or "
-       "`particles.files`; otherwise only 0).",
+       "The time step to render, 0 ... steps - 1 (a scene with `volume.files`, "
+       "`particles.files`, a 4-D NetCDF `volume.variable` or an HDF5 `volume.dataset` with "
+       "`{step}`; otherwise only 0).",
        Int{member<&Scene::time_step>}},
       {"time.cache_mib", "1024",
        "A resident session (`sortlast serve`) keeps the samples and particles of recent time steps "

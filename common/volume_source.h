@@ -46,8 +46,12 @@ struct VolumeDesc {
   std::string axis_order = "zyx";  // volume.axis_order: zyx | xyz
   std::string spacing_attribute;  // HDF5: the attribute holding the spacing (empty: scene keys)
   std::string origin_attribute;   // HDF5: the attribute holding the origin (checked, not used)
-  // Filled in by validateVolume from a NetCDF file: the record of a 4-D variable (-1: 3-D) and
-  // the values that mark missing samples (_FillValue, missing_value), which are refused.
+  // time.step where the steps are inside the file (the records of a 4-D NetCDF variable).
+  int step = 0;
+  // Filled in by validateVolume from a NetCDF file: the records along a 4-D variable's time
+  // dimension (1 for 3-D), the one read (`step`; -1: 3-D) and the values that mark missing
+  // samples (_FillValue, missing_value), which are refused.
+  int records = 1;
   int record = -1;
   std::vector<std::pair<std::string, double>> fill_values;  // (attribute, value)
 
@@ -82,6 +86,11 @@ std::vector<float> readVtiBox(const VolumeDesc& desc, const IndexBox& box);
 // session's ranks read their bricks collectively instead (master/session/hdf5_loading.h).
 void describeHdf5(VolumeDesc& desc);
 std::vector<float> readHdf5Box(const VolumeDesc& desc, const IndexBox& box);
+// An HDF5 time series inside one file: volume.dataset with `{step}` (`/step_{step}/density`).
+// hdf5StepPath: the path of one step ({step} replaced by its number, no padding); countHdf5Steps:
+// the steps 0, 1, 2, ... whose dataset exists (throws where step 0 has none).
+std::string hdf5StepPath(const std::string& dataset, int step);
+int countHdf5Steps(const VolumeDesc& desc);
 // NetCDF (common/netcdf_volume.cpp): the variable found and checked, dims, type, spacing from
 // uniform coordinate variables, fill values; one box by nc_get_vara.
 void describeNetcdf(VolumeDesc& desc);

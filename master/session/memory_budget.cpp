@@ -113,7 +113,7 @@ MemoryBudget memoryBudget(const Scene& scene, MPI_Comm comm) {
   return b;
 }
 
-MemoryNeed particleSetNeed(const Scene& scene) {
+MemoryNeed particleSetNeed(const Scene& scene, int ranks) {
   MemoryNeed n;
   const ParticleDesc& p = scene.particles;
   if (!p.enabled()) return n;
@@ -129,7 +129,14 @@ MemoryNeed particleSetNeed(const Scene& scene) {
                (p.format == "auto" && std::filesystem::path(p.file).extension() == ".csv");
     count = size / (csv ? 6.0 : 12.0);
   }
-  // The set, and the copy scattering builds of it.
+  // The set, and the copy scattering builds of it; where every rank reads a share, its share.
+  if (ranks > 1 && readsInShares(p)) {
+    const double share = std::ceil(count / ranks);
+    n.add("this rank's share of the particle set (" + std::to_string((long long)share) + " of at most " +
+              std::to_string((long long)count) + " particles, with its exchange copy)",
+          2.0 * share * kParticle);
+    return n;
+  }
   n.add("the particle set on rank 0 (" + std::to_string((long long)count) +
             " particles, with its scatter copy)",
         2.0 * count * kParticle);
@@ -205,7 +212,11 @@ MemoryNeed sessionNeed(const Scene& scene, const SessionLayout& layout, long lon
     n.add(
         "this rank's particles with ghosts (" + std::to_string((long long)held) + ", host and GPU)",
         2.0 * held * kParticle, held * kParticle);
-    if (rank == 0) n.add("the particle set on rank 0", double(particles) * kParticle);
+    const int ranks = int(layout.assignment.region.size());
+    if (readsInShares(scene.particles) && ranks > 1)
+      n.add("this rank's share of the particle set", std::ceil(double(particles) / ranks) * kParticle);
+    else if (rank == 0)
+      n.add("the particle set on rank 0", double(particles) * kParticle);
     if (scene.particles.method == "grid") {
       // Cells of edge h/2 (the influence radius) over a brick grown by the reach, at most 2^24;
       // each particle listed in every cell its ball of the reach touches (round: 84 cells;

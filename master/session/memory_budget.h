@@ -48,8 +48,8 @@ constexpr double kMemorySafety = 0.9;
 MemoryBudget memoryBudget(const Scene& scene, MPI_Comm comm);
 
 // Rank 0's copy of the whole particle set, before it is loaded (procedural count, or the file's
-// size as a bound).
-MemoryNeed particleSetNeed(const Scene& scene);
+// size as a bound); for a set read in shares (readsInShares) on `ranks` > 1, one rank's share.
+MemoryNeed particleSetNeed(const Scene& scene, int ranks);
 // Image targets and compositing buffers for a w x h frame on one rank.
 MemoryNeed imageNeed(const Scene& scene, int width, int height, int rank, int bricks_here,
                      int bricks_all);

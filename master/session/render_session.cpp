@@ -216,22 +216,23 @@ RenderSession::RenderSession(SessionOptions options, MPI_Comm comm) : s_(std::ma
   const Scene& scene = S.base;
   S.budget = memoryBudget(scene, comm);
   const DeviceRequest device{scene.device, nodeLocalRank(comm), S.rank};
-  // Rank 0 reads the whole particle set first: bounded before it is read.
+  // Rank 0 reads the whole particle set first (or every rank its share): bounded before it is read.
   collectively(comm, [&] {
-    if (S.rank == 0) checkMemory(particleSetNeed(scene), S.budget, 0, "the scene's particle set");
+    if (S.rank == 0 || readsInShares(scene.particles))
+      checkMemory(particleSetNeed(scene, S.size), S.budget, S.rank, "the scene's particle set");
   });
   // Particles: rank 0 loads the current step; the brick grid and the camera frame the centres of
   // every step of a series (read once here, then dropped).
-  RootParticles first;
+  LoadedParticles first;
   Box3 centres = noBox();
   if (scene.particles.enabled()) {
-    first = loadParticlesOnRoot(scene.particles, comm);
+    first = loadParticleSet(scene.particles, comm);
     if (first.total > 0) centres = first.bounds;
     for (int step = 0; step < int(scene.particle_files.size()); ++step) {
       if (step == scene.time_step) continue;
       ParticleDesc other = scene.particles;
       other.file = scene.particle_files[size_t(step)];
-      RootParticles r = loadParticlesOnRoot(other, comm);
+      LoadedParticles r = loadParticleSet(other, comm);
       if (r.total > 0) centres = isEmpty(centres) ? r.bounds : unite(centres, r.bounds);
     }
   }
@@ -314,7 +315,7 @@ void RenderSession::State::meetDevices() {
   gpu_budget = gpuMemoryBudget(mine, ranksSharingDevice(mine, comm));
   devices = gatherDeviceInfo(mine, comm);
 }
-long long RenderSession::particleCount() const { return s_->current ? s_->current->root.total : 0; }
+long long RenderSession::particleCount() const { return s_->current ? s_->current->loaded.total : 0; }
 int RenderSession::currentStep() const {
   if (s_->ext) return s_->ext->step;
   return s_->current ? s_->current->step : s_->base.time_step;

@@ -43,13 +43,13 @@ std::vector<Box3> rankRegions(const SessionLayout& layout, int size) {
 void StepData::dropHostCopies() {
   for (auto& s : samples) std::vector<float>().swap(s);
   for (auto& b : adaptive.bricks) b = {};
-  root.set = {};
+  loaded.set = {};
   std::vector<glm::vec3>().swap(particles);
   dropped = true;
 }
 
 StepData loadStep(const Scene& scene, const SessionLayout& layout, bool adaptive, MPI_Comm comm,
-                  RootParticles* preloaded) {
+                  LoadedParticles* preloaded) {
   int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
@@ -92,13 +92,13 @@ StepData loadStep(const Scene& scene, const SessionLayout& layout, bool adaptive
     }
   }
   if (scene.particles.enabled()) {
-    d.root = preloaded ? std::move(*preloaded) : loadParticlesOnRoot(scene.particles, comm);
+    d.loaded = preloaded ? std::move(*preloaded) : loadParticleSet(scene.particles, comm);
     scatterStepParticles(d, layout, scene.particles.ghostMargin(), comm);
   }
   double mib = 0;
   for (const auto& s : d.samples) mib += double(s.size()) * sizeof(float);
   for (const auto& b : d.adaptive.bricks) mib += double(b.atlas.size()) * sizeof(float);
-  mib += double(d.particles.size() + d.root.set.positions.size()) * sizeof(glm::vec3);
+  mib += double(d.particles.size() + d.loaded.set.positions.size()) * sizeof(glm::vec3);
   mib /= 1024.0 * 1024.0;
   MPI_Allreduce(&mib, &d.cost_mib, 1, MPI_DOUBLE, MPI_MAX, comm);
   return d;
@@ -107,7 +107,7 @@ StepData loadStep(const Scene& scene, const SessionLayout& layout, bool adaptive
 void scatterStepParticles(StepData& d, const SessionLayout& layout, double h, MPI_Comm comm) {
   int size = 1;
   MPI_Comm_size(comm, &size);
-  d.particles = scatterParticles(d.root, rankRegions(layout, size), h, comm);
+  d.particles = scatterParticles(d.loaded, rankRegions(layout, size), h, comm);
   d.scattered_h = h;
 }
 

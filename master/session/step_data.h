@@ -24,7 +24,7 @@ struct StepData {
   bool has_volume = false;
   double data_min = 0, data_max = 0;        // over every rank
   std::vector<long long> histogram;         // rank 0: kHistogramBins bins over [data_min, data_max]
-  RootParticles root;                       // rank 0 holds the step's whole set (to scatter anew)
+  LoadedParticles loaded;  // rank 0: the whole set, or (HDF5) each rank its share: to scatter anew
   std::vector<glm::vec3> particles;         // this rank's region's particles and ghosts
   double scattered_h = 0;                   // the ghost margin `particles` were chosen with
   double cost_mib = 0;                      // the largest any rank holds for this step
@@ -42,9 +42,10 @@ struct StepData {
 // `preloaded`: the step's particle set, already loaded by rank 0 (the session reads the first
 // step's set before the layout, which depends on its bounds).
 StepData loadStep(const Scene& scene, const SessionLayout& layout, bool adaptive, MPI_Comm comm,
-                  RootParticles* preloaded = nullptr);
+                  LoadedParticles* preloaded = nullptr);
 
-// Sends every rank its particles again for a new influence radius h (rank 0 must hold the set).
+// Sends every rank its particles again for a new influence radius h (from `loaded`, which
+// dropHostCopies must not have dropped).
 void scatterStepParticles(StepData& data, const SessionLayout& layout, double h, MPI_Comm comm);
 
 // The recent steps, newest first, within `bound_mib` (the current step always stays). Every rank
@@ -56,13 +57,13 @@ class StepCache {
   StepData& get(const Scene& scene, const SessionLayout& layout, bool adaptive, MPI_Comm comm);
   double heldMiB() const;
   // The next step loaded takes this particle set instead of reading its file.
-  void preload(RootParticles root) { preloaded_ = std::move(root); has_preloaded_ = true; }
+  void preload(LoadedParticles set) { preloaded_ = std::move(set); has_preloaded_ = true; }
   size_t size() const { return steps_.size(); }
 
  private:
   double bound_mib_;
   std::list<StepData> steps_;
-  RootParticles preloaded_;
+  LoadedParticles preloaded_;
   bool has_preloaded_ = false;
 };
 

@@ -3,16 +3,19 @@
 # (Debian's python3-h5py, python3-netcdf4) from the neghip samples and the dam-break particles.
 #   hdf5:      contiguous uint8 (the only 3-D dataset, found), chunked+gzip float32 in a file of
 #              two 3-D datasets (volume.dataset), float64 written transposed (volume.axis_order
-#              xyz), uint16 with spacing and origin attributes, render exactly like the raw file
+#              xyz), uint16 with spacing and origin attributes, a series (/step_{step}/density,
+#              time.step 1), render exactly like the raw file
 #              on 1 and 3 ranks (chunked also on 4; attributes on 3), read collectively through
 #              MPI-IO; the CPU reference (independent reads) of the transposed, the chunked and a
 #              .dat with volume.format hdf5 equals raw's. Bad files are refused naming the file,
 #              the dataset and the problem (a NaN met by one of 3 ranks ends all three; so does a
 #              damaged gzip chunk met by one of 2 inside the collective read).
 #   netcdf:    float32 with uniform coordinate variables (spacing from them) on 1 and 3 ranks, and
-#              a 4-D ubyte variable of one record on 1 and 4 ranks; bad files refused.
-#   particles: /PartType0/Coordinates (float32 on 1 and 2 ranks, float64 on 1) render like the raw
-#              particle file; bad snapshots and particles.radius_dataset refused.
+#              a 4-D ubyte variable of one record on 1 and 4 ranks, one of 3 records (a time
+#              series: time.step picks the record) on 3; bad files refused.
+#   particles: /PartType0/Coordinates (float32 on 1, 2 and 3 ranks, each rank reading a share of
+#              the rows; float64 on 1) render like the raw particle file; bad snapshots (a NaN in
+#              one rank's share) and particles.radius_dataset refused.
 # Scope `short` (the sanitizer build): for hdf5, the chunked file and the NaN on 3 ranks, the damaged
 # chunk on 2, the transposed file through the reference; for netcdf, the coordinates file on 3
 # ranks and the fill value on 2.
@@ -76,6 +79,10 @@ with h5py.File(out + "/attrs.h5", "w") as f:
     d = f.create_dataset("v", data=a.astype(np.uint16))
     d.attrs["element_size"] = [2.0, 1.0, 1.0]  # dz, dy, dx
     f.attrs["origin"] = [-5.0, 0.0, 3.0]
+with h5py.File(out + "/series.h5", "w") as f:  # a time series: /step_{step}/density, 0 ... 2
+    for k, v in enumerate([a, np.flip(a, 2), a]):
+        f["step_%d/density" % k] = v
+np.flip(a, 2).tofile(out + "/flip.raw")
 with h5py.File(out + "/rank2.h5", "w") as f: f["v"] = np.zeros((8, 8), np.float32)
 with h5py.File(out + "/int32.h5", "w") as f: f["v"] = a.astype(np.int32)
 nan = a.astype(np.float32)
@@ -129,6 +136,17 @@ PY
     --set volume.origin_attribute=origin
   echo "HDF5 uint16 with spacing from an attribute (zyx order) renders like raw with volume.spacing [1, 1, 2] on 3 ranks"
   w=$WORK
+  # A series in one file: volume.dataset with {step}; step 1 is the mirrored volume.
+  run_np 3 render -q -o "$w/flip3.png" --set volume.file="$w/flip.raw" --set "volume.dims=[64,64,64]" \
+    "${common[@]}" || fail "raw flip on 3 ranks"
+  run_np 3 render -q -o "$w/series3.png" --set volume.file="$w/series.h5" --set "volume.dataset=/step_{step}/density" \
+    --set time.step=1 "${common[@]}" || fail "series.h5 time.step 1 on 3 ranks"
+  "$SORTLAST" compare "$w/flip3.png" "$w/series3.png" --max-diff 0 >/dev/null ||
+    fail "series.h5 time.step 1 differs from the raw file of step 1"
+  refused "--set volume.file=$w/series.h5 --set volume.dataset=/step_{step}/density --set time.step=3" \
+    "time.step" "3 is out of range" "3 time step(s)"
+  refused "--set volume.file=$w/series.h5 --set volume.dataset=/s{step}/density" "$w/series.h5" "no dataset /s0/density"
+  echo "HDF5 series /step_{step}/density: time.step 1 renders step 1 like its raw file on 3 ranks; step 3 refused"
   expect_error "--set volume.file=$w/two.h5" "$w/two.h5" "2 3-D datasets" "/fields/density, /fields/other" "volume.dataset"
   expect_error "--set volume.file=$w/truncated.h5" "$w/truncated.h5" "truncated"
   expect_error "--set volume.file=$w/bad_chunk.h5" "$w/bad_chunk.h5" "dataset /v" "read of a brick failed" "inflate"
@@ -166,7 +184,8 @@ with new("record.nc", ("time", "z", "y", "x"), {"z": 2.0}) as f:
     f.createVariable("density", "u1", ("time", "z", "y", "x"))[0] = a
 with new("records.nc", ("time", "z", "y", "x")) as f:
     v = f.createVariable("density", "u1", ("time", "z", "y", "x"))
-    v[0] = a; v[1] = a; v[2] = a
+    v[0] = a; v[1] = np.flip(a, 2); v[2] = a  # step 1: mirrored in x
+np.flip(a, 2).tofile(out + "/flip.raw")
 with new("uneven.nc") as f:
     f.createVariable("x", "f8", ("x",))[:] = np.concatenate([np.arange(32), 32.5 + np.arange(32)])
     f.createVariable("density", "u1", ("z", "y", "x"))[:] = a
@@ -201,12 +220,20 @@ PY
   refused "--set volume.file=$w/two.nc" "$w/two.nc" "2 3-D variables (a, b)" "volume.variable"
   refused "--set volume.file=$w/two.nc --set volume.variable=c" "$w/two.nc" "variable c" "no such variable"
   refused "--set volume.file=$w/int.nc" "$w/int.nc" "variable density" "int (int32)" "not supported"
-  refused "--set volume.file=$w/records.nc" "$w/records.nc" "variable density" "3 records" "volume.files"
+  # A 4-D variable of 3 records is a series: time.step 1 reads record 1 (the mirrored volume).
+  run_np 3 render -q -o "$w/flip3.png" --set volume.file="$w/flip.raw" --set "volume.dims=[64,64,64]" \
+    "${common[@]}" || fail "raw flip on 3 ranks"
+  run_np 3 render -q -o "$w/records3.png" --set volume.file="$w/records.nc" --set time.step=1 "${common[@]}" ||
+    fail "records.nc time.step 1 on 3 ranks"
+  "$SORTLAST" compare "$w/flip3.png" "$w/records3.png" --max-diff 0 >/dev/null ||
+    fail "records.nc time.step 1 differs from the raw file of record 1"
+  refused "--set volume.file=$w/records.nc --set time.step=3" "time.step" "3 is out of range" "3 time step(s)"
+  echo "NetCDF 4-D of 3 records: time.step 1 renders record 1 like its raw file on 3 ranks; step 3 refused"
   refused "--set volume.file=$w/text.nc" "$w/text.nc" "cannot open as NetCDF"
   echo "bad NetCDF files refused with the file, the variable and the problem named"
   ;;
 particles)
-  python3 - "$data/dam_break_xyz_float32.raw" "$WORK" <<'PY'
+  nan_at=$(python3 - "$data/dam_break_xyz_float32.raw" "$WORK" <<'PY'
 import sys, numpy as np, h5py
 p = np.fromfile(sys.argv[1], dtype="<f4").reshape(-1, 3)
 out = sys.argv[2]
@@ -217,7 +244,12 @@ for name, t in (("f32", np.float32), ("f64", np.float64)):
         h.attrs["BoxSize"] = 1.0
         h.attrs["Time"] = 0.25
 with h5py.File(out + "/flat.hdf5", "w") as f: f["PartType0/Coordinates"] = p[:, :2].copy()
+q = p.copy()
+q[len(q) - 5, 1] = np.nan  # in the last rank's share on any rank count
+with h5py.File(out + "/nan.hdf5", "w") as f: f["PartType0/Coordinates"] = q
+print(len(q) - 5)
 PY
+)
   scene="$data/../../configs/dam_break.yaml"
   sizes=(--set image.width=96 --set image.height=80)
   for np in 1 2; do
@@ -229,7 +261,12 @@ PY
       "$SORTLAST" compare "$WORK/raw$np.png" "$WORK/$f$np.png" --max-diff 0 >/dev/null || fail "$f.hdf5 on $np rank(s) differs"
     done
   done
-  echo "/PartType0/Coordinates (float32 on 1 and 2 ranks, float64 on 1) render like the raw particle file"
+  # 3 ranks, each reading a third of the rows and exchanging them (8 bricks: 3, 3 and 2 a rank).
+  run_np 3 render "$scene" -q -o "$WORK/raw3.png" "${sizes[@]}" --set bricks.per_axis=2 || fail "raw particles on 3 ranks"
+  run_np 3 render "$scene" -q -o "$WORK/f32_3.png" --set particles.file="$WORK/f32.hdf5" "${sizes[@]}" \
+    --set bricks.per_axis=2 || fail "f32.hdf5 on 3 ranks"
+  "$SORTLAST" compare "$WORK/raw3.png" "$WORK/f32_3.png" --max-diff 0 >/dev/null || fail "f32.hdf5 on 3 ranks (shares) differs"
+  echo "/PartType0/Coordinates (float32 on 1, 2 and 3 ranks: read in shares, float64 on 1) render like the raw particle file"
   pcommon=(--set volume.procedural=none --set particles.radius=0.025 "${sizes[@]}")
   perr() {  # perr FILE_SETS PATTERN...
     local sets=$1 rc=0
@@ -243,7 +280,12 @@ PY
   perr "--set particles.file=$WORK/f32.hdf5 --set particles.dataset=/PartType1/Coordinates" "/PartType1/Coordinates" "no such dataset"
   perr "--set particles.file=$WORK/f32.hdf5 --set particles.radius_dataset=/PartType0/SmoothingLength" \
     "particles.radius_dataset" "not supported"
-  echo "bad snapshots and particles.radius_dataset refused"
+  # A NaN in the last rank's share: every rank ends, the file's index named.
+  rc=0
+  run_np 3 render -q -o "$WORK/x.png" --set particles.file="$WORK/nan.hdf5" "${pcommon[@]}" 2>"$WORK/err" || rc=$?
+  [ "$rc" != 0 ] && [ "$rc" != 124 ] && grep -qF "NaN position at particle $nan_at" "$WORK/err" ||
+    fail "a NaN in rank 2's share on 3 ranks: exit $rc: $(cat "$WORK/err")"
+  echo "bad snapshots (a NaN in one rank's share too) and particles.radius_dataset refused"
   ;;
 *) fail "unknown mode '$mode' (hdf5, netcdf, particles)" ;;
 esac
