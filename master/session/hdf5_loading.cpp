@@ -38,7 +38,8 @@ std::vector<std::vector<float>> readHdf5Collective(const VolumeDesc& desc,
       Id fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
       Id dxpl(H5Pcreate(H5P_DATASET_XFER), H5Pclose);
       if (H5Pset_fapl_mpio(fapl.get(), comm, MPI_INFO_NULL) < 0 ||
-          H5Pset_dxpl_mpio(dxpl.get(), H5FD_MPIO_COLLECTIVE) < 0)
+          H5Pset_dxpl_mpio(dxpl.get(), desc.mpi_io == "independent" ? H5FD_MPIO_INDEPENDENT
+                                                                     : H5FD_MPIO_COLLECTIVE) < 0)
         throw InputError("volume.file " + desc.file + ": cannot set up HDF5's MPI-IO driver" + hdf5::because());
       Id file(H5Fopen(desc.file.c_str(), H5F_ACC_RDONLY, fapl.get()), H5Fclose);  // collective
       if (!file.ok())

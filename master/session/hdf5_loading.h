@@ -16,7 +16,8 @@ namespace sortlast {
 // of collective reads (one per box of the rank with the most; a rank with fewer reads empty
 // selections). A failure on any rank (allocation, open, read, a NaN or a fill value) ends every
 // rank with JobFailed; a rank that fails keeps making the remaining collective calls with empty
-// selections, so no rank is left inside HDF5 waiting for it.
+// selections, so no rank is left inside HDF5 waiting for it. volume.mpi_io: independent makes
+// the reads' transfers independent (the open, the close and the call count stay the same).
 std::vector<std::vector<float>> readHdf5Collective(const VolumeDesc& desc,
                                                    const std::vector<IndexBox>& boxes, MPI_Comm comm);
 

@@ -3,7 +3,7 @@
 #   gray_scott: on 1-4 ranks (slabs of 11/11/10 on 3, 2x2x1 on 4), the in-situ image of a step
 #     against `sortlast render` of V dumped at that step; V published without its ghost layers
 #     (strides into the array) and as a float32 copy gives the same image as the float64 array
-#     with ghosts.
+#     with ghosts (those two on 1 and 3 ranks).
 #   particles: on 1-4 ranks (slabs along x, particles migrating between them), the in-situ image
 #     against `sortlast render` of the particles dumped at that step.
 #   schedule: the built-in actions' --every writes the images of exactly the steps it should, and
@@ -57,9 +57,12 @@ render_dump() {  # render_dump OUT [--set ...]: V dumped on $np ranks, as the ac
 
 case $MODE in
 gray_scott)
-  # Step 400: the fronts have grown across the slab faces of 2 and 3 ranks.
+  # Step 400: the fronts have grown across the slab faces of 2 and 3 ranks. The variants without
+  # ghosts and in float32 run on 1 and 3 ranks (one slab, and odd slabs with faces), f64 on all.
   for np in 1 2 3 4; do
-    for variant in f64 noghosts f32; do
+    variants=(f64)
+    [ $np = 1 ] || [ $np = 3 ] && variants+=(noghosts f32)
+    for variant in "${variants[@]}"; do
       case $variant in
         f64) flags=() ;;
         noghosts) flags=(--no-ghosts) ;;
@@ -78,10 +81,14 @@ gray_scott)
       render_dump np1/render_one_brick.png --set bricks.per_axis=1
       same np1/render_one_brick.png "$insitu"
     fi
-    cmp -s np$np/f64.raw np$np/noghosts.raw || fail "np=$np: --no-ghosts changed the simulation"
-    same "$insitu" np$np/noghosts/v_000400.png
-    same "$insitu" np$np/f32/v_000400.png
-    echo "gray_scott on $np ranks: in-situ image = sortlast render of the dump; no ghosts and float32 agree"
+    if [ ${#variants[@]} -gt 1 ]; then
+      cmp -s np$np/f64.raw np$np/noghosts.raw || fail "np=$np: --no-ghosts changed the simulation"
+      same "$insitu" np$np/noghosts/v_000400.png
+      same "$insitu" np$np/f32/v_000400.png
+      echo "gray_scott on $np ranks: in-situ image = sortlast render of the dump; no ghosts and float32 agree"
+    else
+      echo "gray_scott on $np ranks: in-situ image = sortlast render of the dump"
+    fi
   done
   ;;
 particles)

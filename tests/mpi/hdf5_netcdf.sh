@@ -121,6 +121,7 @@ PY
     same $np xyz --set volume.file="$WORK/xyz.h5" --set volume.axis_order=xyz
   done
   same 4 two --set volume.file="$WORK/two.h5" --set volume.dataset=/fields/density
+  same 3 two_independent --set volume.file="$WORK/two.h5" --set volume.dataset=/fields/density --set volume.mpi_io=independent
   # The CPU reference reads the whole volume with readSamples (the sec2 driver, no MPI-IO);
   # volume.format overrides the extension.
   cp "$WORK/u8.h5" "$WORK/u8.dat"
@@ -130,7 +131,7 @@ PY
     "$SORTLAST" reference -q -o "$WORK/ref.png" --set volume.file="$WORK/$1" "${@:2}" "${common[@]}" || fail "reference $1"
     "$SORTLAST" compare "$WORK/ref_raw.png" "$WORK/ref.png" --max-diff 0 >/dev/null || fail "reference of $1 differs"
   done
-  echo "HDF5 contiguous uint8, chunked+gzip float32 (4 ranks too), float64 xyz render like raw; the reference too"
+  echo "HDF5 contiguous uint8, chunked+gzip float32 (4 ranks too; independent transfers on 3), float64 xyz render like raw; the reference too"
   raw_images "[1,1,2]" 3
   same 3 attrs --set volume.file="$WORK/attrs.h5" --set volume.spacing_attribute=element_size \
     --set volume.origin_attribute=origin
