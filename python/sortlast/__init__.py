@@ -99,7 +99,17 @@ class Image(np.ndarray):
         _sortlast._write_image(str(path), np.asarray(self), self.background)
 
 
-class Session:
+class _Closing:
+    """`with` support for the collective objects: close() on leaving the block."""
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+
+class Session(_Closing):
     """A resident session: loads the scene once, then renders frames on demand (like `serve`).
 
     Collective over `comm`: every rank makes the same calls with the same arguments. Frames and
@@ -143,12 +153,6 @@ class Session:
         """Collective: frees the session (also done at exit)."""
         self._s.close()
 
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
-
 
 def render(scene=None, set=None, comm=None, float=False):
     """One frame of a scene, as `sortlast render SCENE --set ...` renders it (its first orbit
@@ -169,7 +173,7 @@ def _triple(value, what, kind):
     return t
 
 
-class InSitu:
+class InSitu(_Closing):
     """The in-situ library on a running simulation (docs/insitu.md).
 
     InSitu(comm, "actions.yaml") or InSitu.from_text(comm, yaml); each step
@@ -212,9 +216,3 @@ class InSitu:
     def close(self):
         """Collective: frees the library's session (also done at exit)."""
         self._v.close()
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
