@@ -33,6 +33,7 @@ namespace {
 // A stalled client (one that neither sends its request nor reads our answer) is dropped after
 // this long; a frame being rendered does not count, since nothing is read or written meanwhile.
 constexpr auto kIdleTimeout = std::chrono::seconds(30);
+constexpr auto kHangUpPoll = std::chrono::milliseconds(100);
 // After an error answer that leaves part of the request unread (a body over the limit), the rest
 // is read and discarded for up to this long before closing, so the client sees the answer rather
 // than a connection reset.
@@ -82,7 +83,7 @@ std::variant<json, std::string> jsonObject(const std::string& body) {
 }  // namespace
 
 HttpSession::HttpSession(tcp::socket&& socket, std::shared_ptr<ServerState> state)
-    : stream_(std::move(socket)), state_(std::move(state)) {
+    : stream_(std::move(socket)), state_(std::move(state)), hangup_poll_(stream_.get_executor()) {
   ++state_->connections;
 }
 
@@ -109,6 +110,7 @@ void HttpSession::closeNow() {
     state_->queue.forget(client_);
   }
   self_while_waiting_.reset();
+  hangup_poll_.cancel();
   beast::error_code ec;
   stream_.socket().shutdown(tcp::socket::shutdown_both, ec);
   stream_.close();
@@ -283,6 +285,7 @@ Response HttpSession::staticFile(const Request& req, const std::string& path) {
 
 void HttpSession::submit(const Request& req, std::string kind, json body) {
   waiting_ = true;
+  pipelined_ = false;
   client_ = state_->next_client++;
   kind_ = kind;
   version_ = req.version();
@@ -302,22 +305,43 @@ void HttpSession::submit(const Request& req, std::string kind, json body) {
 
 // While the frame renders nothing is read, so a client that hangs up would go unnoticed until
 // its reply is written. Waiting for the socket to turn readable notices it: readable with nothing
-// to read means the peer closed, and its request is withdrawn from the queue.
+// to read means the peer closed, and its request is withdrawn from the queue. The reactor's
+// epoll is edge-triggered, and an edge that comes while no wait is queued (between a spurious
+// wake-up and the next wait) is lost: a peek every kHangUpPoll bounds how long that can hide a
+// hang-up, whatever the reactor does.
 void HttpSession::watchHangUp() {
   stream_.socket().async_wait(
       tcp::socket::wait_read,
       net::bind_executor(stream_.get_executor(), [self = shared_from_this()](beast::error_code ec) {
         if (ec || !self->waiting_ || self->closed_) return;
         // The reactor may report readable spuriously (an edge it saw for data already read), so
-        // peek without blocking rather than trust the wake-up.
-        char byte;
-        ssize_t n =
-            ::recv(self->stream_.socket().native_handle(), &byte, 1, MSG_PEEK | MSG_DONTWAIT);
-        if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR))
-          return self->watchHangUp();
-        if (n <= 0) return self->closeNow();  // closed (0) or reset (error)
-        // Bytes waiting: the client pipelined its next request; it is read after the answer.
+        // peek rather than trust the wake-up.
+        if (self->peerHungUp()) return self->closeNow();
+        if (!self->pipelined_) self->watchHangUp();
       }));
+  pollHangUp();
+}
+
+void HttpSession::pollHangUp() {
+  hangup_poll_.expires_after(kHangUpPoll);
+  hangup_poll_.async_wait([self = shared_from_this()](beast::error_code ec) {
+    if (ec || !self->waiting_ || self->closed_) return;
+    if (self->peerHungUp()) return self->closeNow();
+    if (!self->pipelined_) self->pollHangUp();
+  });
+}
+
+// A non-blocking peek: closed (0) or reset (error) is a hang-up; bytes waiting mean the client
+// pipelined its next request, read after the answer, and the watch stops (the peer is alive).
+bool HttpSession::peerHungUp() {
+  char byte;
+  ssize_t n = ::recv(stream_.socket().native_handle(), &byte, 1, MSG_PEEK | MSG_DONTWAIT);
+  if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR)) return false;
+  if (n > 0) {
+    pipelined_ = true;
+    return false;
+  }
+  return true;
 }
 
 void HttpSession::onReply(ServiceReply reply) {
@@ -326,6 +350,7 @@ void HttpSession::onReply(ServiceReply reply) {
   auto self = std::move(self_while_waiting_);
   beast::error_code ec;
   stream_.socket().cancel(ec);  // the hang-up watch
+  hangup_poll_.cancel();
 
   Request shape;  // the original request's version and keep-alive
   shape.version(version_);

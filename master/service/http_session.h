@@ -28,6 +28,8 @@ class HttpSession : public Connection, public std::enable_shared_from_this<HttpS
   Response staticFile(const Request& req, const std::string& path);
   void submit(const Request& req, std::string kind, nlohmann::json body);
   void watchHangUp();
+  void pollHangUp();
+  bool peerHungUp();
   void onReply(ServiceReply reply);
   void send(Response&& res, bool linger = false);
   void onWrite(bool close, beast::error_code ec, size_t bytes);
@@ -50,9 +52,12 @@ class HttpSession : public Connection, public std::enable_shared_from_this<HttpS
   std::string kind_;
   unsigned version_ = 11;
   bool keep_alive_ = true;
+  bool pipelined_ = false;  // its next request is already waiting: no hang-up to watch for
   // Keeps the session alive until the reply comes (the reply callback holds only a weak_ptr, so
   // a reply after the server is gone touches nothing).
   std::shared_ptr<HttpSession> self_while_waiting_;
+  // The hang-up watch's fallback: a peek every kHangUpPoll while waiting (see watchHangUp()).
+  net::steady_timer hangup_poll_;
 
   std::vector<char> drain_;  // lingerThenClose()'s discard buffer
   size_t drained_ = 0;

@@ -169,12 +169,14 @@ class FakeLoop {
   std::string png;
   std::atomic<int> work_ms{0};
   std::atomic<int> frames{0};
+  std::atomic<int> started{0};  // requests taken from the queue (frames counts those answered)
 
  private:
   void loop() {
     while (!stop_) {
       auto r = queue_.pop(20ms);
       if (!r) continue;
+      ++started;
       for (int waited = 0; waited < work_ms && !stop_; waited += 5)
         std::this_thread::sleep_for(5ms);
       ServiceReply reply;
@@ -586,6 +588,10 @@ TEST_F(Server, ClientThatHangsUpMidFrameIsForgotten) {
   };
   HttpClient busy(port());  // its frame is being rendered meanwhile
   ASSERT_FALSE(busy.write(request(http::verb::post, "/api/frame", R"({"n": 1})")));
+  // Wait for the loop to take it: an empty queue alone may come before the request is even read
+  // (CI once saw busy's request, pushed late, taken for the hung-up client's below).
+  for (int i = 0; i < 600 && loop_->started == 0; ++i) std::this_thread::sleep_for(5ms);
+  ASSERT_EQ(loop_->started, 1);
   ASSERT_EQ(waitPending(0), 0u);
   ASSERT_EQ(loop_->frames, 0);
   {
