@@ -612,6 +612,11 @@ const AdaptiveVolume& AdaptiveBuilder::build(const GridGeometry& grid,
 
 AdaptiveVolume buildAdaptive(const GridGeometry& grid, const std::vector<float>& samples,
                              const AdaptiveOptions& options) {
+  // Missing samples (NaN: a NetCDF _FillValue) would spread through the blocks' fits and error
+  // bounds; adaptive sampling keeps every block's error within the tolerance, which a hole has none.
+  if (std::any_of(samples.begin(), samples.end(), [](float v) { return std::isnan(v); }))
+    throw InputError("render.adaptive: the volume has missing samples (its _FillValue or "
+                     "missing_value), which adaptive sampling cannot fit: render without it");
   AdaptiveBuilder builder;
   builder.build(grid, samples, options);
   return builder.take();

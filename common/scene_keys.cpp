@@ -229,7 +229,8 @@ std::vector<SceneKey> makeTable() {
        "NetCDF: the variable to read, 3-D, or 4-D with an unlimited (or `time`) first dimension: "
        "a time series, one step per record (`time.step` picks it). Empty: the file's only such variable. Coordinate variables (1-D, "
        "named like a dimension) give the spacing when uniform (within 1e-6 relative; non-uniform "
-       "ones are refused); samples equal to `_FillValue` or `missing_value` are refused.",
+       "ones are refused); samples equal to `_FillValue` or `missing_value` are missing: a point "
+       "whose trilinear stencil touches one is transparent (not with `adaptive.tolerance`).",
        Text{member<&Scene::volume, &VolumeDesc::variable>}},
       {"volume.axis_order", "zyx",
        "HDF5 and NetCDF: which axis each dimension of the array is, slowest (first) to fastest "

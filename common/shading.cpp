@@ -14,6 +14,7 @@ double flatGradient(double range_lo, double range_hi, const glm::dvec3& spacing)
 std::array<double, 3> shadeSample(const std::array<double, 3>& c, const glm::dvec3& g,
                                   const glm::dvec3& dir, const Shading& s, double flat) {
   const double len = glm::length(g);
+  if (std::isnan(len)) return c;  // a gradient tap touches a missing sample: unshaded
   const double w = std::clamp(len / flat - 1.0, 0.0, 1.0);
   if (w == 0.0) return c;
   const double cosine = std::min(std::abs(glm::dot(g, dir)) / len, 1.0);

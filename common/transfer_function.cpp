@@ -90,6 +90,7 @@ bool TransferFunction::tableSpanVisible(int n, double vmin, double vmax) const {
   // ramp is empty (a pad of one entry either side, the rule before, kept 63 % of the engine's
   // blocks of 8 cells). The entries are the function at i / (n - 1), so its largest opacity
   // between the first and last entry read bounds them.
+  if (!(vmin <= vmax)) return false;  // a span of no samples (all missing), or NaN
   const double range = hi_ - lo_, last = n - 1;
   auto coordinate = [&](double v) { return std::clamp((v - lo_) / range, 0.0, 1.0) * last; };
   const double i0 = std::floor(coordinate(vmin)), i1 = std::ceil(coordinate(vmax));

@@ -4,7 +4,9 @@
 #include <unistd.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -236,6 +238,22 @@ std::vector<float> readSamples(const VolumeDesc& d, const IndexBox& box) {
   return {};
 }
 
+std::string allSamplesMissing(const std::string& file) {
+  return "volume.file " + file +
+         ": every sample is missing (equal to the variable's _FillValue or missing_value): "
+         "nothing to draw";
+}
+
+std::pair<float, float> presentRange(const std::vector<float>& samples, const std::string& file) {
+  float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+  for (float v : samples) {  // NaN compares false: left out
+    lo = v < lo ? v : lo;
+    hi = v > hi ? v : hi;
+  }
+  if (!(lo <= hi)) throw InputError(allSamplesMissing(file));
+  return {lo, hi};
+}
+
 std::vector<float> readWholeVolume(const VolumeDesc& d) {
   if (d.readsWhole()) return readWholeVtk(d);
   return readSamples(d, {{0, 0, 0}, d.grid.dims - 1});
@@ -253,12 +271,12 @@ void unpackAs(const T* in, bool xyz, const IndexBox& box, float* out, const std:
       for (int x = 0; x < s.x; ++x) {
         const size_t i = xyz ? (size_t(x) * s.y + y) * s.z + z : (size_t(z) * s.y + y) * s.x + x;
         const T v = in[i];
-        for (const auto& [name, value] : fills)
-          if (double(v) == value)
-            throw InputError(where + ": " + name + " (" + std::to_string(value) + ") at voxel " +
-                             dimsText(box.lo + glm::ivec3(x, y, z)) +
-                             ": sortlast does not render missing samples (they are not made "
-                             "transparent); fill them with a value the transfer function hides");
+        // A missing sample (NetCDF's _FillValue, missing_value) becomes NaN, which every renderer
+        // and the reference draw as transparent (docs/data_hdf5_netcdf.md "Missing values").
+        if (std::any_of(fills.begin(), fills.end(), [&](const auto& f) { return double(v) == f.second; })) {
+          out[o++] = std::numeric_limits<float>::quiet_NaN();
+          continue;
+        }
         const float f = float(v);
         if (!std::isfinite(f))
           throw InputError(where + ": " + (std::isnan(f) ? "NaN" : "infinite value") + " at voxel " +

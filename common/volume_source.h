@@ -51,7 +51,7 @@ struct VolumeDesc {
   int step = 0;
   // Filled in by validateVolume from a NetCDF file: the records along a 4-D variable's time
   // dimension (1 for 3-D), the one read (`step`; -1: 3-D) and the values that mark missing
-  // samples (_FillValue, missing_value), which are refused.
+  // samples (_FillValue, missing_value), which become NaN: transparent.
   int records = 1;
   int record = -1;
   std::vector<std::pair<std::string, double>> fill_values;  // (attribute, value)
@@ -107,6 +107,13 @@ void unpackBox(const void* in, SampleType type, bool xyz, const IndexBox& box, f
 
 // Any format: the whole volume (the CPU reference and adaptive sampling's preprocessing).
 std::vector<float> readWholeVolume(const VolumeDesc& desc);
+
+// The smallest and largest of `samples`, missing ones (NaN) left out; throws InputError when every
+// sample is missing (there is then no range to scale a transfer function to).
+// `file` is named in the message.
+std::pair<float, float> presentRange(const std::vector<float>& samples, const std::string& file);
+// The message of that error, for the ranks that reduce their ranges first.
+std::string allSamplesMissing(const std::string& file);
 
 // Copy `box` out of a whole-volume array.
 std::vector<float> extractBox(const std::vector<float>& whole, const glm::ivec3& dims,

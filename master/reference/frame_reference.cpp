@@ -73,8 +73,8 @@ FrameReference::FrameReference(Scene scene, int threads)
       in.vol.adaptive = std::make_shared<const AdaptiveVolume>(
           buildAdaptive(scene.volume.grid, in.vol.samples, options));
     }
-    auto [lo, hi] = std::minmax_element(in.vol.samples.begin(), in.vol.samples.end());
-    in.tf = scene.transfer.build(*lo, *hi, scene.volume.grid.minSpacing());
+    auto [lo, hi] = presentRange(in.vol.samples, scene.volume.file);
+    in.tf = scene.transfer.build(lo, hi, scene.volume.grid.minSpacing());
     in.step = scene.reference_step * scene.volume.grid.minSpacing();
     in.shading = scene.shading;
     bounds_ = unite(bounds_, in.vol.grid.worldBox());

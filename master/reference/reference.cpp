@@ -72,8 +72,8 @@ ImageF integrate(const WholeVolume& vol, const TransferFunction& tf, const Camer
           long long i = 0;
           for (; i < n && transmit > 1e-15; ++i) {
             const glm::dvec3 u = vol.grid.indexOfWorld(o + (t0 + (i + 0.5) * h) * d);
-            double v = vol.at(u);
-            double a = 1.0 - std::exp(-tf.extinction(v) * h);
+            double v = vol.at(u);  // NaN where the stencil touches a missing sample: transparent
+            double a = std::isnan(v) ? 0.0 : 1.0 - std::exp(-tf.extinction(v) * h);
             // The step's glow: its exact integral times the transmittance at the step's middle
             // (the midpoint rule in transmittance, exact in the emitters' field).
             addGlow(t0 + i * h, t0 + (i + 1) * h, transmit * std::sqrt(std::max(0.0, 1.0 - a)));

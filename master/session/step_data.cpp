@@ -25,6 +25,7 @@ void addToHistogram(const Brick& b, const glm::ivec3& dims, const std::vector<fl
         if (x == b.domain.hi.x && x != dims.x - 1) continue;
         glm::ivec3 i = glm::ivec3(x, y, z) - b.stored.lo;
         double v = stored[(size_t(i.z) * s.y + i.y) * s.x + i.x];
+        if (std::isnan(v)) continue;  // a missing sample
         int bin = std::clamp(int((v - lo) * scale), 0, kHistogramBins - 1);
         ++bins[size_t(bin)];
       }
@@ -81,11 +82,13 @@ StepData loadStep(const Scene& scene, const SessionLayout& layout, bool adaptive
         d.read_s.push_back(all[2 * r]);
         d.read_peak_rss_mb.push_back(all[2 * r + 1]);
       }
-      std::tie(d.data_min, d.data_max) = globalRange(d.samples, comm);
       std::vector<long long> mine(kHistogramBins, 0);
-      for (size_t i = 0; i < layout.mine.size(); ++i)
-        addToHistogram(layout.volume_bricks[size_t(layout.mine[i])], desc.grid.dims, d.samples[i],
-                       d.data_min, d.data_max, mine);
+      collectively(comm, [&] {  // every rank reaches the range's Allreduce, then throws or not
+        std::tie(d.data_min, d.data_max) = globalRange(d.samples, desc.file, comm);
+        for (size_t i = 0; i < layout.mine.size(); ++i)
+          addToHistogram(layout.volume_bricks[size_t(layout.mine[i])], desc.grid.dims,
+                         d.samples[i], d.data_min, d.data_max, mine);
+      });
       d.histogram.assign(kHistogramBins, 0);
       MPI_Reduce(mine.data(), d.histogram.data(), kHistogramBins, MPI_LONG_LONG, MPI_SUM, 0, comm);
       if (rank != 0) d.histogram.clear();

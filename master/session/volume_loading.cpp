@@ -57,16 +57,19 @@ std::vector<std::vector<float>> loadOwnBricks(const VolumeDesc& desc, const std:
   return out;
 }
 
-std::pair<double, double> globalRange(const std::vector<std::vector<float>>& local, MPI_Comm comm) {
+std::pair<double, double> globalRange(const std::vector<std::vector<float>>& local,
+                                      const std::string& file, MPI_Comm comm) {
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (const auto& s : local)
-    if (!s.empty()) {
-      auto [a, b] = std::minmax_element(s.begin(), s.end());
-      lo = std::min(lo, double(*a));
-      hi = std::max(hi, double(*b));
+    for (float v : s) {  // missing samples (NaN) are left out: the comparisons are false
+      lo = v < lo ? v : lo;
+      hi = v > hi ? v : hi;
     }
   double in[2] = {lo, -hi}, res[2];
   MPI_Allreduce(in, res, 2, MPI_DOUBLE, MPI_MIN, comm);
+  // The same answer on every rank, so every rank throws or none.
+  if (!(res[0] <= -res[1]))
+    throw InputError(allSamplesMissing(file));
   return {res[0], -res[1]};
 }
 

@@ -18,7 +18,9 @@ std::vector<std::vector<float>> loadOwnBricks(const VolumeDesc& desc, const std:
                                               const std::vector<int>& mine,
                                               const Assignment& assignment, MPI_Comm comm);
 
-// Global [min, max] over all ranks' samples. Collective.
-std::pair<double, double> globalRange(const std::vector<std::vector<float>>& local, MPI_Comm comm);
+// Global [min, max] over all ranks' samples, missing ones (NaN) left out. Collective; throws
+// InputError naming `file` on every rank when every sample is missing.
+std::pair<double, double> globalRange(const std::vector<std::vector<float>>& local,
+                                      const std::string& file, MPI_Comm comm);
 
 }  // namespace sortlast

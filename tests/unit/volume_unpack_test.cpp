@@ -1,5 +1,5 @@
 // unpackBox (common/volume_source.h): the HDF5 and NetCDF readers' arrays in C order, zyx or xyz,
-// into a box's samples x fastest; NaN and fill values refused by voxel. And formatOf's extensions.
+// into a box's samples x fastest; NaN refused by voxel, fill values made NaN. And formatOf's extensions.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -44,7 +44,7 @@ TEST(VolumeUnpack, Float32InPlace) {
   EXPECT_EQ(v, expected);
 }
 
-TEST(VolumeUnpack, RefusesNanInfinityAndFillValuesByVoxel) {
+TEST(VolumeUnpack, RefusesNanAndInfinityByVoxel) {
   const IndexBox box{{10, 20, 30}, {11, 21, 31}};
   std::vector<double> v(8, 1.0);
   v[1 + 2 * (1 + 2 * 1)] = std::nan("");  // (x, y, z) = (1, 1, 1) in the box
@@ -55,12 +55,24 @@ TEST(VolumeUnpack, RefusesNanInfinityAndFillValuesByVoxel) {
   v[1] = 1e300;  // beyond float: infinite once converted, as the raw reader finds it
   EXPECT_EQ(inputErrorOf([&] { unpackBox(v.data(), SampleType::kFloat64, false, box, out.data(), "w"); }),
             "w: infinite value at voxel [11, 20, 30]");
+}
+
+// A fill value marks a missing sample: it becomes NaN (drawn transparent), the others unchanged;
+// a NaN stored in the data itself is still refused.
+TEST(VolumeUnpack, FillValuesBecomeNan) {
+  const IndexBox box{{10, 20, 30}, {11, 21, 31}};
   std::vector<uint8_t> u(8, 3);
   u[2] = 255;  // (0, 1, 0)
-  const std::string m = inputErrorOf([&] {
-    unpackBox(u.data(), SampleType::kUint8, false, box, out.data(), "volume.file f.nc: variable t", {{"_FillValue", 255.0}});
-  });
-  EXPECT_EQ(m.rfind("volume.file f.nc: variable t: _FillValue (255.000000) at voxel [10, 21, 30]", 0), 0u) << m;
+  u[5] = 7;
+  std::vector<float> out(8);
+  unpackBox(u.data(), SampleType::kUint8, false, box, out.data(), "volume.file f.nc: variable t",
+            {{"_FillValue", 255.0}, {"missing_value", 7.0}});
+  for (int i = 0; i < 8; ++i) {
+    if (i == 2 || i == 5)
+      EXPECT_TRUE(std::isnan(out[i])) << i;
+    else
+      EXPECT_EQ(out[i], 3.0f) << i;
+  }
 }
 
 TEST(VolumeUnpack, FormatsByExtension) {

@@ -26,7 +26,10 @@ vec4 segment(float vf, float vb, float len) {
 // it reads no value outside what the block holds, and skipping stays exact): 38.4 dB there, and
 // 1.5-2.6 dB better than the plain chord on neghip and the narrow band. vf = vm = vb gives the
 // constant segment, which is the midpoint rule's sample.
+// A segment with a missing end or middle (NaN: a trilinear stencil touching a missing sample) is
+// transparent, as the reference's samples there are.
 vec4 segment(float vf, float vm, float vb, float len) {
+  if (isnan(vf) || isnan(vm) || isnan(vb)) return vec4(0.0);
   float shift = (2.0 / 3.0) * (vm - 0.5 * (vf + vb));
   float lo = min(min(vf, vb), vm), hi = max(max(vf, vb), vm);
   return segment(clamp(vf + shift, lo, hi), clamp(vb + shift, lo, hi), len);

@@ -67,8 +67,10 @@ float sampleVolume(vec3 p) { return volumeAt(u_volume, p * u_tex_scale + u_tex_o
 int blockStep(ivec3 idx, uint g) { return 1 << int(g - 1u); }
 #endif
 
-// (r, g, b, tau) of a value, through the transfer-function table.
+// (r, g, b, tau) of a value, through the transfer-function table. NaN, a value whose trilinear
+// stencil touches a missing sample (common/volume_source.h), is transparent.
 vec4 classify(float v) {
+  if (isnan(v)) return vec4(0.0);
   float x = clamp(v * u_value_map.x + u_value_map.y, 0.0, 1.0);
   return texture(u_table, x * u_table_map.x + u_table_map.y);
 }

@@ -1,10 +1,11 @@
 #include "worker/volume/volume_brick.h"
 
-#include <algorithm>
 #include <stdexcept>
 
 namespace sortlast {
 
+// Missing samples (NaN: common/volume_source.h) are left out; a box of only missing samples has
+// vmin > vmax, which no transfer function sees (TransferFunction::tableSpanVisible).
 std::pair<float, float> FloatBrickSamples::range(const IndexBox& box) const {
   const glm::ivec3 n = stored_.size();
   float vmin = 1e30f, vmax = -1e30f;
@@ -12,9 +13,11 @@ std::pair<float, float> FloatBrickSamples::range(const IndexBox& box) const {
     for (int y = box.lo.y; y <= box.hi.y; ++y) {
       const float* row = &samples_[size_t(box.lo.x - stored_.lo.x) +
                                    size_t(n.x) * (size_t(y - stored_.lo.y) + size_t(n.y) * (z - stored_.lo.z))];
-      auto [lo, hi] = std::minmax_element(row, row + (box.hi.x - box.lo.x + 1));
-      vmin = std::min(vmin, *lo);
-      vmax = std::max(vmax, *hi);
+      for (int x = 0; x <= box.hi.x - box.lo.x; ++x) {
+        const float v = row[x];
+        vmin = v < vmin ? v : vmin;  // false for NaN: skipped
+        vmax = v > vmax ? v : vmax;
+      }
     }
   return {vmin, vmax};
 }

@@ -17,6 +17,7 @@ vec3 shadeColour(vec3 c, sampler3D volume, vec3 tc, vec3 dir) {
                 volumeAt(volume, tc + dy) - volumeAt(volume, tc - dy),
                 volumeAt(volume, tc + dz) - volumeAt(volume, tc - dz)) * u_gradient_scale;
   float len = length(g);
+  if (isnan(len)) return c;  // a tap touches a missing sample: unshaded, as the reference
   float w = clamp(len / u_flat_gradient - 1.0, 0.0, 1.0);
   if (w == 0.0) return c;
   float cosine = min(abs(dot(g, dir)) / len, 1.0);
