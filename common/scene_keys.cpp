@@ -247,12 +247,13 @@ std::vector<SceneKey> makeTable() {
        "checked (finite numbers) but does not move the volume: sortlast centres every volume on "
        "the world origin.",
        Text{member<&Scene::volume, &VolumeDesc::origin_attribute>}},
-      {"volume.mpi_io", "collective",
+      {"volume.mpi_io", "auto",
        "HDF5: how the ranks read their bricks through MPI-IO: `collective` (one collective "
        "H5Dread per brick: MPI-IO may aggregate the ranks' requests, what a parallel file system "
-       "wants at scale) or `independent` (each rank reads alone: on one node or a local disk it "
-       "was faster and held less memory, results/io).",
-       Names{member<&Scene::volume, &VolumeDesc::mpi_io>, names({"collective", "independent"})}},
+       "wants at scale), `independent` (each rank reads alone: on one node or a local disk it "
+       "was faster and held less memory, results/io) or `auto`: collective when the ranks span "
+       "more than one node, independent on one.",
+       Names{member<&Scene::volume, &VolumeDesc::mpi_io>, names({"auto", "collective", "independent"})}},
       {"volume.procedural", "blobs",
        "Procedural field when there is no file: `blobs` (shells, blobs and a torus), "
        "`marschner_lobb` (the Marschner-Lobb test signal), `sphere` (1 - r), or `none`: no "

@@ -46,7 +46,7 @@ struct VolumeDesc {
   std::string axis_order = "zyx";  // volume.axis_order: zyx | xyz
   std::string spacing_attribute;  // HDF5: the attribute holding the spacing (empty: scene keys)
   std::string origin_attribute;   // HDF5: the attribute holding the origin (checked, not used)
-  std::string mpi_io = "collective";  // HDF5 in a session: collective | independent transfers
+  std::string mpi_io = "auto";  // HDF5 in a session: auto | collective | independent transfers
   // time.step where the steps are inside the file (the records of a 4-D NetCDF variable).
   int step = 0;
   // Filled in by validateVolume from a NetCDF file: the records along a 4-D variable's time

@@ -11,11 +11,35 @@ namespace sortlast {
 
 using hdf5::Id;
 
+namespace {
+
+// volume.mpi_io: auto is collective when the ranks span more than one node, independent on one:
+// there every rank reads the same page cache, and aggregation bought nothing but a copy and the
+// aggregator's buffer (results/io: 1.57x raw's time and 16 MiB over the memory bound, against
+// 1.29x and within it). Collective (MPI_Comm_split_type).
+bool collectiveTransfers(const VolumeDesc& desc, MPI_Comm comm) {
+  if (desc.mpi_io != "auto") return desc.mpi_io == "collective";
+  MPI_Comm node;
+  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+  int node_size = 1, size = 1;
+  MPI_Comm_size(node, &node_size);
+  MPI_Comm_size(comm, &size);
+  MPI_Comm_free(&node);
+  return node_size < size;  // the same answer on every rank: one node holds all or none
+}
+
+}  // namespace
+
+bool hdf5ReadsCollectively(const VolumeDesc& desc, MPI_Comm comm) {
+  return collectiveTransfers(desc, comm);
+}
+
 std::vector<std::vector<float>> readHdf5Collective(const VolumeDesc& desc,
                                                    const std::vector<IndexBox>& boxes, MPI_Comm comm) {
   int reads = int(boxes.size()), most = 0;
   MPI_Allreduce(&reads, &most, 1, MPI_INT, MPI_MAX, comm);
   const bool in_place = desc.type == SampleType::kFloat32 && !desc.xyz();
+  const bool collective = collectiveTransfers(desc, comm);
   std::vector<std::vector<float>> out(boxes.size());
   std::vector<unsigned char> file_data;
   // Memory first: a rank that cannot allocate fails here, before any rank is inside a collective
@@ -38,8 +62,7 @@ std::vector<std::vector<float>> readHdf5Collective(const VolumeDesc& desc,
       Id fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
       Id dxpl(H5Pcreate(H5P_DATASET_XFER), H5Pclose);
       if (H5Pset_fapl_mpio(fapl.get(), comm, MPI_INFO_NULL) < 0 ||
-          H5Pset_dxpl_mpio(dxpl.get(), desc.mpi_io == "independent" ? H5FD_MPIO_INDEPENDENT
-                                                                     : H5FD_MPIO_COLLECTIVE) < 0)
+          H5Pset_dxpl_mpio(dxpl.get(), collective ? H5FD_MPIO_COLLECTIVE : H5FD_MPIO_INDEPENDENT) < 0)
         throw InputError("volume.file " + desc.file + ": cannot set up HDF5's MPI-IO driver" + hdf5::because());
       Id file(H5Fopen(desc.file.c_str(), H5F_ACC_RDONLY, fapl.get()), H5Fclose);  // collective
       if (!file.ok())

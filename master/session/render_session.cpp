@@ -656,6 +656,7 @@ nlohmann::json RenderSession::jobStats() const {
   if (S.current && !S.current->read_s.empty()) {
     top["volume_read_s"] = S.current->read_s;  // per rank: its bricks, from the file
     top["peak_rss_after_read_mb"] = S.current->read_peak_rss_mb;
+    if (!S.current->hdf5_transfers.empty()) top["hdf5_transfers"] = S.current->hdf5_transfers;
   }
   if (S.adaptive && S.current) {
     // Once per step, before its first frame (not in any frame's total_s); slowest rank.

@@ -6,6 +6,7 @@
 #include <mpi.h>
 
 #include <list>
+#include <string>
 #include <vector>
 
 #include "common/scene.h"
@@ -31,6 +32,7 @@ struct StepData {
   // Rank 0: every rank's seconds reading its volume bricks (ghosts included) and its peak resident
   // memory just after (MiB): --stats' volume_read_s and peak_rss_after_read_mb (scripts/bench-io).
   std::vector<double> read_s, read_peak_rss_mb;
+  std::string hdf5_transfers;  // an HDF5 volume: "collective" or "independent" (volume.mpi_io)
   bool dropped = false;                     // dropHostCopies() was called
 
   // Drops what the GPU holds now (a batch render needs no second copy).

@@ -6,7 +6,8 @@
 #              xyz), uint16 with spacing and origin attributes, a series (/step_{step}/density,
 #              time.step 1), render exactly like the raw file
 #              on 1 and 3 ranks (chunked also on 4; attributes on 3), read collectively through
-#              MPI-IO; the CPU reference (independent reads) of the transposed, the chunked and a
+#              MPI-IO (collective transfers where volume.mpi_io says so, and independent under auto on
+#              one node); the CPU reference (independent reads) of the transposed, the chunked and a
 #              .dat with volume.format hdf5 equals raw's. Bad files are refused naming the file,
 #              the dataset and the problem (a NaN met by one of 3 ranks ends all three; so does a
 #              damaged gzip chunk met by one of 2 inside the collective read).
@@ -137,13 +138,13 @@ PY
   w=$WORK
   if short; then
     raw_images "[1,1,1]" 3
-    same 3 two --set volume.file="$w/two.h5" --set volume.dataset=/fields/density
+    same 3 two --set volume.file="$w/two.h5" --set volume.dataset=/fields/density --set volume.mpi_io=collective
     "$SORTLAST" reference -q -o "$w/ref_raw.png" --set volume.file="$raw" --set "volume.dims=[64,64,64]" "${common[@]}" || fail "reference raw"
     "$SORTLAST" reference -q -o "$w/ref.png" --set volume.file="$w/xyz.h5" --set volume.axis_order=xyz "${common[@]}" || fail "reference xyz"
     "$SORTLAST" compare "$w/ref_raw.png" "$w/ref.png" --max-diff 0 >/dev/null || fail "reference of xyz.h5 differs"
-    expect_error "--set volume.file=$w/bad_chunk.h5" "$w/bad_chunk.h5" "dataset /v" "read of a brick failed" "inflate"
+    expect_error "--set volume.file=$w/bad_chunk.h5 --set volume.mpi_io=collective" "$w/bad_chunk.h5" "dataset /v" "read of a brick failed" "inflate"
     rc=0
-    run_np 3 render -q -o "$w/x.png" --set volume.file="$w/nan.h5" "${common[@]}" 2>"$w/err" || rc=$?
+    run_np 3 render -q -o "$w/x.png" --set volume.file="$w/nan.h5" --set volume.mpi_io=collective "${common[@]}" 2>"$w/err" || rc=$?
     [ "$rc" != 0 ] && [ "$rc" != 124 ] && grep -qF "NaN at voxel [30, 40, 50]" "$w/err" || fail "NaN on 3 ranks: exit $rc: $(cat "$w/err")"
     echo "short scope: chunked+gzip on 3 ranks, xyz through the reference, a damaged chunk and a NaN refused"
     exit 0
@@ -154,8 +155,12 @@ PY
     same $np two --set volume.file="$WORK/two.h5" --set volume.dataset=/fields/density
     same $np xyz --set volume.file="$WORK/xyz.h5" --set volume.axis_order=xyz
   done
-  same 4 two --set volume.file="$WORK/two.h5" --set volume.dataset=/fields/density
-  same 3 two_independent --set volume.file="$WORK/two.h5" --set volume.dataset=/fields/density --set volume.mpi_io=independent
+  same 4 two --set volume.file="$WORK/two.h5" --set volume.dataset=/fields/density --set volume.mpi_io=collective
+  same 3 two_collective --set volume.file="$WORK/two.h5" --set volume.dataset=/fields/density --set volume.mpi_io=collective
+  # volume.mpi_io auto (the default): independent on one node, as --stats says.
+  run_np 2 render -q -o "$WORK/x.png" --stats "$WORK/stats.json" --set volume.file="$WORK/two.h5" \
+    --set volume.dataset=/fields/density "${common[@]}" || fail "two.h5 with --stats"
+  grep -q '"hdf5_transfers": *"independent"' "$WORK/stats.json" || fail "auto on one node: not independent: $(cat "$WORK/stats.json")"
   # The CPU reference reads the whole volume with readSamples (the sec2 driver, no MPI-IO);
   # volume.format overrides the extension.
   cp "$WORK/u8.h5" "$WORK/u8.dat"
@@ -165,7 +170,7 @@ PY
     "$SORTLAST" reference -q -o "$WORK/ref.png" --set volume.file="$WORK/$1" "${@:2}" "${common[@]}" || fail "reference $1"
     "$SORTLAST" compare "$WORK/ref_raw.png" "$WORK/ref.png" --max-diff 0 >/dev/null || fail "reference of $1 differs"
   done
-  echo "HDF5 contiguous uint8, chunked+gzip float32 (4 ranks too; independent transfers on 3), float64 xyz render like raw; the reference too"
+  echo "HDF5 contiguous uint8, chunked+gzip float32 (4 ranks too; collective transfers on 3 and 4, auto independent on one node), float64 xyz render like raw; the reference too"
   raw_images "[1,1,2]" 3
   same 3 attrs --set volume.file="$WORK/attrs.h5" --set volume.spacing_attribute=element_size \
     --set volume.origin_attribute=origin
@@ -184,7 +189,7 @@ PY
   echo "HDF5 series /step_{step}/density: time.step 1 renders step 1 like its raw file on 3 ranks; step 3 refused"
   expect_error "--set volume.file=$w/two.h5" "$w/two.h5" "2 3-D datasets" "/fields/density, /fields/other" "volume.dataset"
   expect_error "--set volume.file=$w/truncated.h5" "$w/truncated.h5" "truncated"
-  expect_error "--set volume.file=$w/bad_chunk.h5" "$w/bad_chunk.h5" "dataset /v" "read of a brick failed" "inflate"
+  expect_error "--set volume.file=$w/bad_chunk.h5 --set volume.mpi_io=collective" "$w/bad_chunk.h5" "dataset /v" "read of a brick failed" "inflate"
   refused "--set volume.file=$w/two.h5 --set volume.dataset=/fields/nope" "$w/two.h5" "dataset /fields/nope" "no such dataset"
   refused "--set volume.file=$w/rank2.h5" "$w/rank2.h5" "no 3-D dataset"
   refused "--set volume.file=$w/rank2.h5 --set volume.dataset=/v" "dataset /v" "2 dimension(s), not 3"
@@ -195,7 +200,7 @@ PY
     "volume.spacing_attribute 'spacing'" "no such attribute"
   # A NaN on one rank's brick only, read collectively on 3 ranks: every rank ends, none hangs.
   rc=0
-  run_np 3 render -q -o "$WORK/x.png" --set volume.file="$w/nan.h5" "${common[@]}" 2>"$WORK/err" || rc=$?
+  run_np 3 render -q -o "$WORK/x.png" --set volume.file="$w/nan.h5" --set volume.mpi_io=collective "${common[@]}" 2>"$WORK/err" || rc=$?
   [ "$rc" != 0 ] && [ "$rc" != 124 ] && grep -qF "NaN at voxel [30, 40, 50]" "$WORK/err" || fail "NaN on 3 ranks: exit $rc: $(cat "$WORK/err")"
   ! grep -q "HDF5-DIAG" "$WORK/err" || fail "HDF5 printed its error stack"
   echo "bad HDF5 files refused with the file, the dataset and the problem named"
