@@ -95,8 +95,8 @@ int RaycastRenderer::addBrick(const Brick& brick, const GridGeometry& grid,
 
 int RaycastRenderer::addBrick(const Brick& brick, const GridGeometry& grid, const BrickSamples& samples) {
   GpuBrick g;
-  // The texture only: the ray caster's blocks are its own (one block here, never read).
-  g.volume = uploadVolumeBrick(gl_, brick, grid, samples, 1 << 30);
+  // The texture only: the ray caster's blocks are its own (none here).
+  g.volume = uploadVolumeBrick(gl_, brick, grid, samples, 0);
   g.blocks = cutBrickBlocks(brick, grid, samples, rayBlockGrid(grid, block_cells_));
   min_spacing_ = grid.minSpacing();
   global_count_ = rayBlockGrid(grid, block_cells_).count;

@@ -41,11 +41,14 @@ VolumeBrick uploadVolumeBrick(const GlApi& gl, const Brick& brick, const GridGeo
   g.brick = brick;
   g.spacing = grid.spacing;
   glm::ivec3 n = brick.stored.size();
-  // Block grid over the brick's cells; each block keeps the range of the samples it spans.
-  glm::ivec3 cells = brick.domain.size() - 1, nb = (cells + block_cells - 1) / block_cells;
+  // Block grid over the brick's cells; each block keeps the range of the samples it spans. None
+  // for block_cells 0 (the ray caster: its blocks are its own), which spares two scans of the
+  // samples (in situ, of the simulation's array).
+  glm::ivec3 cells = brick.domain.size() - 1,
+             nb = block_cells > 0 ? (cells + block_cells - 1) / block_cells : glm::ivec3(0);
   g.block_count = nb;
   std::array<std::vector<int>, 3> cuts;
-  for (int a = 0; a < 3; ++a) {
+  for (int a = 0; a < 3 && block_cells > 0; ++a) {
     for (int i = 0; i <= nb[a]; ++i)
       cuts[a].push_back(brick.domain.lo[a] + int((long long)cells[a] * i / nb[a]));
     for (int c : cuts[a]) {

@@ -34,7 +34,8 @@ struct VolumeBrick {
 };
 
 // Cuts the brick's cells into blocks of up to `block_cells` cells per axis (as even as the
-// integer cells allow) and uploads the samples (stored box, x fastest) to texture unit 0.
+// integer cells allow; none for block_cells 0) and uploads the samples (stored box, x fastest)
+// to texture unit 0.
 // Throws std::logic_error if the sample count does not match the brick.
 VolumeBrick uploadVolumeBrick(const GlApi& gl, const Brick& brick, const GridGeometry& grid,
                               const std::vector<float>& samples, int block_cells);
