@@ -45,13 +45,16 @@ MetaballSettings metaballSettings(const ParticleDesc& desc) {
 
 BrickRenderer::BrickRenderer(const std::string& backend, int width, int height,
                              const DeviceRequest& device)
-    : ctx_(createGlContext(backend, device)), width_(width), height_(height) {}
+    : ctx_(createGlContext(backend, device)),
+      textures_(std::make_unique<VolumeTexturePool>(ctx_->gl())),
+      width_(width),
+      height_(height) {}
 
 void BrickRenderer::enableVolume(const TransferFunction& tf, int table_size, int block_cells,
                                  const VolumeMethod& method, bool preintegrated) {
   if (method.raycast)
     volume_ = std::make_unique<RaycastRenderer>(*ctx_, width_, height_, method.ray_block_cells,
-                                                method.raycast_settings);
+                                                method.raycast_settings, textures_.get());
   else
     volume_ = std::make_unique<SlicingRenderer>(*ctx_, width_, height_, block_cells);
   std::visit([&](auto& r) {
@@ -129,6 +132,8 @@ void BrickRenderer::shareBlockRanges(const GridGeometry& grid, MPI_Comm comm) {
 void BrickRenderer::setMetaballSettings(const MetaballSettings& settings) {
   if (metaballs_) metaballs_->setSettings(settings);
 }
+
+void BrickRenderer::dropSpareTextures() { textures_->dropSpares(); }
 
 void BrickRenderer::reset() {
   bricks_.clear();

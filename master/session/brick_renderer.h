@@ -88,7 +88,11 @@ class BrickRenderer {
   void shareBlockRanges(const GridGeometry& grid, MPI_Comm comm);
   // Drops the renderers and every brick (their GL objects), keeping the GL context: the session
   // then enables and adds bricks anew (a new time step, another volume renderer, another h).
+  // The ray caster's brick textures are kept for the next bricks (VolumeTexturePool).
   void reset();  // (the surfaces stay)
+  // Deletes the brick textures the last reset() kept that the bricks added since did not reuse
+  // (call after a step's bricks are added).
+  void dropSpareTextures();
 
   // The same with the volume's samples from any source (in situ: the simulation's arrays).
   int addBrick(const Brick& volume_brick, const GridGeometry& grid, const BrickSamples& samples,
@@ -114,6 +118,8 @@ class BrickRenderer {
   SurfaceLayer mergeSurfaceLayers(const Handles& h, const Camera& cam, double near_plane, double far_plane,
                                   const Rect& particles);
   std::unique_ptr<GlContext> ctx_;
+  // The ray caster's brick textures between time steps (before volume_: it outlives the renderers).
+  std::unique_ptr<VolumeTexturePool> textures_;
   int width_, height_;
   // The volume renderer; a null slicing renderer until enableVolume().
   std::variant<std::unique_ptr<SlicingRenderer>, std::unique_ptr<RaycastRenderer>> volume_;

@@ -443,6 +443,7 @@ void RenderSession::State::bringGpuTo(const Scene& scene) {
       if (has_particles) renderer->enableParticles(metaballSettings(scene.particles));
       renderer->enableSurfaces(scene.surfaces);
       ext->add_bricks(*renderer, scene, handles, particles_held);
+      renderer->dropSpareTextures();
     });
     if (scene.hasVolume()) renderer->shareBlockRanges(layout.grid, comm);
     gpu = want;
@@ -460,6 +461,7 @@ void RenderSession::State::bringGpuTo(const Scene& scene) {
   collectively(comm, [&] {
     PhaseScope upload("uploading the bricks to the GPU");
     uploadBricks(scene, d);
+    renderer->dropSpareTextures();
   });
   // Adaptive steps choose per block from the whole block's range, which no rank holds alone.
   if (scene.hasVolume()) renderer->shareBlockRanges(layout.grid, comm);

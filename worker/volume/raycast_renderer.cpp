@@ -48,8 +48,9 @@ ProgramSources raycastSources(unsigned v) {
 }  // namespace
 
 RaycastRenderer::RaycastRenderer(const GlContext& ctx, int width, int height, int block_cells,
-                                 const RaycastSettings& settings)
-    : gl_(ctx.gl()),
+                                 const RaycastSettings& settings, VolumeTexturePool* pool)
+    : pool_(pool),
+      gl_(ctx.gl()),
       float_filter_(floatFilter(ctx.info())),
       block_cells_(std::max(1, block_cells)),
       settings_(settings),
@@ -64,7 +65,10 @@ RaycastRenderer::RaycastRenderer(const GlContext& ctx, int width, int height, in
 
 RaycastRenderer::~RaycastRenderer() {
   for (auto& b : bricks_) {
-    gl_.DeleteTextures(1, &b.volume.texture);
+    if (pool_ && !b.adaptive)
+      pool_->give(b.volume.texture, b.volume.brick.stored.size());
+    else
+      gl_.DeleteTextures(1, &b.volume.texture);
     gl_.DeleteTextures(1, &b.planes);
     gl_.DeleteTextures(1, &b.skip);
     if (b.adaptive) gl_.DeleteTextures(1, &b.lookup.table);
@@ -96,7 +100,7 @@ int RaycastRenderer::addBrick(const Brick& brick, const GridGeometry& grid,
 int RaycastRenderer::addBrick(const Brick& brick, const GridGeometry& grid, const BrickSamples& samples) {
   GpuBrick g;
   // The texture only: the ray caster's blocks are its own (none here).
-  g.volume = uploadVolumeBrick(gl_, brick, grid, samples, 0);
+  g.volume = uploadVolumeBrick(gl_, brick, grid, samples, 0, pool_);
   g.blocks = cutBrickBlocks(brick, grid, samples, rayBlockGrid(grid, block_cells_));
   min_spacing_ = grid.minSpacing();
   global_count_ = rayBlockGrid(grid, block_cells_).count;

@@ -56,8 +56,9 @@ struct RaycastSettings {
 class RaycastRenderer {
  public:
   // block_cells: cells per axis of the skipping (and step) blocks, aligned to the volume.
+  // pool (optional, outliving this renderer): where the bricks' textures come from and go back to.
   RaycastRenderer(const GlContext& ctx, int width, int height, int block_cells,
-                  const RaycastSettings& settings);
+                  const RaycastSettings& settings, VolumeTexturePool* pool = nullptr);
   ~RaycastRenderer();
   RaycastRenderer(const RaycastRenderer&) = delete;
   RaycastRenderer& operator=(const RaycastRenderer&) = delete;
@@ -108,6 +109,7 @@ class RaycastRenderer {
     double tolerance = 0.0;
     bool operator==(const ClassKey&) const = default;
   };
+  VolumeTexturePool* pool_ = nullptr;
   struct GpuBrick {
     VolumeBrick volume;
     BrickBlocks blocks;

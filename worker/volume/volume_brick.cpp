@@ -36,7 +36,7 @@ VolumeBrick uploadVolumeBrick(const GlApi& gl, const Brick& brick, const GridGeo
 }
 
 VolumeBrick uploadVolumeBrick(const GlApi& gl, const Brick& brick, const GridGeometry& grid,
-                              const BrickSamples& samples, int block_cells) {
+                              const BrickSamples& samples, int block_cells, VolumeTexturePool* pool) {
   VolumeBrick g;
   g.brick = brick;
   g.spacing = grid.spacing;
@@ -73,12 +73,16 @@ VolumeBrick uploadVolumeBrick(const GlApi& gl, const Brick& brick, const GridGeo
   g.tex_scale = glm::vec3(inv_n / grid.spacing);
   g.tex_offset =
       glm::vec3((0.5 * glm::dvec3(grid.dims - 1) - glm::dvec3(brick.stored.lo) + 0.5) * inv_n);
-  gl.GenTextures(1, &g.texture);
   gl.ActiveTexture(GL_TEXTURE0);
-  gl.BindTexture(GL_TEXTURE_3D, g.texture);
+  if (pool) {
+    g.texture = pool->take(n);
+  } else {
+    gl.GenTextures(1, &g.texture);
+    gl.BindTexture(GL_TEXTURE_3D, g.texture);
+    gl.TexImage3D(GL_TEXTURE_3D, 0, GL_R32F, n.x, n.y, n.z, 0, GL_RED, GL_FLOAT, nullptr);
+  }
   gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  gl.TexImage3D(GL_TEXTURE_3D, 0, GL_R32F, n.x, n.y, n.z, 0, GL_RED, GL_FLOAT, nullptr);
-  samples.upload(gl, brick.stored);
+  samples.upload(gl, brick.stored);  // every texel of the stored box
   gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   for (GLenum w : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})

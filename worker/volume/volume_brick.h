@@ -11,6 +11,7 @@
 #include "common/grid.h"
 #include "worker/volume/brick_samples.h"
 #include "worker/gl/gl_api.h"
+#include "worker/volume/volume_texture_pool.h"
 
 namespace sortlast {
 
@@ -40,7 +41,9 @@ struct VolumeBrick {
 VolumeBrick uploadVolumeBrick(const GlApi& gl, const Brick& brick, const GridGeometry& grid,
                               const std::vector<float>& samples, int block_cells);
 // The same from any source of samples (in situ: the simulation's arrays, read where they lie).
+// With `pool`, the texture is a spare of the pool's where one of the size is there.
 VolumeBrick uploadVolumeBrick(const GlApi& gl, const Brick& brick, const GridGeometry& grid,
-                              const BrickSamples& samples, int block_cells);
+                              const BrickSamples& samples, int block_cells,
+                              VolumeTexturePool* pool = nullptr);
 
 }  // namespace sortlast
