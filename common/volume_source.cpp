@@ -246,10 +246,7 @@ std::string allSamplesMissing(const std::string& file) {
 
 std::pair<float, float> presentRange(const std::vector<float>& samples, const std::string& file) {
   float lo = std::numeric_limits<float>::infinity(), hi = -lo;
-  for (float v : samples) {  // NaN compares false: left out
-    lo = v < lo ? v : lo;
-    hi = v > hi ? v : hi;
-  }
+  widenRange(samples.data(), samples.size(), lo, hi);
   if (!(lo <= hi)) throw InputError(allSamplesMissing(file));
   return {lo, hi};
 }

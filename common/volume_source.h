@@ -108,6 +108,15 @@ void unpackBox(const void* in, SampleType type, bool xyz, const IndexBox& box, f
 // Any format: the whole volume (the CPU reference and adaptive sampling's preprocessing).
 std::vector<float> readWholeVolume(const VolumeDesc& desc);
 
+// Widens [lo, hi] by the n values at v, missing ones (NaN) left out (every comparison with NaN
+// is false). The one loop the data range, the reference's range and block ranges share.
+inline void widenRange(const float* v, size_t n, float& lo, float& hi) {
+  for (size_t i = 0; i < n; ++i) {
+    lo = v[i] < lo ? v[i] : lo;
+    hi = v[i] > hi ? v[i] : hi;
+  }
+}
+
 // The smallest and largest of `samples`, missing ones (NaN) left out; throws InputError when every
 // sample is missing (there is then no range to scale a transfer function to).
 // `file` is named in the message.

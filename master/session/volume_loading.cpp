@@ -59,13 +59,9 @@ std::vector<std::vector<float>> loadOwnBricks(const VolumeDesc& desc, const std:
 
 std::pair<double, double> globalRange(const std::vector<std::vector<float>>& local,
                                       const std::string& file, MPI_Comm comm) {
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (const auto& s : local)
-    for (float v : s) {  // missing samples (NaN) are left out: the comparisons are false
-      lo = v < lo ? v : lo;
-      hi = v > hi ? v : hi;
-    }
-  double in[2] = {lo, -hi}, res[2];
+  float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+  for (const auto& s : local) widenRange(s.data(), s.size(), lo, hi);  // missing samples left out
+  double in[2] = {lo, -double(hi)}, res[2];
   MPI_Allreduce(in, res, 2, MPI_DOUBLE, MPI_MIN, comm);
   // The same answer on every rank, so every rank throws or none.
   if (!(res[0] <= -res[1]))

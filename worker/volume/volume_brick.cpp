@@ -1,5 +1,7 @@
 #include "worker/volume/volume_brick.h"
 
+#include "common/volume_source.h"  // widenRange
+
 #include <stdexcept>
 
 namespace sortlast {
@@ -13,11 +15,7 @@ std::pair<float, float> FloatBrickSamples::range(const IndexBox& box) const {
     for (int y = box.lo.y; y <= box.hi.y; ++y) {
       const float* row = &samples_[size_t(box.lo.x - stored_.lo.x) +
                                    size_t(n.x) * (size_t(y - stored_.lo.y) + size_t(n.y) * (z - stored_.lo.z))];
-      for (int x = 0; x <= box.hi.x - box.lo.x; ++x) {
-        const float v = row[x];
-        vmin = v < vmin ? v : vmin;  // false for NaN: skipped
-        vmax = v > vmax ? v : vmax;
-      }
+      widenRange(row, size_t(box.hi.x - box.lo.x + 1), vmin, vmax);
     }
   return {vmin, vmax};
 }
@@ -77,9 +75,7 @@ VolumeBrick uploadVolumeBrick(const GlApi& gl, const Brick& brick, const GridGeo
   if (pool) {
     g.texture = pool->take(n);
   } else {
-    gl.GenTextures(1, &g.texture);
-    gl.BindTexture(GL_TEXTURE_3D, g.texture);
-    gl.TexImage3D(GL_TEXTURE_3D, 0, GL_R32F, n.x, n.y, n.z, 0, GL_RED, GL_FLOAT, nullptr);
+    g.texture = newVolumeTexture(gl, n);
   }
   gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
   samples.upload(gl, brick.stored);  // every texel of the stored box

@@ -2,6 +2,14 @@
 
 namespace sortlast {
 
+unsigned newVolumeTexture(const GlApi& gl, const glm::ivec3& size) {
+  unsigned texture = 0;
+  gl.GenTextures(1, &texture);
+  gl.BindTexture(GL_TEXTURE_3D, texture);
+  gl.TexImage3D(GL_TEXTURE_3D, 0, GL_R32F, size.x, size.y, size.z, 0, GL_RED, GL_FLOAT, nullptr);
+  return texture;
+}
+
 unsigned VolumeTexturePool::take(const glm::ivec3& size) {
   for (size_t i = 0; i < spare_.size(); ++i)
     if (spare_[i].first == size) {
@@ -10,11 +18,7 @@ unsigned VolumeTexturePool::take(const glm::ivec3& size) {
       gl_.BindTexture(GL_TEXTURE_3D, texture);
       return texture;
     }
-  unsigned texture = 0;
-  gl_.GenTextures(1, &texture);
-  gl_.BindTexture(GL_TEXTURE_3D, texture);
-  gl_.TexImage3D(GL_TEXTURE_3D, 0, GL_R32F, size.x, size.y, size.z, 0, GL_RED, GL_FLOAT, nullptr);
-  return texture;
+  return newVolumeTexture(gl_, size);
 }
 
 void VolumeTexturePool::give(unsigned texture, const glm::ivec3& size) {

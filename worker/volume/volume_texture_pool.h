@@ -14,6 +14,9 @@
 
 namespace sortlast {
 
+// A new GL_R32F 3D texture of `size`, bound to GL_TEXTURE_3D on the active unit, contents undefined.
+unsigned newVolumeTexture(const GlApi& gl, const glm::ivec3& size);
+
 class VolumeTexturePool {
  public:
   explicit VolumeTexturePool(const GlApi& gl) : gl_(gl) {}
