@@ -94,7 +94,9 @@ void validateAnisotropic(const AnisotropicParams& p) {
 }
 
 double anisotropicReachBound(const AnisotropicParams& p) {
-  return std::max(p.splash_scale, p.surface_scale) * std::sqrt(3.0) * (1.0 + 1e-6);
+  return (std::max(p.splash_scale, p.surface_scale) * std::sqrt(3.0) +
+          p.position_smoothing * p.neighbourhood) *
+         (1.0 + 1e-6);
 }
 
 std::vector<ParticleKernel> computeAnisotropicKernels(const std::vector<glm::vec3>& ps, double h,
@@ -178,6 +180,10 @@ std::vector<ParticleKernel> computeAnisotropicKernels(const std::vector<glm::vec
         k.reach = float(R * std::sqrt(l.maxCoeff()) * h * (1.0 + 1e-6));
       }
     }
+    // Computed in double from the same sums on every rank; lambda = 0 keeps c_i bit for bit.
+    k.centre = p.position_smoothing == 0.0
+                   ? ps[i]
+                   : glm::vec3((1.0 - p.position_smoothing) * ci + p.position_smoothing * mu);
     k.s = float(s);
     k.rho = float(rho);
     out[i] = k;

@@ -11,6 +11,8 @@
 //   s     = smoothstep(rho_i; rho_splash, rho_surface)
 //   R_i   = (1 - s) R_splash + s R_surface    (R in units of h)
 //   mu_i  = sum_j g_j c_j / sum_j g_j
+//   x_i   = (1 - lambda) c_i + lambda mu_i  (the kernel's centre: Yu and Turk's smoothed
+//                                            position; lambda = position_smoothing)
 //   S_i   = sum_j g_j (c_j - mu)(c_j - mu)^T / |c_j - mu|^2 / sum_j g_j   (the paper's Sigma)
 // (Each term of S_i is a unit direction whatever the neighbour's distance from the mean; we fade
 // in the directions of neighbours within 0.1 h_n of it, which rounding alone would orient.)
@@ -22,7 +24,12 @@
 // max_axis_ratio: no axis is shorter than 1/k of the longest), so the ellipsoid never
 // degenerates (a line of particles, rank 1, becomes a cigar of axis ratio k). No usable
 // direction (no neighbour, or all neighbours on the mean): a sphere. Axes R_i h sqrt(sigma_k).
-// The field of particle i at offset r = x - c_i is
+// The kernel sits at the smoothed centre x_i, not at c_i: the paper's normalisation integrates
+// each ellipsoid around mu_i, and Yu and Turk (whose covariance the paper follows) place their
+// kernels at x_i with lambda about 0.9. Inside the fluid mu_i = c_i on average; in the surface
+// layer mu_i lies inward, so the layer's bumps (one per particle) flatten. |x_i - c_i| <
+// lambda h_n: the reach bound grows by that much.
+// The field of particle i at offset r = x - x_i is
 //   P_i(r) = C_i (1 - |A_i r| / h)^2  for |A_i r| <= h,  A_i = Sigma_i^(-1/2) / R_i,
 //   C_i = (R_0 / R_i)^3 / sqrt(det Sigma_i),  R_0 = R_splash,
 // the normalisation: the integral of P_i is that of a sphere of radius R_0 h (exactly,
@@ -44,10 +51,11 @@ namespace sortlast {
 struct AnisotropicParams {
   double splash_scale = 1.0;    // R_splash / h
   double surface_scale = 1.5;   // R_surface / h
-  double rho_splash = 1.5;      // at or below: splash (round, R_splash)
-  double rho_surface = 3.0;     // at or above: surface or inside (smoothed, R_surface)
-  double neighbourhood = 1.0;   // h_n / h
+  double rho_splash = 3.0;      // at or below: splash (round, R_splash)
+  double rho_surface = 6.0;     // at or above: surface or inside (smoothed, R_surface)
+  double neighbourhood = 2.5;   // h_n / h
   double max_axis_ratio = 3.0;  // k: longest axis / shortest axis at most
+  double position_smoothing = 0.0;  // lambda: kernel centre (1 - lambda) c_i + lambda mu_i
   bool operator==(const AnisotropicParams&) const = default;
 };
 
@@ -55,14 +63,17 @@ struct AnisotropicParams {
 // key table, common/scene_keys.cpp). Throws InputError naming particles.anisotropic.rho_surface.
 void validateAnisotropic(const AnisotropicParams& p);
 
-// The furthest a particle's field can reach from its centre, in units of h: the longest axis
-// R sqrt(sigma_1) <= max(R_splash, R_surface) sqrt(3) (sigma_1 <= trace = 3).
+// The furthest a particle's field can reach from its position c_i, in units of h: the centre's
+// shift lambda h_n plus the longest axis R sqrt(sigma_1) <= max(R_splash, R_surface) sqrt(3)
+// (sigma_1 <= trace = 3).
 double anisotropicReachBound(const AnisotropicParams& p);
 
 struct ParticleKernel {
+  glm::vec3 centre{0.0f};  // x_i, the smoothed centre the field is evaluated around
   glm::mat3 a{1.0f};   // A_i (symmetric): the ellipsoid frame; |A r| <= h inside the support
   float c = 1.0f;      // C_i, the mass normalisation
   float reach = 1.0f;  // the longest semi-axis (world units): the support's bounding sphere
+                       // around `centre`
   float s = 0.0f;      // the surface fraction smoothstep(rho) (0: splash, 1: surface)
   float rho = 1.0f;    // the density rho_i
 };

@@ -17,6 +17,8 @@ struct RoughnessOptions {
   double max_depth_jump = 0.02;
   // Pixels [x0, x1) x [y0, y1) (row 0 = top) only; x1 or y1 <= 0: to the image's edge.
   int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  // Smallest piece counted (pixels): single stray pixels of a silhouette are not pieces.
+  int min_piece_pixels = 4;
 };
 
 struct Roughness {
@@ -27,6 +29,10 @@ struct Roughness {
   // Depth t over the region's hit pixels (relief: with the camera square to a flat surface,
   // t_max - t_min is its height range), and at the region's centre pixel (inf: a miss).
   double t_min = 0.0, t_max = 0.0, t_centre = 0.0;
+  // Connected pieces of the surface in the region: groups of hit pixels joined through
+  // continuous 4-neighbour pairs (the test above), each of at least min_piece_pixels. Droplets
+  // and sheets that smoothing lets vanish, or merges, change this count (issue 30).
+  long long pieces = 0;
 };
 
 // Throws InputError if the region is empty or outside the image, or max_depth_jump is not > 0.

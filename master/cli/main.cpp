@@ -97,8 +97,9 @@ int runRoughness(const std::string& path, const RoughnessOptions& options, doubl
   try {
     Roughness r = surfaceRoughness(readSurfaceImage(path), options);
     std::printf("{\"pairs\": %lld, \"roughness_rms_deg\": %.6g, \"roughness_mean_deg\": %.6g, "
-                "\"roughness_p95_deg\": %.6g, \"t_min\": %.9g, \"t_max\": %.9g, \"t_centre\": %.9g}\n",
-                r.pairs, r.rms_deg, r.mean_deg, r.p95_deg, r.t_min, r.t_max, r.t_centre);
+                "\"roughness_p95_deg\": %.6g, \"t_min\": %.9g, \"t_max\": %.9g, \"t_centre\": %.9g, "
+                "\"pieces\": %lld}\n",
+                r.pairs, r.rms_deg, r.mean_deg, r.p95_deg, r.t_min, r.t_max, r.t_centre, r.pieces);
     if (!std::isnan(max_rms_deg) && !(r.rms_deg <= max_rms_deg)) {
       std::printf("FAIL: roughness %.6g deg RMS > allowed %.6g\n", r.rms_deg, max_rms_deg);
       return 2;

@@ -56,8 +56,11 @@ FrameReference::FrameReference(Scene scene, int threads)
     m.h = scene.particles.influenceRadius();
     m.threshold = scene.particles.threshold;
     // The same kernels as the GL bricks compute: each depends on its neighbourhood only.
-    if (scene.particles.anisotropicOn())
+    // Each field is evaluated around its kernel's smoothed centre.
+    if (scene.particles.anisotropicOn()) {
       m.kernels = computeAnisotropicKernels(set.positions, m.h, scene.particles.anisotropic);
+      for (size_t i = 0; i < m.kernels.size(); ++i) m.positions[i] = glm::dvec3(m.kernels[i].centre);
+    }
     bounds_ = reachOf(m, scene.particles.reach());
     balls_ = std::move(m);
   }

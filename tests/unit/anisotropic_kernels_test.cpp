@@ -110,6 +110,32 @@ TEST(AnisotropicKernels, AKernelDependsOnlyOnItsNeighbourhoodBitForBit) {
     }
   auto part = computeAnisotropicKernels(subset, kH, p);
   EXPECT_EQ(std::memcmp(&full[200], &part[at], sizeof(ParticleKernel)), 0);
+  // With smoothed centres too (the centre is a sum over the same neighbours).
+  p.position_smoothing = 0.9;
+  full = computeAnisotropicKernels(all, kH, p);
+  part = computeAnisotropicKernels(subset, kH, p);
+  EXPECT_EQ(std::memcmp(&full[200], &part[at], sizeof(ParticleKernel)), 0);
+}
+
+TEST(AnisotropicKernels, PositionSmoothingMovesTheCentreTowardsTheNeighboursMean) {
+  // Two particles h_n / 2 apart: each one's weighted mean is (1 c_i + g c_j) / (1 + g),
+  // g = (1 - 1/4)^3; lambda = 0 keeps the particle's own position bit for bit.
+  AnisotropicParams p;
+  const float d = float(0.5 * kH * p.neighbourhood);
+  std::vector<glm::vec3> ps = {{1.0f, 2.0f, 3.0f}, {1.0f + d, 2.0f, 3.0f}};
+  auto k0 = computeAnisotropicKernels(ps, kH, p);
+  EXPECT_EQ(k0[0].centre, ps[0]);
+  EXPECT_EQ(k0[1].centre, ps[1]);
+  p.position_smoothing = 0.6;
+  auto k = computeAnisotropicKernels(ps, kH, p);
+  const double g = 0.75 * 0.75 * 0.75, shift = 0.6 * g / (1.0 + g) * d;
+  EXPECT_NEAR(k[0].centre.x, 1.0 + shift, 1e-6);
+  EXPECT_NEAR(k[1].centre.x, 1.0 + d - shift, 1e-6);
+  EXPECT_EQ(k[0].centre.y, 2.0f);
+  // The reach bound covers the field around the moved centre.
+  for (const ParticleKernel& q : k)
+    EXPECT_LE(glm::length(glm::dvec3(q.centre) - glm::dvec3(ps[&q - k.data()])) + q.reach,
+              anisotropicReachBound(p) * kH);
 }
 
 TEST(AnisotropicKernels, DegenerateInputsGiveFiniteKernels) {
@@ -218,6 +244,20 @@ TEST(SurfaceRoughness, MeasuresTheAngleBetweenNeighbouringNormals) {
   EXPECT_EQ(surfaceRoughness(img, region).pairs, 2 * 4 * 3);
   region.x0 = 20;
   EXPECT_NE(inputErrorOf([&] { surfaceRoughness(img, region); }).find("region"), std::string::npos);
+}
+
+TEST(SurfaceRoughness, CountsConnectedPiecesOfTheSurface) {
+  // The plane with its depth-jumped last column: 2 pieces; misses split it further; a piece
+  // smaller than min_piece_pixels (a lone pixel) is not counted.
+  SurfaceImage img = planeImage(16, 0.0);
+  EXPECT_EQ(surfaceRoughness(img, {}).pieces, 1);
+  for (int y = 0; y < 16; ++y) img.t[size_t(y) * 16 + 15] = 20.0f;
+  EXPECT_EQ(surfaceRoughness(img, {}).pieces, 2);
+  for (int x = 0; x < 15; ++x) img.t[size_t(8) * 16 + x] = INFINITY;  // a missed row: 3 pieces
+  EXPECT_EQ(surfaceRoughness(img, {}).pieces, 3);
+  for (int x = 0; x < 15; ++x)
+    for (int y = 9; y < 16; ++y) img.t[size_t(y) * 16 + x] = (x == 4 && y == 12) ? 10.0f : INFINITY;
+  EXPECT_EQ(surfaceRoughness(img, {}).pieces, 2);  // the lone pixel left of the column is not a piece
 }
 
 }  // namespace

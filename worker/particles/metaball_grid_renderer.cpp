@@ -71,10 +71,11 @@ int MetaballGridRenderer::addBrick(const Box3& clip, const std::vector<glm::vec3
   std::vector<ParticleKernel> kernels;
   if (s_.anisotropic && !all.empty()) {
     std::vector<ParticleKernel> k = computeAnisotropicKernels(all, s_.h, s_.anisotropic_params);
+    // Each kept particle's field is evaluated around its smoothed centre (kernel.centre).
     for (size_t i = 0; i < all.size(); ++i) {
-      glm::dvec3 q(all[i]);
+      glm::dvec3 q(k[i].centre);
       glm::dvec3 d = glm::max(glm::max(clip.lo - q, q - clip.hi), glm::dvec3(0.0));
-      if (glm::length(d) <= double(k[i].reach)) kept.push_back(all[i]), kernels.push_back(k[i]);
+      if (glm::length(d) <= double(k[i].reach)) kept.push_back(k[i].centre), kernels.push_back(k[i]);
     }
   }
   const std::vector<glm::vec3>& particles = s_.anisotropic ? kept : all;
