@@ -56,6 +56,9 @@ struct Scene {
   std::string backend = "osmesa";
   int device = -1;  // render.device: -1 auto, else a hardware EGL device index
   double sample_spacing = 0.5;  // in units of the smallest voxel spacing
+  // render.sample_spacing: auto: the session picks the step per view and transfer function
+  // (master/session/auto_spacing.h); sample_spacing then holds 0.5 until it does.
+  bool sample_spacing_auto = true;
   int block_cells = 64;         // empty-space skipping granularity (slicing)
   int ray_block_cells = 8;      // the ray caster's skipping and step blocks
   std::string volume_method = "raycast";  // slicing | raycast

@@ -539,12 +539,17 @@ std::vector<SceneKey> makeTable() {
        "surfaceless platform (llvmpipe). Only with `render.backend: egl` (docs/cluster.md).",
        Int{member<&Scene::device>, {{"integers in [0, 63]", "must be auto or a device number {allowed}, got {value}"}}},
        AutoValue{}},
-      {"render.sample_spacing", "0.5",
+      {"render.sample_spacing", "auto",
        "Distance between slices (ray casting: between samples along each ray), in units of "
-       "the smallest voxel spacing (the paper: 1). The default 0.5, with ray casting and "
-       "`transfer.preintegrated: auto`, reaches 45 dB against the reference on the benchmark's "
-       "four data sets (results/accuracy).",
-       Real{member<&Scene::sample_spacing>, {{"in [0.01, 100]", "must be {allowed} voxels"}}}},
+       "the smallest voxel spacing (the paper: 1). `auto`: 0.5, 1 or 2, the largest whose own "
+       "error, estimated from small probe frames of the view at all three steps, stays within "
+       "47 dB (master/session/auto_spacing.h); probed again when the transfer function, the "
+       "renderer's settings or the time step change, not when the camera moves; `--stats` gives "
+       "the choice and the estimates. 0.5 (the fixed default before) with ray casting and "
+       "`transfer.preintegrated: auto` reaches 45 dB on the benchmark's four data sets "
+       "(results/accuracy).",
+       Real{member<&Scene::sample_spacing>, {{"in [0.01, 100]", "must be {allowed} voxels"}}},
+       AutoValue{member<&Scene::sample_spacing_auto>}},
       {"render.block_cells", "64",
        "Slicing: empty-space skipping; bricks are cut into blocks of this many cells per axis, and "
        "blocks whose values all map to zero opacity are not drawn (ray casting: "

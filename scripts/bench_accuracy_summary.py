@@ -13,11 +13,12 @@ import subprocess
 import sys
 
 NEW_TAGS = ("pre", "astep", "shade")  # issue 13's features, as tags in the setting names
-# The setting that is sortlast's defaults per data set (common/scene_keys.cpp: ray casting, 0.5
-# voxel, ERT 0.99, pre-integration `auto`: on for neghip's steep band only, common/scene.h
-# kSteepOpacitySlope); change them together.
+# The setting that was sortlast's defaults per data set before issue 30 (ray casting, 0.5 voxel,
+# ERT 0.99, pre-integration `auto`: on for neghip's steep band only, common/scene.h
+# kSteepOpacitySlope); since issue 30 the defaults are `defaults_auto` (render.sample_spacing: auto).
 DEFAULTS = {"neghip": "raycast_s0.5_ert0.99_pre"}
 DEFAULT_PLAIN = "raycast_s0.5_ert0.99"
+AUTO = "defaults_auto"
 out = sys.argv[1]
 rows = [r for r in csv.DictReader(open(os.path.join(out, "accuracy.csv"))) if r["setting"] != "default"]
 for r in rows:
@@ -54,16 +55,27 @@ md = ["# Accuracy against speed\n",
       "tolerance T %). Issue 13's tags: `_pre` "
       "pre-integrated transfer function, `_astep` adaptive step length, `_shade` gradient shading "
       "(compared with a shaded reference). Old front: the settings without those tags. "
-      f"The defaults are `{DEFAULT_PLAIN}` (pre-integration `auto` is off on smooth transfer "
-      f"functions), on neghip `{DEFAULTS['neghip']}`.\n",
-      "\n| data set | the defaults | fastest >= 45 dB, old | fastest >= 45 dB, new | fastest >= 50 dB, old | "
-      "fastest >= 50 dB, new |", "|---|---|---|---|---|---|"]
+      f"The defaults are `{AUTO}` (ray casting, ERT 0.99, pre-integration and the sample spacing "
+      f"`auto`: issue 30); before issue 30 they were `{DEFAULT_PLAIN}` (pre-integration `auto` is off "
+      f"on smooth transfer functions), on neghip `{DEFAULTS['neghip']}`.\n",
+      "\n| data set | the defaults (step chosen) | before issue 30 (0.5 voxel) | fastest >= 45 dB, old | "
+      "fastest >= 45 dB, new | fastest >= 50 dB, old | fastest >= 50 dB, new |",
+      "|---|---|---|---|---|---|---|"]
 for ds in datasets:
     sel = [r for r in rows if r["dataset"] == ds]
     old = [r for r in sel if not r["new"]]
     d = [r for r in sel if r["setting"] == DEFAULTS.get(ds, DEFAULT_PLAIN)]
     dflt = f"{d[0]['s_per_frame']:.3f} s, {d[0]['psnr_db']:.1f} dB" if d else "–"
-    md.append(f"| {ds} | {dflt} | {fastest(old, 45)} | {fastest(sel, 45)} | {fastest(old, 50)} | "
+    a = [r for r in sel if r["setting"] == AUTO]
+    auto = "–"
+    if a:
+        stats = os.path.join(out, "stats", f"{ds}__{AUTO}.json")
+        step = "?"
+        if os.path.exists(stats):
+            step = json.load(open(stats))["frames"][0].get("sample_spacing", "?")
+        speed = f", {d[0]['s_per_frame'] / a[0]['s_per_frame']:.2f}x" if d else ""
+        auto = f"{a[0]['s_per_frame']:.3f} s, {a[0]['psnr_db']:.1f} dB ({step} voxel{speed})"
+    md.append(f"| {ds} | {auto} | {dflt} | {fastest(old, 45)} | {fastest(sel, 45)} | {fastest(old, 50)} | "
               f"{fastest(sel, 50)} |")
 for ds in datasets:
     sel = sorted([r for r in rows if r["dataset"] == ds], key=lambda r: r["s_per_frame"])

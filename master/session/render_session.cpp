@@ -4,6 +4,8 @@
 // order.
 #include "master/session/render_session.h"
 
+#include "master/session/auto_spacing.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -177,6 +179,12 @@ struct RenderSession::State {
   // frame: the compositor copies into its memory instead of a fresh 16 bytes a pixel.
   ImageF glow_frame;
   int frames_rendered = 0;
+  // render.sample_spacing: auto: the last probe's inputs and choice (auto_spacing.h).
+  struct {
+    std::vector<double> key;
+    SpacingChoice choice;
+    bool valid = false;
+  } spacing;
   MemoryBudget budget;            // what this rank may use (memory_budget.h)
   MemoryBudget gpu_budget;        // what it may put in its GPU's memory (infinite: not reported)
   std::vector<GlDeviceInfo> devices;  // rank 0: every rank's GL identity (device_report.h)
@@ -198,6 +206,7 @@ struct RenderSession::State {
   void meetDevices();
   void bringGpuTo(const Scene& scene);
   void uploadBricks(const Scene& scene, StepData& d);
+  std::vector<double> spacingKey(const Scene& sc) const;
 };
 
 RenderSession::RenderSession(SessionOptions options, MPI_Comm comm) : s_(std::make_unique<State>()) {
@@ -470,6 +479,62 @@ void RenderSession::State::bringGpuTo(const Scene& scene) {
   if (!opts.resident) d.dropHostCopies();
 }
 
+// What a probe's choice depends on (auto_spacing.h): the transfer table as built, the renderer's
+// settings and the time step. The same on every rank (resolved from the same request).
+std::vector<double> RenderSession::State::spacingKey(const Scene& sc) const {
+  const auto [lo, hi] = dataRange();
+  std::vector<double> key{double(sc.time_step), lo, hi, sc.ert_threshold, double(sc.transfer.preintegrated),
+                          double(sc.shading.enabled), double(sc.adaptive_step), sc.adaptive_step_tolerance,
+                          sc.adaptive_tolerance, double(sc.volume_method == "slicing"),
+                          double(sc.transfer.table_size), sc.background.x, sc.background.y, sc.background.z};
+  const TransferFunction tf = sc.transfer.build(lo, hi, layout.grid.minSpacing());
+  key.insert(key.end(), {tf.rangeLo(), tf.rangeHi(), tf.unitLength()});
+  for (const TfPoint& p : tf.points()) key.insert(key.end(), {p.value, p.r, p.g, p.b, p.a});
+  return key;
+}
+
+double RenderSession::autoSpacing(const Scene& sc, const FrameRequest& request, nlohmann::json& info) {
+  State& S = *s_;
+  std::vector<double> key = S.spacingKey(sc);
+  bool probed = false;
+  double t0 = MPI_Wtime();
+  if (!S.spacing.valid || key != S.spacing.key) {
+    const auto [w, h] = probeSize(sc.camera.width, sc.camera.height);
+    std::vector<ImageF> probes;
+    for (double step : probeSpacings()) {
+      FrameRequest p;
+      p.overrides = request.overrides;
+      p.overrides.push_back("render.sample_spacing=" + std::to_string(step));
+      p.overrides.push_back("image.width=" + std::to_string(w));
+      p.overrides.push_back("image.height=" + std::to_string(h));
+      p.orbit_frame = request.orbit_frame;
+      p.float_frame = true;
+      p.probe = true;
+      probes.push_back(std::move(render(p).image_f));
+    }
+    double chosen = 0.5;
+    std::vector<double> estimates;
+    if (S.rank == 0) {
+      S.spacing.choice = chooseSpacing(probes, sc.background);
+      chosen = S.spacing.choice.spacing;
+    }
+    // Rank 0 decides; every rank takes its step (so all ranks agree whatever the rounding).
+    MPI_Bcast(&chosen, 1, MPI_DOUBLE, 0, S.comm);
+    S.spacing.choice.spacing = chosen;
+    S.spacing.key = std::move(key);
+    S.spacing.valid = true;
+    probed = true;
+  }
+  if (S.rank == 0) {
+    nlohmann::json est = nlohmann::json::object();
+    for (auto [step, db] : S.spacing.choice.estimated_db)
+      est[std::to_string(step).substr(0, 3)] = std::isfinite(db) ? nlohmann::json(db) : nlohmann::json("inf");
+    info = {{"chosen", S.spacing.choice.spacing}, {"estimated_db", est}, {"target_db", kTargetDb},
+            {"probed", probed}, {"probe_s", probed ? MPI_Wtime() - t0 : 0.0}};
+  }
+  return S.spacing.choice.spacing;
+}
+
 FrameResult RenderSession::render(const FrameRequest& request) {
   State& S = *s_;
   const int rank = S.rank;
@@ -477,6 +542,10 @@ FrameResult RenderSession::render(const FrameRequest& request) {
   PhaseScope phase("rendering a frame");
   collectively(S.comm, [&] { sc = S.resolve(request); });
   S.bringGpuTo(sc);
+  // render.sample_spacing: auto: the step from probe frames of this view (auto_spacing.h).
+  nlohmann::json spacing_info;
+  if (sc.sample_spacing_auto && sc.hasVolume() && !request.probe)
+    sc.sample_spacing = autoSpacing(sc, request, spacing_info);
   const auto [data_min, data_max] = S.dataRange();
   const Camera cam = sc.frameCameras(S.layout.bounds)[size_t(std::max(0, request.orbit_frame))];
   const bool has_particles = sc.particles.enabled();
@@ -579,9 +648,11 @@ FrameResult RenderSession::render(const FrameRequest& request) {
     out.stats["height"] = cam.height;
     out.stats["step"] = sc.time_step;
     out.stats["ranks"] = S.size;
+    if (sc.hasVolume()) out.stats["sample_spacing"] = sc.sample_spacing;
+    if (!spacing_info.is_null()) out.stats["sample_spacing_auto"] = spacing_info;
   }
   out.scene = std::move(sc);
-  ++S.frames_rendered;
+  if (!request.probe) ++S.frames_rendered;
   return out;
 }
 
@@ -630,7 +701,8 @@ nlohmann::json RenderSession::describe(const std::vector<std::string>& base) con
                    {"image.height", b.camera.height},
                    {"image.background", vec3Json(b.background)},
                    {"render.method", b.volume_method},
-                   {"render.sample_spacing", b.sample_spacing},
+                   {"render.sample_spacing", b.sample_spacing_auto ? nlohmann::json("auto")
+                                                                   : nlohmann::json(b.sample_spacing)},
                    {"render.ert_threshold", b.ert_threshold},
                    {"render.shading", b.shading.enabled},
                    {"transfer.preintegrated", b.transfer.preintegrated},  // as resolved (auto: on or off)

@@ -49,6 +49,7 @@ struct FrameRequest {
   bool float_frame = false;    // rank 0 also gets the frame before rounding (EXR output)
   bool surface = false;        // rank 0 also gets the particle surface (t, normal per pixel)
   std::string dump_layers;     // write this frame's brick images and order into this directory
+  bool probe = false;          // a probe frame of render.sample_spacing: auto (not counted)
 };
 
 struct FrameResult {  // on rank 0; other ranks get empty images and null stats
@@ -120,6 +121,9 @@ class RenderSession {
  private:
   struct State;
   RenderSession(std::unique_ptr<State> state);
+  // render.sample_spacing: auto: the step for `sc` (probing when its inputs changed); rank 0's
+  // `info` gets the choice and estimates for --stats. Collective.
+  double autoSpacing(const Scene& sc, const FrameRequest& request, nlohmann::json& info);
   std::unique_ptr<State> s_;
 };
 

@@ -39,6 +39,7 @@ surfaces:
 YAML
 cat > "$WORK/volume.yaml" <<'YAML'
 volume: {procedural: sphere, dims: [48, 48, 48]}
+render: {sample_spacing: 0.5}  # where the bounds were measured (auto may take a coarser step)
 transfer:
   preintegrated: false
   points: [[0, 1, 0.5, 0.1, 0], [1, 1, 0.5, 0.1, 0.05]]
@@ -58,6 +59,7 @@ surfaces:
 YAML
 cat > "$WORK/all_three.yaml" <<'YAML'
 volume: {procedural: sphere, dims: [40, 40, 40]}
+render: {sample_spacing: 0.5}  # where the bounds were measured (auto may take a coarser step)
 transfer:
   preintegrated: false
   points: [[0, 1, 0.5, 0.1, 0], [1, 1, 0.5, 0.1, 0.05]]

@@ -9,7 +9,9 @@
 # Usage: glow_frames.sh SORTLAST DATA_DIR
 source "$(dirname "$0")/service_lib.sh" "$1"
 scene=$2/glow.yaml
+# The volume's step pinned at 0.5 voxel, where the bound against the reference was measured.
 vol=(--set volume.procedural=blobs --set "volume.dims=[24,24,24]" --set render.method=raycast
+     --set render.sample_spacing=0.5
      --set glow.box=auto --set glow.intensity=0.02 --set glow.core_radius=0.03)
 for case in alone volume; do
   extra=() far='[2.5,1.5,-3]'

@@ -68,7 +68,9 @@ TEST(Scene, BuiltInDefaults) {
   EXPECT_EQ(s.camera.up, glm::dvec3(0.0, 1.0, 0.0));
   // Tunable numbers: whatever the key table says (it is also the documentation).
   EXPECT_DOUBLE_EQ(s.camera.fov_deg, std::stod(tableDefault("camera.fov")));
-  EXPECT_DOUBLE_EQ(s.sample_spacing, std::stod(tableDefault("render.sample_spacing")));
+  EXPECT_EQ(tableDefault("render.sample_spacing"), "auto");
+  EXPECT_TRUE(s.sample_spacing_auto);
+  EXPECT_DOUBLE_EQ(s.sample_spacing, 0.5);  // until the session's probe chooses
   EXPECT_DOUBLE_EQ(s.reference_step, std::stod(tableDefault("reference.step")));
   EXPECT_EQ(s.transfer.table_size, std::stoi(tableDefault("transfer.table_size")));
   EXPECT_FALSE(s.transfer.range.has_value());
