@@ -51,8 +51,8 @@ SpacingChoice chooseSpacing(const std::vector<ImageF>& probes, const glm::dvec3&
 
 std::pair<int, int> probeSize(int width, int height) {
   const int longer = std::max(width, height);
-  if (longer <= kProbeSide) return {width, height};
-  const double s = double(kProbeSide) / double(longer);
+  const int side = std::max(8, std::min(kProbeSide, longer / kProbeFraction));
+  const double s = double(side) / double(longer);
   return {std::max(8, int(std::lround(width * s))), std::max(8, int(std::lround(height * s)))};
 }
 

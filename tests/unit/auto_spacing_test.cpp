@@ -45,7 +45,9 @@ TEST(AutoSpacing, ComparesTheFramesOverTheirBackground) {
 }
 
 TEST(AutoSpacing, ProbeSizeKeepsTheAspectWithinItsSide) {
-  EXPECT_EQ(probeSize(64, 48), std::make_pair(64, 48));
+  EXPECT_EQ(probeSize(64, 48), std::make_pair(16, 12));
+  EXPECT_EQ(probeSize(256, 128), std::make_pair(64, 32));
+  EXPECT_EQ(probeSize(20, 20), std::make_pair(8, 8));
   EXPECT_EQ(probeSize(512, 512), std::make_pair(kProbeSide, kProbeSide));
   EXPECT_EQ(probeSize(1024, 512), std::make_pair(kProbeSide, kProbeSide / 2));
   EXPECT_EQ(probeSize(4096, 16), std::make_pair(kProbeSide, 8));
