@@ -143,7 +143,11 @@ function buildRequest(mode) {
     // Level of detail while interacting: samples twice as far apart halve the volume's cost
     // (the full frame that follows uses the chosen spacing).
     const coarse = mode === 'reduced' && $('coarse') && $('coarse').checked ? 2 : 1;
-    r['render.sample_spacing'] = Math.min(100, Number($('spacing').value) * coarse);
+    // auto: the session's choice; while interacting, twice the step it chose last (a fixed
+    // number: a new probe per reduced frame would cost more than it saves).
+    const chosen = api.lastStats && Number.isFinite(api.lastStats.sample_spacing) ? api.lastStats.sample_spacing : null;
+    if ($('spacing-auto').checked) r['render.sample_spacing'] = coarse > 1 && chosen ? Math.min(100, chosen * coarse) : 'auto';
+    else r['render.sample_spacing'] = Math.min(100, Number($('spacing').value) * coarse);
     r['render.shading'] = $('shading').checked;
     // 'scene' leaves the scene's choice (its auto rule sees the spacing sent above).
     const preint = $('preint').value;
@@ -318,6 +322,7 @@ function updateStats(meta, s, latency) {
     ['transfer', `${ms(maxOf(s.transfer_s))} ms`],
     ['sent', bytes(sumOf(s.bytes_sent))],
     ['RLE ratio', rle],
+    ['spacing', typeof s.sample_spacing === 'number' ? `${s.sample_spacing} voxel${s.sample_spacing_auto ? ' (auto)' : ''}` : '–'],
     ['ranks', s.ranks ?? state.scene.ranks ?? '–'],
   ];
   const el = $('stats');
@@ -432,10 +437,13 @@ const SPACING_MIN = 0.01, SPACING_MAX = 100;
 const clampSpacing = (v) => Math.min(Math.max(v, SPACING_MIN), SPACING_MAX);
 function syncSpacingSlider() { $('spacing-range').value = Math.log10(clampSpacing(Number($('spacing').value) || 1)); }
 trackSlider($('spacing-range'), () => {
+  $('spacing-auto').checked = false;  // a step dragged to takes over from auto
   const v = 10 ** Number($('spacing-range').value);
   $('spacing').value = v >= 1 ? v.toFixed(2) : v.toPrecision(2);
 });
+$('spacing-auto').addEventListener('change', () => submit('full'));
 $('spacing').addEventListener('change', () => {
+  $('spacing-auto').checked = false;  // a number typed in takes over from auto
   const v = Number($('spacing').value);
   if (!(v > 0)) { error('Sample spacing must be a number between 0.01 and 100'); return; }
   $('spacing').value = clampSpacing(v);
@@ -584,6 +592,9 @@ function applyScene(scene) {
   const scenePreint = settings['transfer.preintegrated'] === true ? 'on' : 'off';
   setOptions($('preint'), [['scene', `as in scene (${scenePreint})`], ['auto', 'auto'], ['on', 'on'], ['off', 'off']], 'scene');
   setOptions($('strategy'), ['direct', 'binary-swap', 'radix-k'], settings['compositing.strategy'] || 'direct');
+  // The scene's own `auto` (the default) leaves the choice to the session; the number box then
+  // shows 1 until the user takes it over.
+  $('spacing-auto').checked = settings['render.sample_spacing'] === 'auto';
   $('spacing').value = Number.isFinite(settings['render.sample_spacing']) ? settings['render.sample_spacing'] : 1;
   syncSpacingSlider();
 

@@ -206,7 +206,7 @@ struct RenderSession::State {
   void meetDevices();
   void bringGpuTo(const Scene& scene);
   void uploadBricks(const Scene& scene, StepData& d);
-  std::vector<double> spacingKey(const Scene& sc) const;
+  std::vector<double> spacingKey(const Scene& sc, std::pair<int, int> probe) const;
 };
 
 RenderSession::RenderSession(SessionOptions options, MPI_Comm comm) : s_(std::make_unique<State>()) {
@@ -479,9 +479,11 @@ void RenderSession::State::bringGpuTo(const Scene& scene) {
   if (!opts.resident) d.dropHostCopies();
 }
 
-// What a probe's choice depends on (auto_spacing.h): the transfer table as built, the renderer's
-// settings and the time step. The same on every rank (resolved from the same request).
-std::vector<double> RenderSession::State::spacingKey(const Scene& sc) const {
+// What a probe's choice depends on (auto_spacing.h): the transfer function as built, the renderer's
+// settings, the time step and the probe's size. Not the camera: the probes look from the scene's
+// automatic camera, so a frame's step (and image) follows from its request alone, whatever came
+// before, and an orbit probes once. The same on every rank (resolved from the same request).
+std::vector<double> RenderSession::State::spacingKey(const Scene& sc, std::pair<int, int> probe) const {
   const auto [lo, hi] = dataRange();
   std::vector<double> key{double(sc.time_step), lo, hi, sc.ert_threshold, double(sc.transfer.preintegrated),
                           double(sc.shading.enabled), double(sc.adaptive_step), sc.adaptive_step_tolerance,
@@ -490,16 +492,17 @@ std::vector<double> RenderSession::State::spacingKey(const Scene& sc) const {
   const TransferFunction tf = sc.transfer.build(lo, hi, layout.grid.minSpacing());
   key.insert(key.end(), {tf.rangeLo(), tf.rangeHi(), tf.unitLength()});
   for (const TfPoint& p : tf.points()) key.insert(key.end(), {p.value, p.r, p.g, p.b, p.a});
+  key.insert(key.end(), {double(probe.first), double(probe.second)});
   return key;
 }
 
 double RenderSession::autoSpacing(const Scene& sc, const FrameRequest& request, nlohmann::json& info) {
   State& S = *s_;
-  std::vector<double> key = S.spacingKey(sc);
+  const auto [w, h] = probeSize(sc.camera.width, sc.camera.height);
+  std::vector<double> key = S.spacingKey(sc, {w, h});
   bool probed = false;
   double t0 = MPI_Wtime();
   if (!S.spacing.valid || key != S.spacing.key) {
-    const auto [w, h] = probeSize(sc.camera.width, sc.camera.height);
     std::vector<ImageF> probes;
     for (double step : probeSpacings()) {
       FrameRequest p;
@@ -507,7 +510,11 @@ double RenderSession::autoSpacing(const Scene& sc, const FrameRequest& request, 
       p.overrides.push_back("render.sample_spacing=" + std::to_string(step));
       p.overrides.push_back("image.width=" + std::to_string(w));
       p.overrides.push_back("image.height=" + std::to_string(h));
-      p.orbit_frame = request.orbit_frame;
+      // The scene's automatic view (the default camera), whatever this frame's camera.
+      for (const char* k : {"camera.position=auto", "camera.look_at=auto", "camera.up=[0, 1, 0]",
+                            "camera.fov=35", "camera.orbit.frames=0"})
+        p.overrides.push_back(k);
+      p.orbit_frame = -1;
       p.float_frame = true;
       p.probe = true;
       probes.push_back(std::move(render(p).image_f));
@@ -543,9 +550,14 @@ FrameResult RenderSession::render(const FrameRequest& request) {
   collectively(S.comm, [&] { sc = S.resolve(request); });
   S.bringGpuTo(sc);
   // render.sample_spacing: auto: the step from probe frames of this view (auto_spacing.h).
+  // Its probe frames count in this frame's total_s (they are what auto costs).
   nlohmann::json spacing_info;
-  if (sc.sample_spacing_auto && sc.hasVolume() && !request.probe)
+  double probe_s = 0.0;
+  if (sc.sample_spacing_auto && sc.hasVolume() && !request.probe) {
+    const double t0 = MPI_Wtime();
     sc.sample_spacing = autoSpacing(sc, request, spacing_info);
+    probe_s = MPI_Wtime() - t0;
+  }
   const auto [data_min, data_max] = S.dataRange();
   const Camera cam = sc.frameCameras(S.layout.bounds)[size_t(std::max(0, request.orbit_frame))];
   const bool has_particles = sc.particles.enabled();
@@ -642,7 +654,7 @@ FrameResult RenderSession::render(const FrameRequest& request) {
   auto all = gatherStats(st, S.comm);
   if (rank == 0) {
     out.stats = frameJson(request.orbit_frame >= 0 ? request.orbit_frame : S.frames_rendered, all,
-                          cs.composite_s, MPI_Wtime() - t_frame);
+                          cs.composite_s, MPI_Wtime() - t_frame + probe_s);
     out.stats["camera"] = cameraJson(cam);
     out.stats["width"] = cam.width;
     out.stats["height"] = cam.height;

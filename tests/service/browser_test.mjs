@@ -157,6 +157,14 @@ async function main() {
   const first = await viewerState();
   log(`first frame shown (${first.transport}); latency ${first.latencies[0].toFixed(0)} ms; camera ${JSON.stringify(first.lastCamera)}`);
   if (!first.lastCamera || !Array.isArray(first.lastCamera.position)) await fail('the frame stats hold no camera');
+  // A scene that leaves render.sample_spacing at `auto` (the default) keeps it: the box is
+  // ticked, the request says auto, and the stats give the step the session chose.
+  const autoShown = await page.evaluate(() => document.getElementById('spacing-auto').checked);
+  if (first.lastStats.sample_spacing_auto) {
+    if (!autoShown || first.lastRequest['render.sample_spacing'] !== 'auto')
+      await fail(`the scene's sample spacing is auto but the viewer sent ${JSON.stringify(first.lastRequest['render.sample_spacing'])}`);
+    log(`sample spacing: auto chose ${first.lastStats.sample_spacing} voxel`);
+  }
   const before = await snapshot();
 
   // ---- orbit: drag across the frame

@@ -60,8 +60,19 @@ void TransferTable::usePreintegrated(unsigned program, double base_length) {
   gl_.ActiveTexture(GL_TEXTURE6);
   gl_.BindTexture(GL_TEXTURE_2D, texture2d_);
   if (built_size_ != n || built_length_ != base_length || !sameTransferFunction(built_tf_, tf_)) {
-    // tests/unit/preintegration_test.cpp times the build (26-75 ms for 256 entries here).
-    std::vector<float> texels = PreintegrationTable::build(tf_, n, base_length).texels();
+    // tests/unit/preintegration_test.cpp times the build (26-75 ms for 256 entries here). The
+    // tables of the last few lengths are kept: render.sample_spacing: auto renders probe frames
+    // at three steps before each frame of a new view (master/session/auto_spacing.h), and
+    // rebuilding four tables a frame made neghip's frames 1.4x slower.
+    if (!sameTransferFunction(cached_tf_, tf_)) cached_.clear(), cached_tf_ = tf_;
+    auto it = std::find_if(cached_.begin(), cached_.end(),
+                           [&](const auto& c) { return c.first == base_length; });
+    if (it == cached_.end()) {
+      if (cached_.size() >= kCachedTables) cached_.erase(cached_.begin());
+      cached_.emplace_back(base_length, PreintegrationTable::build(tf_, n, base_length).texels());
+      it = cached_.end() - 1;
+    }
+    const std::vector<float>& texels = it->second;
     gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, n, n, 0, GL_RGBA, GL_FLOAT, texels.data());
     gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);

@@ -52,6 +52,10 @@ class TransferTable {
   bool preintegrated_ = false;
   // What the 2D texture holds: the function and length it was built for (size 0: nothing yet).
   TransferFunction built_tf_;
+  // Pre-integrated texels by segment length, for the function cached_tf_ (4 x 1 MiB at most).
+  static constexpr size_t kCachedTables = 4;
+  TransferFunction cached_tf_;
+  std::vector<std::pair<double, std::vector<float>>> cached_;
   double built_length_ = 0.0;
   int built_size_ = 0;
   int version_ = 0;
