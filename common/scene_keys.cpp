@@ -543,7 +543,7 @@ std::vector<SceneKey> makeTable() {
        "Distance between slices (ray casting: between samples along each ray), in units of "
        "the smallest voxel spacing (the paper: 1). `auto`: 0.5, 1 or 2, the largest whose own "
        "error, estimated from small probe frames of the scene's automatic view at all three steps, "
-       "stays within 47 dB (master/session/auto_spacing.h); probed again when the transfer "
+       "stays within 52 dB (master/session/auto_spacing.h); probed again when the transfer "
        "function, the renderer's settings, the time step or the image size change, not the camera; "
        "`--stats` gives "
        "the choice and the estimates. 0.5 (the fixed default before) with ray casting and "
