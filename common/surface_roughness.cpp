@@ -10,6 +10,13 @@ namespace sortlast {
 
 namespace {
 
+// Whether two pixels both hit and their depths are continuous (RoughnessOptions::max_depth_jump).
+bool continuous(const SurfaceImage& img, const RoughnessOptions& o, size_t p, size_t q) {
+  if (!img.hit(p) || !img.hit(q)) return false;
+  double tp = img.t[p], tq = img.t[q];
+  return std::abs(tp - tq) <= o.max_depth_jump * std::min(tp, tq);
+}
+
 // Union-find over the region's pixels: continuous hit neighbours join one piece.
 long long countPieces(const SurfaceImage& img, const RoughnessOptions& o, int x1, int y1) {
   const int w = x1 - o.x0, h = y1 - o.y0;
@@ -20,11 +27,7 @@ long long countPieces(const SurfaceImage& img, const RoughnessOptions& o, int x1
     return a;
   };
   auto at = [&](int x, int y) { return size_t(y) * img.width + size_t(x); };
-  auto joined = [&](size_t p, size_t q) {
-    if (!img.hit(p) || !img.hit(q)) return false;
-    double tp = img.t[p], tq = img.t[q];
-    return std::abs(tp - tq) <= o.max_depth_jump * std::min(tp, tq);
-  };
+  auto joined = [&](size_t p, size_t q) { return continuous(img, o, p, q); };
   for (int y = o.y0; y < y1; ++y)
     for (int x = o.x0; x < x1; ++x) {
       const int here = (y - o.y0) * w + (x - o.x0);
@@ -54,9 +57,7 @@ Roughness surfaceRoughness(const SurfaceImage& img, const RoughnessOptions& o) {
                      std::to_string(img.height) + " image");
   std::vector<double> angles;
   auto pair = [&](size_t p, size_t q) {
-    if (!img.hit(p) || !img.hit(q)) return;
-    double tp = img.t[p], tq = img.t[q];
-    if (std::abs(tp - tq) > o.max_depth_jump * std::min(tp, tq)) return;
+    if (!continuous(img, o, p, q)) return;
     glm::dvec3 a(img.normal[p]), b(img.normal[q]);
     double la = glm::length(a), lb = glm::length(b);
     if (!(la > 0.0 && lb > 0.0)) return;

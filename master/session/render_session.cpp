@@ -520,7 +520,6 @@ double RenderSession::autoSpacing(const Scene& sc, const FrameRequest& request, 
       probes.push_back(std::move(render(p).image_f));
     }
     double chosen = 0.5;
-    std::vector<double> estimates;
     if (S.rank == 0) {
       S.spacing.choice = chooseSpacing(probes, sc.background);
       chosen = S.spacing.choice.spacing;
@@ -549,7 +548,8 @@ FrameResult RenderSession::render(const FrameRequest& request) {
   PhaseScope phase("rendering a frame");
   collectively(S.comm, [&] { sc = S.resolve(request); });
   S.bringGpuTo(sc);
-  // render.sample_spacing: auto: the step from probe frames of this view (auto_spacing.h).
+  // render.sample_spacing: auto: the step from probe frames of the scene's automatic view
+  // (auto_spacing.h).
   // Its probe frames count in this frame's total_s (they are what auto costs).
   nlohmann::json spacing_info;
   double probe_s = 0.0;

@@ -62,8 +62,9 @@ void TransferTable::usePreintegrated(unsigned program, double base_length) {
   if (built_size_ != n || built_length_ != base_length || !sameTransferFunction(built_tf_, tf_)) {
     // tests/unit/preintegration_test.cpp times the build (26-75 ms for 256 entries here). The
     // tables of the last few lengths are kept: render.sample_spacing: auto renders probe frames
-    // at three steps before each frame of a new view (master/session/auto_spacing.h), and
-    // rebuilding four tables a frame made neghip's frames 1.4x slower.
+    // at three steps before a frame with a new transfer function (master/session/auto_spacing.h),
+    // and the frame's own step need not be built a second time (when auto probed every view,
+    // rebuilding four tables a frame made neghip's frames 1.4x slower).
     if (!sameTransferFunction(cached_tf_, tf_)) cached_.clear(), cached_tf_ = tf_;
     auto it = std::find_if(cached_.begin(), cached_.end(),
                            [&](const auto& c) { return c.first == base_length; });
