@@ -94,10 +94,7 @@ void applyTransform(PolyMesh& mesh, const glm::dmat4& m, const std::string& key)
       if (!(std::abs(p[a]) <= kMaxCoordinate))
         throw InputError("scene key '" + key + "': a transformed point is not finite or beyond +-1e18");
   }
-  if (det < 0)
-    for (int f = 0; f < mesh.faceCount(); ++f)
-      std::reverse(mesh.faceCorners.begin() + mesh.faceOffsets[f],
-                   mesh.faceCorners.begin() + mesh.faceOffsets[f] + mesh.faceSizes[f]);
+  if (det < 0) mesh.reverseFaces();
 }
 
 }  // namespace

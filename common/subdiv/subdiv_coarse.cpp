@@ -29,6 +29,7 @@ CoarseMesh buildCoarseMesh(const SubdivSurface& surface, int level, const char* 
   out.level = level;
   const int row = m + 1;
   for (int f = 0; f < surface.patchCount(); ++f) {
+    if (surface.hole(f)) continue;  // no limit surface there
     const unsigned base = static_cast<unsigned>(out.vertices.size());
     // Vertices are per face (not shared), so each carries its own face's (u, v).
     for (int j = 0; j <= m; ++j)
@@ -49,7 +50,7 @@ double coarseDeviation(const SubdivSurface& surface, int level) {
   const int m = cutsPerSide(surface, level, "level");
   double worst = 0;
   for (int f = 0; f < surface.patchCount(); ++f)
-    for (int j = 0; j < m; ++j)
+    for (int j = 0; j < m && !surface.hole(f); ++j)
       for (int i = 0; i < m; ++i) {
         glm::dvec3 corner[4];
         for (int c = 0; c < 4; ++c)

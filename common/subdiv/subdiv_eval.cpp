@@ -70,28 +70,22 @@ SubdivSurface::SubdivSurface(const PolyMesh& input) : control_(buildControlMesh(
   patches_.resize(m.faceCount());
   for (int f = 0; f < m.faceCount(); ++f) {
     Patch& p = patches_[f];
-    bool onBoundary = false;
-    for (int c = 0; c < 4; ++c) onBoundary |= t.boundary[m.corner(f, c)] != 0;
-    if (onBoundary) {
-      // At most one irregular corner, corner 0 (buildControlMesh checks), and it is on the
-      // boundary: an interior extraordinary vertex's faces do not reach the boundary after
-      // refinement.
-      p.kind = Kind::BoundaryRegular;
-      if (!regularVertex(t, m.corner(f, 0))) {
-        if (!t.boundary[m.corner(f, 0)])
-          throw std::logic_error("a boundary face has an interior extraordinary vertex");
-        p.kind = Kind::BoundaryIrregular;
-        p.valence = t.valence[m.corner(f, 0)];
-      }
-      if (p.kind == Kind::BoundaryIrregular) {
-        nets_.resize(m.faceCount());
-        nets_[f] = std::make_unique<LocalNet>(m, t, f);
-      }
-      if (p.kind == Kind::BoundaryRegular) {
+    bool tagged = false;
+    for (int c = 0; c < 4; ++c) tagged |= faceCornerKind(m, t, f, c) != CornerKind::Smooth;
+    if (tagged) {
+      // Tags or a boundary at some corner: explicit local subdivision with their rules, down to
+      // where every semi-sharp value has decayed (buildNode). A face that is one B-spline patch
+      // straight away keeps its grid as a regular patch.
+      const LocalNet net(m, t, f);
+      if (net.kind() == LocalNet::Kind::Regular) {
         LocalNet::Grid world, local;
-        LocalNet(m, t, f).grid(world, local);
+        net.grid(world, local);
+        p.kind = Kind::Regular;
         p.points.resize(16, 3);
         for (int i = 0; i < 16; ++i) p.points.row(i) << world[i].x, world[i].y, world[i].z;
+      } else {
+        p.kind = Kind::Tree;
+        p.root = buildNode(net, 0);
       }
       continue;
     }
@@ -116,14 +110,69 @@ SubdivSurface::SubdivSurface(const PolyMesh& input) : control_(buildControlMesh(
   }
 }
 
-SubdivSurface::Location SubdivSurface::locate(int face, double u, double v, int maxLevel) const {
-  const Patch& p = patches_[face];
-  Location loc;
-  if (p.kind == Kind::BoundaryIrregular) maxLevel = std::min(maxLevel, kBoundaryMaxLevel);
-  if (regular(face)) {
-    loc.s = u, loc.t = v;
-    return loc;
+bool SubdivSurface::twoSided() const {
+  if (control_.topology.open()) return true;
+  for (int f = 0; f < control_.mesh.faceCount(); ++f)
+    if (hole(f)) return true;
+  return false;
+}
+
+int SubdivSurface::buildNode(const LocalNet& net, int depth) {
+  const int index = static_cast<int>(nodes_.size());
+  nodes_.emplace_back();
+  fillNode(index, net, depth);
+  return index;
+}
+
+void SubdivSurface::fillNode(int index, const LocalNet& net, int depth) {
+  const LocalNet::Kind kind = net.kind();
+  if (kind == LocalNet::Kind::Regular) {
+    nodes_[index].type = NodeType::Regular;
+    net.grid(nodes_[index].grid, nodes_[index].tangent);
+    return;
   }
+  if (kind == LocalNet::Kind::Irregular) {
+    nodes_[index].type = NodeType::Irregular;
+    nodes_[index].net = std::make_shared<LocalNet>(net);
+    return;
+  }
+  // Semi-sharp: every value decays by at least 1 a level under the uniform rule (Chaikin's
+  // averages also end below 10 levels), so a deep tree is a bug.
+  if (depth >= kMaxSemiSharpDepth) throw std::logic_error("SubdivSurface: a semi-sharp feature did not decay");
+  const int first = static_cast<int>(nodes_.size());
+  nodes_.resize(nodes_.size() + 4);  // the four children side by side, their subtrees after them
+  nodes_[index].type = NodeType::Split;
+  nodes_[index].firstChild = first;
+  for (int q = 0; q < 4; ++q) {
+    LocalNet child = net;
+    child.descend(q);
+    fillNode(first + q, child, depth + 1);
+  }
+}
+
+void SubdivSurface::nodeGrid(int node, std::array<glm::dvec3, 16>& position, std::array<glm::dvec3, 16>& tangent) const {
+  position = nodes_[node].grid;
+  tangent = nodes_[node].tangent;
+}
+
+void SubdivSurface::nodeSubPatches(int node, int levels, std::vector<std::array<glm::dvec3, 16>>& positions,
+                                   std::vector<std::array<glm::dvec3, 16>>& tangents) const {
+  positions.clear();
+  tangents.clear();
+  LocalNet net = *nodes_[node].net;
+  for (int n = 1; n <= levels; ++n) {
+    std::array<LocalNet::Grid, 3> world, local;
+    net.step(&world, &local);
+    positions.insert(positions.end(), world.begin(), world.end());
+    tangents.insert(tangents.end(), local.begin(), local.end());
+  }
+}
+
+namespace {
+
+// Which (n, k) sub-patch of a face with its extraordinary vertex at (0, 0) holds (u, v).
+SubdivSurface::Location locateIrregular(double u, double v, int maxLevel) {
+  SubdivSurface::Location loc;
   // n = floor(-log2 max(u, v)) + 1: the level whose ring [2^-n, 2^(1-n)] holds max(u, v).
   const double m = std::max(u, v);
   int n = maxLevel;
@@ -144,12 +193,30 @@ SubdivSurface::Location SubdivSurface::locate(int face, double u, double v, int 
   return loc;
 }
 
+}  // namespace
+
+SubdivSurface::Location SubdivSurface::locate(int face, double u, double v, int maxLevel) const {
+  if (regular(face)) {
+    Location loc;
+    loc.s = u, loc.t = v;
+    return loc;
+  }
+  if (patches_[face].kind == Kind::Tree) {
+    if (nodes_[patches_[face].root].type != NodeType::Irregular)
+      throw std::logic_error("SubdivSurface::locate: a face split at semi-sharp tags has no single (n, k)");
+    maxLevel = std::min(maxLevel, kBoundaryMaxLevel);
+  }
+  return locateIrregular(u, v, maxLevel);
+}
+
 std::array<glm::dvec3, 16> SubdivSurface::controlPoints(int face, int n, int k, bool tangent) const {
   const Patch& p = patches_[face];
   std::array<glm::dvec3, 16> out;
-  if (p.kind == Kind::BoundaryIrregular) {
+  if (p.kind == Kind::Tree) {
+    if (nodes_[p.root].type != NodeType::Irregular)
+      throw std::logic_error("SubdivSurface::controlPoints: a face split at semi-sharp tags");
     std::array<glm::dvec3, 16> position, tangents;
-    boundarySubPatch(face, n, k, position, tangents);
+    irregularSubPatch(p.root, n, k, position, tangents);
     return tangent ? tangents : position;
   }
   if (regular(face)) {
@@ -166,9 +233,9 @@ std::array<glm::dvec3, 16> SubdivSurface::controlPoints(int face, int n, int k, 
   return out;
 }
 
-void SubdivSurface::boundarySubPatch(int face, int n, int k, std::array<glm::dvec3, 16>& position,
-                                     std::array<glm::dvec3, 16>& tangent) const {
-  LocalNet net = *nets_[face];
+void SubdivSurface::irregularSubPatch(int node, int n, int k, std::array<glm::dvec3, 16>& position,
+                                      std::array<glm::dvec3, 16>& tangent) const {
+  LocalNet net = *nodes_[node].net;
   for (int level = 1; level < n; ++level) net.step();
   std::array<LocalNet::Grid, 3> world, local;
   net.step(&world, &local, k);
@@ -180,14 +247,10 @@ void SubdivSurface::subPatches(int face, int levels, std::vector<std::array<glm:
                                std::vector<std::array<glm::dvec3, 16>>& tangents) const {
   positions.clear();
   tangents.clear();
-  if (patches_[face].kind == Kind::BoundaryIrregular) {
-    LocalNet net = *nets_[face];
-    for (int n = 1; n <= levels; ++n) {
-      std::array<LocalNet::Grid, 3> world, local;
-      net.step(&world, &local);
-      positions.insert(positions.end(), world.begin(), world.end());
-      tangents.insert(tangents.end(), local.begin(), local.end());
-    }
+  if (patches_[face].kind == Kind::Tree) {
+    if (nodes_[patches_[face].root].type != NodeType::Irregular)
+      throw std::logic_error("SubdivSurface::subPatches: a face split at semi-sharp tags");
+    nodeSubPatches(patches_[face].root, levels, positions, tangents);
     return;
   }
   for (int n = 1; n <= levels; ++n)
@@ -198,15 +261,32 @@ void SubdivSurface::subPatches(int face, int levels, std::vector<std::array<glm:
 }
 
 LimitPoint SubdivSurface::evaluate(int face, double u, double v) const {
-  const Location loc = locate(face, u, v);
   glm::dvec3 position, ds, dt, unused;
-  if (patches_[face].kind == Kind::BoundaryIrregular) {
+  const Patch& p = patches_[face];
+  if (p.kind == Kind::Tree) {
+    // Down the tree to the leaf whose square holds (u, v), in that leaf's own parameters.
+    int node = p.root;
+    while (nodes_[node].type == NodeType::Split) {
+      const int a = u >= 0.5 ? 1 : 0, b = v >= 0.5 ? 1 : 0;
+      u = 2.0 * u - a;
+      v = 2.0 * v - b;
+      node = nodes_[node].firstChild + (b == 0 ? a : 3 - a);
+    }
     std::array<glm::dvec3, 16> points, tangents;
-    boundarySubPatch(face, loc.n, loc.k, points, tangents);
-    bsplinePatch(points, loc.s, loc.t, position, unused, unused);
-    bsplinePatch(tangents, loc.s, loc.t, unused, ds, dt);
+    double s = u, t = v;
+    if (nodes_[node].type == NodeType::Regular) {
+      points = nodes_[node].grid;
+      tangents = nodes_[node].tangent;
+    } else {
+      const Location loc = locateIrregular(u, v, kBoundaryMaxLevel);
+      irregularSubPatch(node, loc.n, loc.k, points, tangents);
+      s = loc.s, t = loc.t;
+    }
+    bsplinePatch(points, s, t, position, unused, unused);
+    bsplinePatch(tangents, s, t, unused, ds, dt);
     return {position, glm::normalize(glm::cross(ds, dt))};
   }
+  const Location loc = locate(face, u, v);
   bsplinePatch(controlPoints(face, loc.n, loc.k), loc.s, loc.t, position, unused, unused);
   bsplinePatch(controlPoints(face, loc.n, loc.k, true), loc.s, loc.t, unused, ds, dt);
   // The 2^n scale of the sub-patch does not turn the normal, so the cross product of the

@@ -34,6 +34,9 @@ constexpr int kCpuMaxLevel = 1100;
 // eigenbasis there): nearer than 2^-48 of a control face the level-48 sub-patch is extrapolated,
 // which moves the point by about lambda^48 (< 1e-9) of the face's size.
 constexpr int kBoundaryMaxLevel = 48;
+// Deepest split of a face's patch tree at semi-sharp tags (sharpness below 10 decays within 10
+// levels; more is a bug).
+constexpr int kMaxSemiSharpDepth = 24;
 // Levels the GPU tables hold, as in the paper (n <= 15, 45 control-point sets per patch).
 constexpr int kTableLevels = 15;
 
@@ -69,28 +72,55 @@ class SubdivSurface {
   // and tangent points: what the tables hold (one pass of local subdivision on boundary faces).
   void subPatches(int face, int levels, std::vector<std::array<glm::dvec3, 16>>& positions,
                   std::vector<std::array<glm::dvec3, 16>>& tangents) const;
-  // Regular: a bicubic B-spline patch (interior, or at a boundary with phantom points).
-  bool regular(int face) const { return patches_[face].kind <= Kind::BoundaryRegular; }
-  // Touches a boundary (and then is evaluated by local subdivision if irregular).
-  bool boundary(int face) const { return patches_[face].kind == Kind::BoundaryRegular || patches_[face].kind == Kind::BoundaryIrregular; }
+  // Regular: a bicubic B-spline patch (interior, or with phantom points across a boundary or an
+  // infinitely sharp crease).
+  bool regular(int face) const { return patches_[face].kind == Kind::Regular; }
+  // Not part of the limit surface (a hole tag, or a face at a boundary with interpolation none).
+  bool hole(int face) const { return control_.mesh.hole(face); }
+  // Some face is a hole or the control mesh has a boundary: both sides can face a camera.
+  bool twoSided() const;
   const std::map<int, std::unique_ptr<ValenceBasis>>& bases() const { return bases_; }
 
+  // Faces near tags or boundaries that are not one regular patch are trees of patches: a Split
+  // node's four children cover the quadrants (0: (0,0), 1: (1,0), 2: (1,1), 3: (0,1)) of its
+  // (u, v) square, each in the same orientation (a semi-sharp feature subdivided until its
+  // sharpness has decayed); a Regular leaf is a B-spline patch over its square; an Irregular leaf
+  // has its irregular vertex at its (0,0) and is evaluated as Stam's sub-patches (n, k), by
+  // explicit local subdivision. rootNode is -1 for a face that is one regular or Stam patch.
+  enum class NodeType { Regular, Irregular, Split };
+  int rootNode(int face) const { return patches_[face].root; }
+  NodeType nodeType(int node) const { return nodes_[node].type; }
+  int firstChild(int node) const { return nodes_[node].firstChild; }
+  // A Regular node's grid (positions, and the tangent points: same patch, moved and scaled).
+  void nodeGrid(int node, std::array<glm::dvec3, 16>& position, std::array<glm::dvec3, 16>& tangent) const;
+  // An Irregular node's sub-patches (n, k), n = 1..levels, as subPatches lays them out.
+  void nodeSubPatches(int node, int levels, std::vector<std::array<glm::dvec3, 16>>& positions,
+                      std::vector<std::array<glm::dvec3, 16>>& tangents) const;
+  int nodeCount() const { return static_cast<int>(nodes_.size()); }
+
  private:
-  enum class Kind { Regular, BoundaryRegular, Stam, BoundaryIrregular };
+  enum class Kind { Regular, Stam, Tree };
   struct Patch {
     Kind kind = Kind::Regular;
     int valence = 4;
-    Eigen::MatrixXd points;     // regular: 16 x 3 grid; Stam: (2N+8) x 3, V^-1 C0 (Stam's C-hat);
-                                // irregular at a boundary: none (local subdivision each time)
+    Eigen::MatrixXd points;     // regular: 16 x 3 grid; Stam: (2N+8) x 3, V^-1 C0 (Stam's C-hat)
+    int root = -1;              // Tree: its root node
+  };
+  struct Node {
+    NodeType type = NodeType::Regular;
+    int firstChild = -1;                        // Split: children firstChild + q
+    std::array<glm::dvec3, 16> grid, tangent;   // Regular
+    std::shared_ptr<const LocalNet> net;        // Irregular: level 0 of its local subdivision
   };
   ControlMesh control_;
   std::map<int, std::unique_ptr<ValenceBasis>> bases_;
   std::vector<Patch> patches_;
-  // Per irregular boundary face, its one-ring as level 0 of the local subdivision (built once).
-  std::vector<std::unique_ptr<LocalNet>> nets_;
-  // Sub-patch (n, k) of an irregular boundary face by n steps of local subdivision.
-  void boundarySubPatch(int face, int n, int k, std::array<glm::dvec3, 16>& position,
-                        std::array<glm::dvec3, 16>& tangent) const;
+  std::vector<Node> nodes_;
+  int buildNode(const LocalNet& net, int depth);
+  void fillNode(int index, const LocalNet& net, int depth);
+  // Sub-patch (n, k) of an Irregular node by n steps of local subdivision.
+  void irregularSubPatch(int node, int n, int k, std::array<glm::dvec3, 16>& position,
+                         std::array<glm::dvec3, 16>& tangent) const;
 };
 
 // Uniform cubic B-spline basis B_0..B_3 at t and its derivative: in double for the exact

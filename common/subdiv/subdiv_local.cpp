@@ -39,29 +39,50 @@ std::vector<int> oneRing(const PolyMesh& mesh, const MeshTopology& t, int f) {
   return out;
 }
 
-// `faces` of `src` as a mesh of their own, corners in the same order.
-PolyMesh extract(const PolyMesh& src, const std::vector<int>& faces) {
+// `faces` of `src` as a mesh of their own with their tags, corners in the same order but the
+// first face's turned to start at its corner `start`.
+PolyMesh extract(const PolyMesh& src, const std::vector<int>& faces, int start = 0) {
   PolyMesh out;
   out.name = src.name;
+  out.boundary = src.boundary;
+  out.creaseMethod = src.creaseMethod;
   std::unordered_map<int, int> index;
+  std::vector<double> vertexSharpness;
   for (size_t i = 0; i < faces.size(); ++i) {
-    const int f = faces[i], m = src.faceSizes[f];
+    const int f = faces[i], m = src.faceSizes[f], turn = i == 0 ? start : 0;
     std::vector<int> corners;
-    for (int c = 0; c < m; ++c) {
+    for (int j = 0; j < m; ++j) {
+      const int c = (j + turn) % m;
       const int p = src.corner(f, c);
       auto [it, added] = index.emplace(p, static_cast<int>(out.points.size()));
-      if (added) out.points.push_back(src.points[p]);
+      if (added) {
+        out.points.push_back(src.points[p]);
+        vertexSharpness.push_back(src.vertexSharp(p));
+      }
       corners.push_back(it->second);
     }
     out.addFace(corners);
+    if (!src.edgeSharpness.empty()) {
+      out.edgeSharpness.resize(out.faceCorners.size() - m);
+      for (int j = 0; j < m; ++j) out.edgeSharpness.push_back(src.edgeSharpness[src.faceOffsets[f] + (j + turn) % m]);
+    }
   }
+  if (!src.vertexSharpness.empty()) out.vertexSharpness = std::move(vertexSharpness);
   return out;
 }
 
 }  // namespace
 
 LocalNet::LocalNet(const PolyMesh& mesh, const MeshTopology& topology, int face) {
-  keepOneRing(extract(mesh, oneRing(mesh, topology, face)), 0);
+  // Chaikin's method needs a second ring (see keepOneRing): the one-rings of the first's faces.
+  std::vector<int> faces = oneRing(mesh, topology, face);
+  if (mesh.creaseMethod == CreaseMethod::Chaikin) {
+    const std::vector<int> first = faces;
+    for (int g : first)
+      for (int h : oneRing(mesh, topology, g))
+        if (std::find(faces.begin(), faces.end(), h) == faces.end()) faces.push_back(h);
+  }
+  keepOneRing(extract(mesh, faces), 0);
 }
 
 LocalNet::Grid LocalNet::toWorld(const Grid& local) const {
@@ -75,16 +96,53 @@ void LocalNet::grid(Grid& world, Grid& tangent) const {
   world = toWorld(tangent);
 }
 
-void LocalNet::keepOneRing(const PolyMesh& refined, int face) {
-  std::vector<int> faces{face};
-  for (int f = 0; f < refined.faceCount(); ++f) {
-    if (f == face) continue;
-    bool shares = false;
-    for (int c = 0; c < refined.faceSizes[f] && !shares; ++c)
-      for (int d = 0; d < refined.faceSizes[face]; ++d) shares |= refined.corner(f, c) == refined.corner(face, d);
-    if (shares) faces.push_back(f);
+LocalNet::Kind LocalNet::kind() const {
+  const MeshTopology t = MeshTopology::build(mesh_);
+  int irregular = -1;
+  for (int c = 0; c < 4; ++c) {
+    const CornerKind k = faceCornerKind(mesh_, t, face_, c);
+    if (k == CornerKind::SemiSharp) return Kind::SemiSharp;
+    if (k == CornerKind::Irregular || (k == CornerKind::Smooth && !regularVertex(t, mesh_.corner(face_, c)))) {
+      if (irregular >= 0 || c != 0) throw std::logic_error("LocalNet: an irregular corner off the frame's (0, 0)");
+      irregular = c;
+    }
   }
-  mesh_ = extract(refined, faces);
+  return irregular < 0 ? Kind::Regular : Kind::Irregular;
+}
+
+void LocalNet::descend(int q) {
+  const MeshTopology t = MeshTopology::build(mesh_);
+  RefinedMesh r = catmullClarkStep(mesh_, t);
+  // Quadrant q of the frame ((0,0), (1,0), (1,1), (0,1)) is child q of face_ (its corner q sits
+  // there); the child's corner at the quadrant's lower left is its corner (4 - q) % 4, with the
+  // next corner along the frame's u: see step().
+  keepOneRing(r.mesh, 4 * face_ + q, (4 - q) % 4);
+}
+
+void LocalNet::keepOneRing(const PolyMesh& refined, int face, int start) {
+  // The faces sharing a vertex with `face`; under Chaikin's method also those sharing a vertex
+  // with them: an edge point's rule there depends on its edge's child sharpness at the far end,
+  // which averages the sharpness round that end's vertex (a one-ring vertex), so every edge at a
+  // one-ring vertex must be kept with its true sharpness. (Points of the second ring may be
+  // wrong; no kept face of the next level uses them.)
+  const int rings = refined.creaseMethod == CreaseMethod::Chaikin ? 2 : 1;
+  std::vector<char> vertexIn(refined.points.size(), 0), faceIn(refined.faceCount(), 0);
+  std::vector<int> faces{face};
+  faceIn[face] = 1;
+  for (int ring = 0; ring < rings; ++ring) {
+    for (int g : faces)
+      for (int c = 0; c < refined.faceSizes[g]; ++c) vertexIn[refined.corner(g, c)] = 1;
+    for (int f = 0; f < refined.faceCount(); ++f) {
+      if (faceIn[f]) continue;
+      for (int c = 0; c < refined.faceSizes[f]; ++c)
+        if (vertexIn[refined.corner(f, c)]) {
+          faceIn[f] = 1;
+          faces.push_back(f);
+          break;
+        }
+    }
+  }
+  mesh_ = extract(refined, faces, start);
   face_ = 0;
   // Re-centre on the irregular vertex and rescale by a power of two (exact) to unit extent.
   const glm::dvec3 centre = mesh_.points[mesh_.corner(0, 0)];
@@ -149,7 +207,8 @@ LocalNet::Grid LocalNet::gridOf(const PolyMesh& mesh, int f, int start) {
     queue.pop_back();
     for (int e = 0; e < 4; ++e) {
       const auto s = t.twin[mesh.faceOffsets[g] + e];
-      if (s.face < 0 || placed[s.face]) continue;
+      // An infinitely sharp edge is a boundary for the faces on each side: beyond it, phantoms.
+      if (s.face < 0 || placed[s.face] || isSharp(mesh.edgeSharp(mesh.faceOffsets[g] + e))) continue;
       place(s.face, s.corner, pos[g][(e + 1) % 4], pos[g][e]);
     }
   }

@@ -1,6 +1,6 @@
 #pragma once
 // Explicit local Catmull-Clark subdivision round one control face, for the faces that touch a
-// boundary: there is no eigenbasis for boundary vertices here, so a point near an irregular
+// boundary or a tagged (sharp) edge or vertex, with the tags' rules: there is no eigenbasis for boundary vertices here, so a point near an irregular
 // boundary vertex is evaluated by subdividing the face's neighbourhood with the boundary rules
 // (common/subdiv/subdiv_mesh.h) until the point's sub-patch is regular, as Stam's method does with
 // powers of the subdivision matrix. A regular face (every corner regular: interior valence 4,
@@ -37,12 +37,21 @@ class LocalNet {
   void step(std::array<Grid, 3>* world = nullptr, std::array<Grid, 3>* tangent = nullptr, int only = 0);
   // The grid of the current face (which must be regular), in world and in local coordinates.
   void grid(Grid& world, Grid& tangent) const;
+  // What the current face is: near a semi-sharp edge or vertex (descend further), a B-spline patch
+  // (with phantom points across infinitely sharp edges), or irregular at the frame's (0, 0) only
+  // (a logic_error if elsewhere: refinement keeps irregular vertices at corner 0).
+  enum class Kind { SemiSharp, Regular, Irregular };
+  Kind kind() const;
+  // One step into quadrant q of the frame (0: (0,0), 1: (1,0), 2: (1,1), 3: (0,1)), keeping the
+  // frame's orientation: the net becomes the one-ring of that child, its (0,0) at the quadrant's
+  // lower left.
+  void descend(int q);
 
  private:
   // 4 x 4 points round face f with its corner `start` at grid (0, 0) and corner start + 1 at
   // (1, 0); missing cells (beyond a boundary) filled by reflection.
   static Grid gridOf(const PolyMesh& mesh, int f, int start);
-  void keepOneRing(const PolyMesh& refined, int face);
+  void keepOneRing(const PolyMesh& refined, int face, int start = 0);
   Grid toWorld(const Grid& local) const;
 
   PolyMesh mesh_;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 
 namespace sortlast {
 
@@ -12,39 +13,71 @@ SubdivTables buildTables(const SubdivSurface& surface) {
   const auto start = std::chrono::steady_clock::now();
   SubdivTables t;
   t.faces.resize(surface.patchCount());
-  auto append = [&](int face, int n, int k) {
-    for (const bool tangent : {false, true}) {
-      auto& out = tangent ? t.tangents : t.positions;
-      for (const glm::dvec3& p : surface.controlPoints(face, n, k, tangent)) out.emplace_back(glm::vec3(p), 0.0f);
-    }
-  };
   int sets = 0;
-  for (int f = 0; f < surface.patchCount(); ++f) {
-    auto& e = t.faces[f];
-    e.firstSet = sets;
-    e.regular = surface.regular(f) ? 1 : 0;
-    if (e.regular) {
-      append(f, 0, 0);
-      ++sets;
-      continue;
-    }
-    std::vector<std::array<glm::dvec3, 16>> positions, tangents;
-    surface.subPatches(f, kTableLevels, positions, tangents);
+  auto appendSets = [&](const std::vector<std::array<glm::dvec3, 16>>& positions,
+                        const std::vector<std::array<glm::dvec3, 16>>& tangents) {
     for (const auto& set : positions)
       for (const glm::dvec3& p : set) t.positions.emplace_back(glm::vec3(p), 0.0f);
     for (const auto& set : tangents)
       for (const glm::dvec3& p : set) t.tangents.emplace_back(glm::vec3(p), 0.0f);
-    sets += kTableLevels * 3;
+    sets += static_cast<int>(positions.size());
+  };
+  // A tree node's entry (at `entry`): a leaf's sets, or a split's four child entries appended.
+  std::function<void(int, int)> emitNode = [&](int entry, int node) {
+    std::vector<std::array<glm::dvec3, 16>> positions, tangents;
+    switch (surface.nodeType(node)) {
+      case SubdivSurface::NodeType::Regular:
+        positions.resize(1), tangents.resize(1);
+        surface.nodeGrid(node, positions[0], tangents[0]);
+        t.faces[entry] = {sets, SubdivTables::kRegular};
+        appendSets(positions, tangents);
+        return;
+      case SubdivSurface::NodeType::Irregular:
+        surface.nodeSubPatches(node, kTableLevels, positions, tangents);
+        t.faces[entry] = {sets, SubdivTables::kIrregular};
+        appendSets(positions, tangents);
+        return;
+      case SubdivSurface::NodeType::Split: {
+        const int first = static_cast<int>(t.faces.size());
+        t.faces.resize(t.faces.size() + 4);
+        t.faces[entry] = {first, SubdivTables::kSplit};
+        for (int q = 0; q < 4; ++q) emitNode(first + q, surface.firstChild(node) + q);
+        return;
+      }
+    }
+  };
+  for (int f = 0; f < surface.patchCount(); ++f) {
+    if (surface.rootNode(f) >= 0) {
+      emitNode(f, surface.rootNode(f));
+      continue;
+    }
+    std::vector<std::array<glm::dvec3, 16>> positions, tangents;
+    if (surface.regular(f)) {
+      positions = {surface.controlPoints(f, 0, 0)};
+      tangents = {surface.controlPoints(f, 0, 0, true)};
+      t.faces[f] = {sets, SubdivTables::kRegular};
+    } else {
+      surface.subPatches(f, kTableLevels, positions, tangents);
+      t.faces[f] = {sets, SubdivTables::kIrregular};
+    }
+    appendSets(positions, tangents);
   }
   t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return t;
 }
 
 FloatLimitPoint evaluateTables(const SubdivTables& tables, int face, float u, float v) {
-  const auto& e = tables.faces[face];
+  SubdivTables::FaceEntry e = tables.faces[face];
+  // Down a split face's tree to the leaf whose square holds (u, v), in its own parameters.
+  while (e.type == SubdivTables::kSplit) {
+    const int a = u >= 0.5f ? 1 : 0, b = v >= 0.5f ? 1 : 0;
+    u = 2.0f * u - float(a);
+    v = 2.0f * v - float(b);
+    e = tables.faces[e.firstSet + (b == 0 ? a : 3 - a)];
+  }
   int set = e.firstSet;
   float s = u, t = v;
-  if (!e.regular) {
+  if (e.type == SubdivTables::kIrregular) {
     const float m = std::max(u, v);
     int n = kTableLevels;
     if (m > 0.0f) n = std::clamp(int(std::floor(-std::log2(m))) + 1, 1, kTableLevels);

@@ -5,7 +5,8 @@
 //
 // Layout: per control face one FaceEntry; its control-point sets start at `firstSet`, 16 points
 // each. A regular face has one set; a face with an extraordinary vertex has kTableLevels x 3 sets,
-// set (n - 1) * 3 + (k - 1) for sub-patch (n, k). Positions and tangent points (see
+// set (n - 1) * 3 + (k - 1) for sub-patch (n, k). A face near semi-sharp tags is a tree of such
+// entries (SubdivSurface's patch tree). Positions and tangent points (see
 // SubdivSurface::controlPoints) are two arrays of the same layout.
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
@@ -17,10 +18,15 @@
 namespace sortlast {
 
 struct SubdivTables {
+  // Entry types: a regular patch (one set), an irregular one (kTableLevels x 3 sets), or a split
+  // at semi-sharp tags whose four children's entries start at firstSet (quadrants (0,0), (1,0),
+  // (1,1), (0,1) of its (u, v) square, each in its own square's parameters).
+  static constexpr int kIrregular = 0, kRegular = 1, kSplit = 2;
   struct FaceEntry {
     int firstSet = 0;
-    int regular = 1;  // (no rotation: every face's extraordinary corner is its corner 0)
+    int type = kRegular;  // (no rotation: every face's extraordinary corner is its corner 0)
   };
+  // Entries 0 .. faces - 1 are the control faces'; the splits' children follow.
   std::vector<FaceEntry> faces;
   std::vector<glm::vec4> positions, tangents;  // xyz used; w pads to std430's vec4 stride
   double seconds = 0;                          // time spent building them (with the surface's own setup excluded)

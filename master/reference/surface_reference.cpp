@@ -61,9 +61,9 @@ void SurfaceReference::render(const Camera& cam, int threads, SurfaceImage& surf
     for (int k = 0; k < int(entries_.size()); ++k) {
       const Entry& e = entries_[size_t(k)];
       const int faces = e.surface.control().mesh.faceCount();
-      const bool open = e.surface.control().topology.open();
+      const bool open = e.surface.twoSided();
       for (int f = 0; f < faces; ++f)
-        for (int j = 0; j < n_; ++j)
+        for (int j = 0; j < n_ && !e.surface.hole(f); ++j)
           for (int i = 0; i < n_; ++i) {
             const size_t base = size_t(f) * m * m;
             const glm::dvec3 p[4] = {e.grid[base + size_t(j) * m + i], e.grid[base + size_t(j) * m + i + 1],
@@ -141,11 +141,14 @@ void SurfaceReference::render(const Camera& cam, int threads, SurfaceImage& surf
             const double b = c == 0 ? nv : c == 1 ? 1.0 - nu : c == 2 ? 1.0 - nv : nu;
             const ControlMesh& cm = e.surface.control();
             const auto& twin = cm.topology.twin[size_t(cm.mesh.faceOffsets[h.face] + c)];
-            const double ga = 1.0 - a, gb = -b;  // the neighbour's edge runs the other way
-            const int d = twin.corner;
-            nu = d == 0 ? ga : d == 1 ? 1.0 - gb : d == 2 ? 1.0 - ga : gb;
-            nv = d == 0 ? gb : d == 1 ? ga : d == 2 ? 1.0 - gb : 1.0 - ga;
-            h.face = twin.face;
+            // Across a boundary edge or into a hole there is no surface: stay, clamped.
+            if (twin.face >= 0 && !e.surface.hole(twin.face)) {
+              const double ga = 1.0 - a, gb = -b;  // the neighbour's edge runs the other way
+              const int d = twin.corner;
+              nu = d == 0 ? ga : d == 1 ? 1.0 - gb : d == 2 ? 1.0 - ga : gb;
+              nv = d == 0 ? gb : d == 1 ? ga : d == 2 ? 1.0 - gb : 1.0 - ga;
+              h.face = twin.face;
+            }
           }
           clamped = nu < 0 || nu > 1 || nv < 0 || nv > 1;
           u = std::clamp(nu, 0.0, 1.0);

@@ -30,8 +30,40 @@ std::unique_ptr<Far::TopologyRefiner> makeRefiner(const PolyMesh& input) {
   desc.numFaces = input.faceCount();
   desc.numVertsPerFace = input.faceSizes.data();
   desc.vertIndicesPerFace = input.faceCorners.data();
+  // The tags, as OpenSubdiv takes them: creases by vertex pair (each edge once), corners, holes.
+  // (Static: the descriptor keeps pointers until Create has run; one refiner is made at a time.)
+  static std::vector<int> creasePairs, cornerVertices, holes;
+  static std::vector<float> creaseWeights, cornerWeights;
+  creasePairs.clear(), cornerVertices.clear(), holes.clear(), creaseWeights.clear(), cornerWeights.clear();
+  for (int f = 0; f < input.faceCount(); ++f)
+    for (int c = 0; c < input.faceSizes[f]; ++c) {
+      const int a = input.corner(f, c), b = input.corner(f, (c + 1) % input.faceSizes[f]);
+      const double sh = input.edgeSharp(input.faceOffsets[f] + c);
+      if (sh <= 0) continue;
+      bool seen = false;  // the edge's other face gave it already
+      for (size_t i = 0; i < creasePairs.size(); i += 2) seen |= creasePairs[i] == b && creasePairs[i + 1] == a;
+      if (seen) continue;
+      creasePairs.insert(creasePairs.end(), {a, b});
+      creaseWeights.push_back(float(sh));
+    }
+  for (size_t p = 0; p < input.points.size(); ++p)
+    if (input.vertexSharp(int(p)) > 0) cornerVertices.push_back(int(p)), cornerWeights.push_back(float(input.vertexSharp(int(p))));
+  for (int f = 0; f < input.faceCount(); ++f)
+    if (input.hole(f)) holes.push_back(f);
+  desc.numCreases = int(creaseWeights.size());
+  desc.creaseVertexIndexPairs = creasePairs.data();
+  desc.creaseWeights = creaseWeights.data();
+  desc.numCorners = int(cornerWeights.size());
+  desc.cornerVertexIndices = cornerVertices.data();
+  desc.cornerWeights = cornerWeights.data();
+  desc.numHoles = int(holes.size());
+  desc.holeIndices = holes.data();
   Sdc::Options sdc;
-  sdc.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
+  sdc.SetVtxBoundaryInterpolation(input.boundary == BoundaryInterpolation::None       ? Sdc::Options::VTX_BOUNDARY_NONE
+                                  : input.boundary == BoundaryInterpolation::EdgeOnly ? Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
+                                                                                      : Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
+  sdc.SetCreasingMethod(input.creaseMethod == CreaseMethod::Chaikin ? Sdc::Options::CREASE_CHAIKIN
+                                                                     : Sdc::Options::CREASE_UNIFORM);
   using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
   std::unique_ptr<Far::TopologyRefiner> r(Factory::Create(desc, Factory::Options(Sdc::SCHEME_CATMARK, sdc)));
   if (!r) throw std::runtime_error("OpenSubdiv refused the mesh");
@@ -80,6 +112,9 @@ OsdReference::OsdReference(const PolyMesh& input, int isolation) : impl_(std::ma
   impl_->refiner = makeRefiner(input);
   Far::PatchTableFactory::Options options(isolation);
   options.SetEndCapType(Far::PatchTableFactory::Options::ENDCAP_GREGORY_BASIS);
+  // Regular patches along infinitely sharp creases (exact B-spline patches with boundary rules)
+  // instead of isolating them to the deepest level and ending in Gregory caps.
+  options.useInfSharpPatch = true;
   options.SetPatchPrecision<double>();
   impl_->refiner->RefineAdaptive(options.GetRefineAdaptiveOptions());
   impl_->patches.reset(Far::PatchTableFactory::Create(*impl_->refiner, options));

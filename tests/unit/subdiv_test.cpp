@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <random>
 #include <cstdio>
 #include <fstream>
 #include <numbers>
@@ -103,9 +104,41 @@ TEST(SubdivMesh, ObjFilesAndTheirErrors) {
     EXPECT_EQ(m.faceCount(), 6);
     EXPECT_NO_THROW(checkMesh(m));
   }
-  std::ofstream(dir + "/crease.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nt crease 2/1/0 1 2 4.0\n";
-  EXPECT_NE(inputErrorOf([&] { readObjMesh(dir + "/crease.obj"); }).find("subdivision tag 't crease'"),
-            std::string::npos);
+  {
+    // Tags as OpenSubdiv writes them (indices from 0), on the same cube.
+    const std::string cube = "v -1 -1 -1\nv 1 -1 -1\nv -1 1 -1\nv 1 1 -1\nv -1 -1 1\nv 1 -1 1\nv -1 1 1\nv 1 1 1\n"
+                             "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+    std::ofstream(dir + "/tagged.obj") << cube << "t crease 4/1/0 0 1 1 3 2.5\nt corner 1/1/0 7 10\n"
+                                       << "t interpolateboundary 1/0/0 2\nt creasemethod 0/0/1 chaikin\nt hole 1/0/0 5\n";
+    const PolyMesh m = readObjMesh(dir + "/tagged.obj");
+    EXPECT_EQ(m.boundary, BoundaryInterpolation::EdgeOnly);
+    EXPECT_EQ(m.creaseMethod, CreaseMethod::Chaikin);
+    EXPECT_TRUE(m.hole(5));
+    EXPECT_FALSE(m.hole(4));
+    EXPECT_EQ(m.vertexSharp(7), kInfinitelySharp);
+    int sharp = 0;
+    for (double x : m.edgeSharpness) sharp += x == 2.5;
+    EXPECT_EQ(sharp, 4);  // two edges, each in two faces
+    // Bad tags: each refused naming its line.
+    const std::vector<std::pair<std::string, std::string>> bad = {
+        {"t bevel 1/0/0 3\n", "line 15: unknown or unsupported subdivision tag 'bevel'"},
+        {"t crease 2/1/0 0 1 -1\n", "line 15: sharpness -1"},
+        {"t crease 2/1/0 0 7 2\n", "line 15: crease (0, 7) is not an edge"},
+        {"t crease 2/1/0 0 1\n", "line 15: tag 'crease' says 2/1/0 arguments but has fewer"},
+        {"t crease 2/1 0 1 3\n", "line 15: tag 'crease' needs its argument counts"},
+        {"t crease 3/1/0 0 1 3 2\n", "line 15: 't crease' needs vertex pairs"},
+        {"t corner 1/1/0 99 2\n", "line 15: corner vertex 99 is out of range"},
+        {"t hole 1/0/0 6\n", "line 15: hole face 6 is out of range"},
+        {"t interpolateboundary 1/0/0 3\n", "line 15: 't interpolateboundary' needs one integer"},
+        {"t crease 2/1/0 0 1 nan\n", "line 15: tag 'crease': 'nan' is not a finite number"},
+        {"t crease 2/1/0 0 1 2 9\n", "line 15: tag 'crease' has more arguments than its counts"},
+    };
+    for (const auto& [line, message] : bad) {
+      std::ofstream(dir + "/bad_tag.obj") << cube << line;
+      const std::string e = inputErrorOf([&] { readObjMesh(dir + "/bad_tag.obj"); });
+      EXPECT_NE(e.find(message), std::string::npos) << line << " -> " << e;
+    }
+  }
   std::ofstream(dir + "/range.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n";
   const std::string range = inputErrorOf([&] { checkMesh(readObjMesh(dir + "/range.obj")); });
   EXPECT_NE(range.find("range"), std::string::npos) << range;
@@ -235,7 +268,9 @@ struct Errors {
 // OpenSubdiv is exact only outside 2^-10 of an input face round an extraordinary vertex (its
 // isolation limit; nearer, it evaluates an approximating Gregory end cap), so the points stop at
 // 2^-10 of the input face: 2^-9 of a control face one step down, 2^-8 two steps down.
-Errors compare(const std::string& name) {
+// With `tagged`, also points on every face edge (where creases run) and 1e-3 and 1e-6 next to
+// them, and 40 seeded random points per face.
+Errors compare(const std::string& name, bool tagged = false) {
   const PolyMesh input = proceduralMesh(name);
   const SubdivSurface surface(input);
   OsdReference reference(input, 10);
@@ -245,6 +280,16 @@ Errors compare(const std::string& name) {
   std::vector<std::pair<double, double>> uv;
   for (int i = 0; i <= 4; ++i)
     for (int j = 0; j <= 4; ++j) uv.emplace_back(0.02 + 0.24 * i, 0.03 + 0.235 * j);
+  if (tagged) {
+    for (double along : {0.13, 0.5, 0.81})
+      for (double off : {0.0, 1e-6, 1e-3}) {
+        uv.emplace_back(along, off), uv.emplace_back(off, along);
+        uv.emplace_back(along, 1.0 - off), uv.emplace_back(1.0 - off, along);
+      }
+    std::mt19937 random(12345);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (int i = 0; i < 40; ++i) uv.emplace_back(unit(random), unit(random));
+  }
   for (int level = 2; level <= deepest; ++level) {
     const double d = std::ldexp(1.0, -level);
     for (const auto& [a, b] : {std::pair{d, 0.7 * d}, {0.4 * d, d}, {d, d}})
@@ -253,6 +298,7 @@ Errors compare(const std::string& name) {
   }
   for (int f = 0; f < surface.patchCount(); ++f)
     for (const auto& [u, v] : uv) {
+      if (surface.hole(f)) continue;
       const LimitPoint ours = surface.evaluate(f, u, v), theirs = reference.evaluate(surface.control(), f, u, v);
       e.position = std::max(e.position, glm::length(ours.position - theirs.position) / size);
       e.normalDegrees = std::max(e.normalDegrees, degreesBetween(ours.normal, theirs.normal));
@@ -272,6 +318,20 @@ TEST(SubdivEval, MatchesOpenSubdivOnEveryProceduralMesh) {
   for (const auto& name : meshes) {
     const Errors e = compare(name);
     EXPECT_LE(e.position, 1e-5) << name;
+    EXPECT_LE(e.normalDegrees, 0.05) << name;
+  }
+}
+
+// Creases (semi-sharp at 0.5, 1, 2.7, infinite; Chaikin's method), corners, darts, a lathe with
+// creased rims, open surfaces under each boundary rule (none: holes): OpenSubdiv with the same
+// tags, on and beside the face edges the creases run along and at random points.
+TEST(SubdivTags, MatchesOpenSubdivOnTaggedMeshes) {
+  const std::vector<std::string> meshes = {"cube_crease0.5", "cube_crease1",    "cube_crease2.7", "cube_creaseinf",
+                                           "cube_corner1.4", "cube_cornerinf",  "cube_chaikin",   "lathe",
+                                           "open_grid_edge_only", "open_grid_none"};
+  for (const auto& name : meshes) {
+    const Errors e = compare(name, true);
+    EXPECT_LE(e.position, 1e-6) << name;
     EXPECT_LE(e.normalDegrees, 0.05) << name;
   }
 }
@@ -401,8 +461,8 @@ TEST(SubdivTables, PrecomputationLayoutAndTime) {
   EXPECT_EQ(tables.positions.size(), size_t(16 * (surface.patchCount() - irregular + 45 * irregular)));
   EXPECT_EQ(tables.tangents.size(), tables.positions.size());
   const auto& e = tables.faces.back();
-  const auto direct = surface.controlPoints(surface.patchCount() - 1, e.regular ? 0 : 7, e.regular ? 0 : 2);
-  const int set = e.firstSet + (e.regular ? 0 : 6 * 3 + 1);
+  const auto direct = surface.controlPoints(surface.patchCount() - 1, e.type == SubdivTables::kRegular ? 0 : 7, e.type == SubdivTables::kRegular ? 0 : 2);
+  const int set = e.firstSet + (e.type == SubdivTables::kRegular ? 0 : 6 * 3 + 1);
   for (int i = 0; i < 16; ++i)
     EXPECT_LT(glm::length(glm::dvec3(glm::vec3(tables.positions[set * 16 + i])) - direct[i]), 1e-6);
   std::printf("  precomputation: %d control faces (%d irregular), %.3f ms, %.3f ms per 1000 faces (tables alone %.3f ms)\n",

@@ -2,7 +2,7 @@
 // fullscreen triangle, worker/gl/fullscreen.vert.glsl, scissored to the region) starts from pass
 // 1's nearest coarse (u, v, face) and finds the exact limit point on its ray. The evaluation is
 // common/subdiv/subdiv_tables.cpp's evaluateTables, line for line.
-layout(std430, binding = 0) readonly buffer Faces { ivec2 faces[]; };      // firstSet, regular
+layout(std430, binding = 0) readonly buffer Faces { ivec2 faces[]; };      // firstSet, type (0 irregular, 1 regular, 2 split)
 layout(std430, binding = 1) readonly buffer Positions { vec4 positions[]; };
 layout(std430, binding = 2) readonly buffer Tangents { vec4 tangents[]; };
 layout(std430, binding = 3) readonly buffer Neighbours { ivec4 neighbours[]; };  // across edge c: face * 4 + its edge
@@ -29,12 +29,21 @@ void basis(float t, out vec4 b, out vec4 db) {
 }
 
 // Where (face, u, v) is in the tables: the first of its 16 control points, the sub-patch's own
-// (s, t) and the scale 2^n of its parameters. A face's extraordinary corner is its corner 0
-// (buildControlMesh checks), so (u, v) is the patch's own frame: no rotation.
+// (s, t) and the scale of its parameters to the face's. A face's extraordinary corner is its
+// corner 0 (buildControlMesh checks), so (u, v) is the patch's own frame: no rotation. A face
+// split at semi-sharp tags is a tree: down it to the leaf whose square holds (u, v).
 void locate(int face, float u, float v, out int set, out float s, out float t, out float scale) {
   ivec2 e = faces[face];
+  scale = 1.0;
+  while (e.y == 2) {
+    int a = u >= 0.5 ? 1 : 0, b = v >= 0.5 ? 1 : 0;
+    u = 2.0 * u - float(a);
+    v = 2.0 * v - float(b);
+    scale *= 2.0;
+    e = faces[e.x + (b == 0 ? a : 3 - a)];
+  }
   set = e.x;
-  s = u; t = v; scale = 1.0;
+  s = u; t = v;
   if (e.y == 0) {
     float m = max(u, v);
     int n = 15;
@@ -48,7 +57,7 @@ void locate(int face, float u, float v, out int set, out float s, out float t, o
     s = su - (k != 3 ? 1.0 : 0.0);
     t = sv - (k != 1 ? 1.0 : 0.0);
     set += (n - 1) * 3 + (k - 1);
-    scale = ldexp(1.0, n);
+    scale *= ldexp(1.0, n);
   }
 }
 

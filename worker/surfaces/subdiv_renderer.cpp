@@ -109,7 +109,7 @@ void SubdivRenderer::addSurface(const SubdivSurface& surface, int level,
   GpuSurface g;
   g.shading = shading;
   g.size = surface.control().mesh.size();
-  g.two_sided = surface.control().topology.open();
+  g.two_sided = surface.twoSided();
   glm::dvec3 lo(1e300), hi(-1e300);
   for (const auto& p : surface.control().mesh.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
   g.centre = 0.5 * (lo + hi);
@@ -152,8 +152,9 @@ void SubdivRenderer::addSurface(const SubdivSurface& surface, int level,
   std::vector<int> neighbours(size_t(cm.mesh.faceCount()) * 4);
   for (int f = 0; f < cm.mesh.faceCount(); ++f)
     for (int c = 0; c < 4; ++c) {
+      // Across a boundary edge or into a hole: no face (-1), the Newton steps stay on this one.
       const auto& t = cm.topology.twin[cm.mesh.faceOffsets[f] + c];
-      neighbours[size_t(f) * 4 + c] = t.face * 4 + t.corner;
+      neighbours[size_t(f) * 4 + c] = t.face < 0 || surface.hole(t.face) ? -1 : t.face * 4 + t.corner;
     }
   upload(g.ssbo[3], neighbours.data(), neighbours.size() * sizeof(int));
   surfaces_.push_back(g);
