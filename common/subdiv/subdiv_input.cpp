@@ -311,16 +311,17 @@ PolyMesh cubeChaikin() {
   return m;
 }
 
-// A pawn-like lathe: a profile turned round the z axis in 8 segments, closed by triangle fans at
-// both poles; the base's rim infinitely sharp, the foot's edge at sharpness 2.5, the collar's 1.
-PolyMesh lathe() {
+// A pawn-like lathe: a profile turned round the z axis in n segments (10 n faces), closed by
+// triangle fans at both poles; the base's rim infinitely sharp, the foot's edge at sharpness 2.5,
+// the collar's 1.
+PolyMesh lathe(int n, const std::string& name) {
   PolyMesh m;
-  m.name = "lathe";
+  m.name = name;
   const double pi = std::numbers::pi;
   const std::vector<std::array<double, 2>> profile = {{1.0, 0.0},  {1.0, 0.25}, {0.62, 0.4}, {0.42, 0.9},
                                                       {0.38, 1.2}, {0.7, 1.32}, {0.42, 1.45}, {0.55, 1.75},
                                                       {0.45, 2.0}};
-  const int n = 8, rings = static_cast<int>(profile.size());
+  const int rings = static_cast<int>(profile.size());
   m.points.emplace_back(0.0, 0.0, 0.0);  // bottom pole
   for (int r = 0; r < rings; ++r)
     for (int i = 0; i < n; ++i) {
@@ -392,13 +393,15 @@ PolyMesh proceduralMesh(const std::string& name) {
   if (const double s = suffixSharpness(name, "cube_crease"); s >= 0) return cubeCrease(s, name);
   if (const double s = suffixSharpness(name, "cube_corner"); s >= 0) return cubeCorner(s, name);
   if (name == "cube_chaikin") return cubeChaikin();
-  if (name == "lathe") return lathe();
+  if (name == "lathe") return lathe(8, name);
+  if (const int n = suffixNumber(name, "lathe"); n >= 3 && n <= 200) return lathe(n, name);
   if (name == "open_grid_edge_only") return openGridWith(BoundaryInterpolation::EdgeOnly, name);
   if (name == "open_grid_none") return openGridWith(BoundaryInterpolation::None, name);
   throw InputError("unknown procedural surface '" + name +
                    "' (known: cube, torus, pole<N>, prism<N> for N = 3..32, octahedron, open_grid, "
                    "fan<N> for N = 1..12; tagged: cube_crease<S> and cube_corner<S> for a sharpness S "
-                   "(a number up to 10, or inf), cube_chaikin, lathe, open_grid_edge_only, open_grid_none)");
+                   "(a number up to 10, or inf), cube_chaikin, lathe (8 segments), lathe<N> for N = 3..200 (10 N faces), "
+                   "open_grid_edge_only, open_grid_none)");
 }
 
 }  // namespace sortlast

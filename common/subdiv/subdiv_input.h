@@ -25,8 +25,8 @@ PolyMesh readObjMesh(const std::string& path);
 //   open_grid        a 4 x 4 quad sheet with a boundary (edge-and-corner interpolation)
 // and tagged ones: cube_crease<S> (the top face's edge loop creased at S, a number or inf),
 // cube_corner<S> (a vertex of sharpness S and an infinitely sharp edge with darts at its ends),
-// cube_chaikin (three semi-sharp edges at one vertex, Chaikin's method), lathe (a pawn-like
-// lathe with creased rims), open_grid_edge_only and open_grid_none (boundary rules).
+// cube_chaikin (three semi-sharp edges at one vertex, Chaikin's method), lathe and lathe<N> (a
+// pawn-like lathe with creased rims, 8 or N segments, 10 N faces), open_grid_edge_only and open_grid_none (boundary rules).
 // Throws InputError for unknown names, listing the known ones.
 PolyMesh proceduralMesh(const std::string& name);
 
