@@ -35,7 +35,19 @@ bool isSilhouettePixel(const SurfaceImage& ref, int x, int y) {
 }
 
 SurfaceDifference compareSurfaces(const SurfaceImage& ref, const SurfaceImage& test,
-                                  bool ignore_edges, double depth_tolerance) {
+                                  bool ignore_edges, double depth_tolerance, double crease_deg) {
+  auto onCrease = [&](int x, int y) {
+    const size_t i = size_t(y) * ref.width + x;
+    if (!ref.hit(i)) return false;
+    const int dx[4] = {1, -1, 0, 0}, dy[4] = {0, 0, 1, -1};
+    for (int k = 0; k < 4; ++k) {
+      const int nx = x + dx[k], ny = y + dy[k];
+      if (nx < 0 || ny < 0 || nx >= ref.width || ny >= ref.height) continue;
+      const size_t j = size_t(ny) * ref.width + nx;
+      if (ref.hit(j) && angleDeg(ref.normal[i], ref.normal[j]) > crease_deg) return true;
+    }
+    return false;
+  };
   if (ref.width != test.width || ref.height != test.height)
     throw InputError("compare-surface: image sizes differ (" + std::to_string(ref.width) + "x" +
                      std::to_string(ref.height) + " vs " + std::to_string(test.width) + "x" +
@@ -47,6 +59,10 @@ SurfaceDifference compareSurfaces(const SurfaceImage& ref, const SurfaceImage& t
       size_t i = size_t(y) * ref.width + x;
       if (ignore_edges && isSilhouettePixel(ref, x, y)) {
         ++d.edges_ignored;
+        continue;
+      }
+      if (std::isfinite(crease_deg) && onCrease(x, y)) {
+        ++d.creases_ignored;
         continue;
       }
       bool r = ref.hit(i), t = test.hit(i);

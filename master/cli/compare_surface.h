@@ -14,6 +14,7 @@ struct SurfaceDifference {
   long long holes = 0;                      // hit in the reference, missed in the test
   long long extra = 0;                      // hit in the test, missed in the reference
   long long edges_ignored = 0;              // silhouette pixels left out (with ignore_edges)
+  long long creases_ignored = 0;            // crease pixels left out (with crease_deg)
   double depth_max = 0.0, depth_rms = 0.0;  // |t_ref - t_test| over `both`, world units
   double normal_max_deg = 0.0, normal_mean_deg = 0.0;  // angle between normals over `both`
   long long depth_outliers = 0;             // pixels of `both` whose depth error exceeds the tolerance
@@ -32,7 +33,10 @@ bool isSilhouettePixel(const SurfaceImage& ref, int x, int y);
 // `depth_tolerance`: depth errors above it count as outliers (a surface found on the wrong layer:
 // a thin sliver in front missed, the one behind hit), which a max or RMS alone cannot separate
 // from a small error everywhere.
+// `crease_deg`: pixels whose reference normal turns by more than that from a 4-neighbour's (a
+// crease, a normal discontinuity: a pixel on it may show either side) count nowhere either.
 SurfaceDifference compareSurfaces(const SurfaceImage& ref, const SurfaceImage& test,
-                                  bool ignore_edges, double depth_tolerance = INFINITY);
+                                  bool ignore_edges, double depth_tolerance = INFINITY,
+                                  double crease_deg = INFINITY);
 
 }  // namespace sortlast

@@ -117,21 +117,22 @@ struct SurfaceBounds {
   double depth_tolerance = INFINITY;
   long long max_depth_outliers = -1;
   bool ignore_edges = false;
+  double crease_deg = INFINITY;
 };
 
 int runCompareSurface(const std::string& ref_path, const std::string& test_path,
                       const SurfaceBounds& b) {
   try {
     SurfaceImage ref = readSurfaceImage(ref_path), test = readSurfaceImage(test_path);
-    SurfaceDifference d = compareSurfaces(ref, test, b.ignore_edges, b.depth_tolerance);
+    SurfaceDifference d = compareSurfaces(ref, test, b.ignore_edges, b.depth_tolerance, b.crease_deg);
     std::printf(
         "{\"pixels_hit_both\": %lld, \"holes\": %lld, \"extra_hits\": %lld, "
-        "\"edge_pixels_ignored\": %lld, \"depth_error_max\": %.9g, "
+        "\"edge_pixels_ignored\": %lld, \"crease_pixels_ignored\": %lld, \"depth_error_max\": %.9g, "
         "\"depth_error_rms\": %.9g, \"normal_error_max_deg\": %.6g, "
         "\"normal_error_mean_deg\": %.6g, \"worst_depth_pixel\": [%d, %d], "
         "\"worst_normal_pixel\": [%d, %d], \"first_hole\": [%d, %d], "
         "\"first_extra\": [%d, %d], \"depth_outliers\": %lld}\n",
-        d.both, d.holes, d.extra, d.edges_ignored, d.depth_max, d.depth_rms, d.normal_max_deg,
+        d.both, d.holes, d.extra, d.edges_ignored, d.creases_ignored, d.depth_max, d.depth_rms, d.normal_max_deg,
         d.normal_mean_deg, d.worst_depth_x, d.worst_depth_y, d.worst_normal_x, d.worst_normal_y,
         d.first_hole_x, d.first_hole_y, d.first_extra_x, d.first_extra_y, d.depth_outliers);
     bool ok = true;
@@ -264,6 +265,9 @@ int main(int argc, char** argv) {
                               "Fail if more pixels exceed --depth-tolerance");
   compare_surface->add_flag("--ignore-edges", surf_bounds.ignore_edges,
                             "Leave out silhouette pixels (a 4-neighbour differs in the reference)");
+  compare_surface->add_option("--ignore-creases", surf_bounds.crease_deg,
+                              "Leave out crease pixels: the reference normal turns by more than this many "
+                              "degrees to a 4-neighbour's (a pixel on a crease may show either side)");
 
   std::string rough_in;
   RoughnessOptions rough_opts;
