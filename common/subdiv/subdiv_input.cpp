@@ -329,7 +329,7 @@ PolyMesh lathe(int n, const std::string& name) {
       m.points.emplace_back(profile[r][0] * std::cos(a), profile[r][0] * std::sin(a), profile[r][1]);
     }
   m.points.emplace_back(0.0, 0.0, 2.1);  // top pole
-  deform(m, 0.02);
+  deform(m, 0.02 * std::min(1.0, 8.0 / n));  // (less with more segments: no ripples)
   auto id = [n](int r, int i) { return 1 + r * n + (i % n); };
   const int top = static_cast<int>(m.points.size()) - 1;
   for (int i = 0; i < n; ++i) m.addFace({0, id(0, i + 1), id(0, i)});

@@ -35,7 +35,8 @@ bool isSilhouettePixel(const SurfaceImage& ref, int x, int y) {
 }
 
 SurfaceDifference compareSurfaces(const SurfaceImage& ref, const SurfaceImage& test,
-                                  bool ignore_edges, double depth_tolerance, double crease_deg) {
+                                  bool ignore_edges, double depth_tolerance, double crease_deg,
+                                  const std::vector<uint8_t>* ignore) {
   auto onCrease = [&](int x, int y) {
     const size_t i = size_t(y) * ref.width + x;
     if (!ref.hit(i)) return false;
@@ -57,7 +58,7 @@ SurfaceDifference compareSurfaces(const SurfaceImage& ref, const SurfaceImage& t
   for (int y = 0; y < ref.height; ++y)
     for (int x = 0; x < ref.width; ++x) {
       size_t i = size_t(y) * ref.width + x;
-      if (ignore_edges && isSilhouettePixel(ref, x, y)) {
+      if ((ignore_edges && isSilhouettePixel(ref, x, y)) || (ignore && (*ignore)[i])) {
         ++d.edges_ignored;
         continue;
       }

@@ -1,4 +1,6 @@
 #pragma once
+#include <cstdint>
+#include <vector>
 // `sortlast compare-surface REF.exr TEST.exr`: how far a rendered surface is from the reference
 // surface, pixel by pixel — which pixels are hit in one and not the other (holes, extra hits),
 // how far apart the hit depths are, and by what angle the normals differ. Colour comparison
@@ -33,10 +35,12 @@ bool isSilhouettePixel(const SurfaceImage& ref, int x, int y);
 // `depth_tolerance`: depth errors above it count as outliers (a surface found on the wrong layer:
 // a thin sliver in front missed, the one behind hit), which a max or RMS alone cannot separate
 // from a small error everywhere.
+// `ignore` (per pixel, non-zero: left out, counted as edges), e.g. compare.h's silhouetteBand.
 // `crease_deg`: pixels whose reference normal turns by more than that from a 4-neighbour's (a
 // crease, a normal discontinuity: a pixel on it may show either side) count nowhere either.
 SurfaceDifference compareSurfaces(const SurfaceImage& ref, const SurfaceImage& test,
                                   bool ignore_edges, double depth_tolerance = INFINITY,
-                                  double crease_deg = INFINITY);
+                                  double crease_deg = INFINITY,
+                                  const std::vector<uint8_t>* ignore = nullptr);
 
 }  // namespace sortlast

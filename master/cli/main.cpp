@@ -118,13 +118,19 @@ struct SurfaceBounds {
   long long max_depth_outliers = -1;
   bool ignore_edges = false;
   double crease_deg = INFINITY;
+  bool ignore_depth_jumps = false;
 };
 
 int runCompareSurface(const std::string& ref_path, const std::string& test_path,
                       const SurfaceBounds& b) {
   try {
     SurfaceImage ref = readSurfaceImage(ref_path), test = readSurfaceImage(test_path);
-    SurfaceDifference d = compareSurfaces(ref, test, b.ignore_edges, b.depth_tolerance, b.crease_deg);
+    // Inner silhouettes: where the reference's depth jumps between neighbours (one part of a
+    // surface in front of another), either renderer may see either part at the pixel.
+    std::vector<uint8_t> band;
+    if (b.ignore_depth_jumps) band = silhouetteBand(ref, 1);
+    SurfaceDifference d = compareSurfaces(ref, test, b.ignore_edges, b.depth_tolerance, b.crease_deg,
+                                          b.ignore_depth_jumps ? &band : nullptr);
     std::printf(
         "{\"pixels_hit_both\": %lld, \"holes\": %lld, \"extra_hits\": %lld, "
         "\"edge_pixels_ignored\": %lld, \"crease_pixels_ignored\": %lld, \"depth_error_max\": %.9g, "
@@ -265,6 +271,9 @@ int main(int argc, char** argv) {
                               "Fail if more pixels exceed --depth-tolerance");
   compare_surface->add_flag("--ignore-edges", surf_bounds.ignore_edges,
                             "Leave out silhouette pixels (a 4-neighbour differs in the reference)");
+  compare_surface->add_flag("--ignore-depth-jumps", surf_bounds.ignore_depth_jumps,
+                            "Leave out pixels within 1 of a depth jump over 5 % between reference neighbours "
+                            "(inner silhouettes: one part of a surface in front of another)");
   compare_surface->add_option("--ignore-creases", surf_bounds.crease_deg,
                               "Leave out crease pixels: the reference normal turns by more than this many "
                               "degrees to a 4-neighbour's (a pixel on a crease may show either side)");
