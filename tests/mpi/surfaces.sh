@@ -14,7 +14,7 @@
 #   tagged      creases, corners and boundary rules (issue 31): a pawn-like lathe with infinitely sharp,
 #               2.5 and 1 rims, a cube with a semi-sharp (2.7) loop, Chaikin creases, a sheet
 #               under boundary interpolation `none` (holes): against the reference (colour, depth,
-#               normals), 1-4 ranks, d = 1-3, reflection lines
+#               normals), 1-4 ranks, d = 1-3, inside a volume, reflection lines
 #   bad         bad meshes and keys through the CLI: clear message naming the key, exit 1, no hang
 #   serve       a resident session (`sortlast serve`, 2 ranks) serves the frames `render` makes, at
 #               two image sizes and cameras (the surfaces' targets resize; surfaces are fixed for
@@ -194,6 +194,10 @@ tagged)
   done
   ranks tagged
   bricks tagged 0
+  # Inside a semi-transparent volume (the volume's rays end at the creased surface).
+  ALLOW_PIXELS=4 vs_reference_scene 1 volume 3 --set "surfaces=[{procedural: lathe, transform: {scale: 12, rotate: [20, 30, 0], translate: [0, 0, -10]}}]"
+  "$S" compare "$WORK/ref.png" "$WORK/gl.png" --min-psnr 55 --mask-silhouettes "$WORK/ref.exr" \
+    --mask-silhouettes "$WORK/gl.exr" >/dev/null || fail "tagged in a volume: PSNR against the reference"
   # Reflection lines across the creases (they break there, as a normal discontinuity should).
   vs_reference_scene 1 tagged 2 --set "surfaces=[{procedural: lathe, shading: reflection_lines, stripes: 8, stripe_width: 0.4}]"
   ;;
