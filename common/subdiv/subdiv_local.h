@@ -10,7 +10,9 @@
 //
 // The neighbourhood kept is the face's one-ring (every face sharing a vertex with it): the
 // children of those faces hold, with correct points, the one-ring of every child of the face
-// (a point whose own one-ring was cut off gets a wrong point, but no kept face uses it).
+// (a point whose own one-ring was cut off gets a wrong point, but no kept face uses it). Under
+// Chaikin's crease method the two-ring is kept: an edge point's rule there depends on the
+// sharpness round its edge's far end (keepOneRing says why).
 // Coordinates are kept relative: world = origin + scale * local, re-centred on the irregular
 // vertex and rescaled by a power of two after each step, so that deep levels lose no digits to
 // cancellation (the sub-patch shrinks by about lambda_sub per level).
