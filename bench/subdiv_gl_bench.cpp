@@ -6,7 +6,8 @@
 // triangles' edges cause; it counts pass 2's blocks that the stencil test skips too). One CSV row
 // on stdout.
 //
-// Usage: subdiv_gl_bench MESH[@R] SIZE LEVEL FRAMES MODE NEWTON [BACKEND]   (MESH as subdiv_bench)
+// Usage: subdiv_gl_bench MESH[@R] SIZE LEVEL FRAMES MODE NEWTON [BACKEND]   (MESH as subdiv_bench: a
+// procedural name or an .obj file)
 #include <glm/geometric.hpp>
 
 #include <chrono>
@@ -29,7 +30,8 @@ int main(int argc, char** argv) {
   try {
     const std::string spec = argv[1];
     const size_t at = spec.find('@');
-    PolyMesh m = proceduralMesh(spec.substr(0, at));
+    const std::string name = spec.substr(0, at);
+    PolyMesh m = name.size() > 4 && name.substr(name.size() - 4) == ".obj" ? readObjMesh(name) : proceduralMesh(name);
     for (int r = 0; r < (at == std::string::npos ? 0 : std::stoi(spec.substr(at + 1))); ++r) {
       RefinedMesh next = catmullClarkStep(m, checkMesh(m));
       const double size = next.mesh.size();
