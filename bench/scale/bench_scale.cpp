@@ -165,10 +165,13 @@ int main(int argc, char** argv) {
     } catch (const std::exception&) {
     }
     if (w < 1) fail(rank, "bad size '" + size + "'");
+    // The raw layer only where a variant needs it: at 4,096 ranks every copy of every rank's
+    // layer is in this one process's memory.
     BrickImage layer, layer_raw;
+    const bool need_raw = std::find(rles.begin(), rles.end(), "off") != rles.end();
     try {
       layer = scale::sphereLayer(rank, ranks, w, w, coverage, true);
-      layer_raw = scale::sphereLayer(rank, ranks, w, w, coverage, false);
+      if (need_raw) layer_raw = scale::sphereLayer(rank, ranks, w, w, coverage, false);
     } catch (const std::exception& e) {
       fail(rank, e.what());
     }
