@@ -76,7 +76,7 @@ base = [r for r in sweep if r["precision"] == "float" and r["rle"] == "on"]
 for plat in sorted({r["platform"] for r in base}):
     rows = [r for r in base if r["platform"] == plat]
     sizes = sorted({r["width"] for r in rows})
-    fig, axes = plt.subplots(1, len(sizes), figsize=(4.6 * len(sizes), 4.2), squeeze=False)
+    fig, axes = plt.subplots(1, len(sizes), figsize=(4.2 * len(sizes), 4.2), squeeze=False)
     for ax, size in zip(axes[0], sizes):
         for name in sorted({r["name"] for r in rows}, key=lambda n: list(colours).index(n) if n in colours else 9):
             pts = sorted((r["ranks"], r["seconds"], predict(r)) for r in rows if r["width"] == size and r["name"] == name)
@@ -86,10 +86,12 @@ for plat in sorted({r["platform"] for r in base}):
             ax.plot([p[0] for p in pts], [p[1] for p in pts], "o-", color=c, label=name)
             model = [(p[0], p[2]) for p in pts if p[2]]
             if model:
-                ax.plot([m[0] for m in model], [m[1] for m in model], "--", color=c, alpha=0.5)
+                ax.plot([m[0] for m in model], [m[1] for m in model], "--" if len(model) > 1 else "x",
+                        color=c, alpha=0.5)
         if size == 8192:
             ax.axhline(0.08, color="gray", lw=0.8, ls=":")
-            ax.text(20, 0.085, "0.08 s (BG/P anchor)", color="gray", fontsize=8)
+            ax.text(0.03, 0.085, "0.08 s (BG/P anchor)", color="gray", fontsize=8,
+                    transform=ax.get_yaxis_transform())
         ax.set_xscale("log", base=2)
         ax.set_yscale("log")
         ax.set_title(f"{plat}, {size}²")
