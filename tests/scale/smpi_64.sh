@@ -10,8 +10,8 @@
 set -euo pipefail
 bench=$1 root=$2
 if ! command -v smpirun >/dev/null || [ -z "$bench" ] || [ ! -x "$bench" ]; then
-  echo "SKIPPED: SimGrid's smpicxx/smpirun are not installed, so there is no SMPI build" \
-       "(apt-get install libsimgrid-dev; scripts/install-deps installs it, then re-run cmake)"
+  echo "SKIPPED: no SMPI build: SimGrid's smpicxx/smpirun are not installed (apt-get install" \
+       "libsimgrid-dev; scripts/install-deps installs it, then re-run cmake), or -DSORTLAST_SMPI=OFF"
   exit 77
 fi
 tmp=$(mktemp -d)
