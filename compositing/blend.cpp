@@ -5,6 +5,7 @@
 #include <type_traits>
 
 #include "compositing/over.h"
+#include "compositing/pixel_cost.h"
 #include "compositing/rle.h"
 
 namespace sortlast {
@@ -80,6 +81,8 @@ void blendBricks(const std::vector<const BrickImage*>& images, Pixel* dst, const
       continue;
     }
     const int bytes = pixelBytes(format);
+    chargePixels(std::is_same_v<Pixel, float> ? PixelWork::DecodeBlend8 : PixelWork::DecodeBlendInto8,
+                 r.area(), bytes);
     pixels.resize(size_t(r.area()) * size_t(bytes));
     rleDecode(b->rle, size_t(r.area()), pixels, bytes);
     if (format == WireFormat::RGBA8) {
@@ -107,6 +110,7 @@ RectImage blendBackToFront(const std::vector<const BrickImage*>& images, WireFor
   Rect all;
   for (const BrickImage* b : images) all = unionOf(all, b->rect);
   RectImage out(all);
+  chargePixels(PixelWork::Copy, all.area());  // the new image's zero fill
   blendBricks(images, out.px.data(), all, format);
   return out;
 }
@@ -115,6 +119,8 @@ RectImage blendBackToFront(const std::vector<const RectImage*>& layers) {
   Rect all;
   for (const RectImage* l : layers) all = unionOf(all, l->rect);
   RectImage out(all);
+  chargePixels(PixelWork::Copy, all.area());  // the new image's zero fill
+  for (const RectImage* l : layers) chargePixels(PixelWork::BlendFloat, l->rect.area());
   for (const RectImage* l : layers)
     if (!l->rect.empty()) blendRectF(l->px.data(), l->rect, out.px.data(), all.w, all.x, all.y);
   return out;

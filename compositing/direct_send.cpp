@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "compositing/blend.h"
+#include "compositing/pixel_cost.h"
 #include "compositing/rect_image.h"
 
 namespace sortlast {
@@ -40,10 +41,12 @@ void DirectSend::begin(const FrameSetup& setup) {
     // cleared: a fresh 2048^2 float frame costs more in page faults than all the blending.
     if (frame_f_.width != setup.width || frame_f_.height != setup.height)
       frame_f_ = ImageF(setup.width, setup.height);
-    else
+    else {
+      chargePixels(PixelWork::Copy, dirty_.area());
       for (int y = dirty_.y; y < dirty_.y + dirty_.h; ++y)
         std::fill_n(&frame_f_.px[(size_t(y) * setup.width + size_t(dirty_.x)) * 4],
                     size_t(dirty_.w) * 4, 0.0f);
+    }
     dirty_ = {};
   } else
     frame_8_ = ImageRGBA8(setup.width, setup.height);
@@ -182,10 +185,13 @@ ImageRGBA8 DirectSend::finish(CompositeStats& stats, ImageF* float_frame) {
     // frame (colour clamped to alpha) means nothing and the caller makes its own from the float
     // frame, so it stays transparent rather than costing a rounding pass over the frame.
     out = ImageRGBA8(frame_f_.width, frame_f_.height);
-    if (!(opt_.emission && float_frame))
+    chargePixels(PixelWork::Fill8, out.width * static_cast<long long>(out.height));
+    if (!(opt_.emission && float_frame)) {
+      chargePixels(PixelWork::Round8, dirty_.area());
       for (int y = dirty_.y; y < dirty_.y + dirty_.h; ++y)
         for (int x = dirty_.x; x < dirty_.x + dirty_.w; ++x)
           toRGBA8(&frame_f_.px[(size_t(y) * frame_f_.width + size_t(x)) * 4], out.at(x, y));
+    }
     if (float_frame) *float_frame = frame_f_;
   } else {
     if (float_frame) *float_frame = toFloat(frame_8_);

@@ -8,6 +8,7 @@
 
 #include "compositing/blend.h"
 #include "compositing/mpi_transport.h"
+#include "compositing/pixel_cost.h"
 #include "compositing/schedule.h"
 
 namespace sortlast {
@@ -215,6 +216,7 @@ ImageRGBA8 radixKComposite(std::vector<BrickImage> mine, const VisibilityOrder& 
   if (rank == 0) {
     ImageF exact(exact_frame ? width : 0, exact_frame ? height : 0);
     frame = ImageRGBA8(width, height);
+    chargePixels(PixelWork::Fill8, frame.width * static_cast<long long>(frame.height));
     for (int u = 0; u < s.units(); ++u) {
       if (plan.bound(s.rounds(), u).empty()) continue;
       const BrickImage part =

@@ -10,6 +10,7 @@
 
 #include "compositing/half.h"
 #include "compositing/over.h"
+#include "compositing/pixel_cost.h"
 #include "compositing/rle.h"
 
 namespace sortlast {
@@ -153,6 +154,7 @@ Rect unionOf(const Rect& a, const Rect& b) {
 
 Rect activeRect(const RectImage& img, const Rect& within) {
   const Rect r = intersect(img.rect, within);
+  chargePixels(PixelWork::Scan, r.area());
   int x0 = r.x + r.w, x1 = r.x - 1, y0 = r.y + r.h, y1 = r.y - 1;
   for (int y = r.y; y < r.y + r.h; ++y) {
     const float* row = img.at(r.x, y);
@@ -174,6 +176,7 @@ Rect activeRect(const RectImage& img, const Rect& within) {
 
 RectImage crop(const RectImage& img, const Rect& r) {
   RectImage out(intersect(img.rect, r));
+  chargePixels(PixelWork::Copy, out.rect.area());
   for (int y = out.rect.y; y < out.rect.y + out.rect.h; ++y)
     std::memcpy(out.at(out.rect.x, y), img.at(out.rect.x, y),
                 size_t(out.rect.w) * 4 * sizeof(float));
@@ -186,6 +189,7 @@ BrickImage encodePart(const RectImage& img, const Rect& part, int id, WireFormat
   b.rect = activeRect(img, part);
   if (b.rect.empty()) return b;
   const size_t bytes = size_t(pixelBytes(format));
+  chargePixels(PixelWork::Encode, b.rect.area(), int(bytes));
   std::vector<uint8_t> px(size_t(b.rect.area()) * bytes);
   uint8_t* o = px.data();
   for (int y = b.rect.y; y < b.rect.y + b.rect.h; ++y) {
@@ -210,6 +214,7 @@ RectImage decodePart(const BrickImage& b, WireFormat format, const Rect& within)
   if (!contains(within, b.rect))
     throw RleError("image part: rectangle outside the region it belongs to");
   const int bytes = pixelBytes(format);
+  chargePixels(PixelWork::Decode, b.rect.area(), bytes);
   std::vector<uint8_t> px(size_t(b.rect.area()) * size_t(bytes));
   rleDecode(b.rle, size_t(b.rect.area()), px, bytes);
   RectImage out(b.rect);
@@ -227,6 +232,7 @@ void pastePart(const RectImage& part, ImageF& frame) {
   if (r.empty()) return;
   if (!contains(Rect{0, 0, frame.width, frame.height}, r))
     throw RleError("image part: rectangle outside the frame");
+  chargePixels(PixelWork::Copy, r.area());
   for (int y = 0; y < r.h; ++y)
     std::memcpy(&frame.px[(size_t(r.y + y) * frame.width + size_t(r.x)) * 4], part.at(r.x, r.y + y),
                 size_t(r.w) * 4 * sizeof(float));
@@ -240,6 +246,7 @@ void pastePart(const BrickImage& b, ImageRGBA8& frame) {
   }
   if (!contains(Rect{0, 0, frame.width, frame.height}, r))
     throw RleError("image part: rectangle outside the frame");
+  chargePixels(PixelWork::DecodeRGBA8, r.area());
   std::vector<uint8_t> px(size_t(r.area()) * 4);
   rleDecode(b.rle, size_t(r.area()), px);
   for (int y = 0; y < r.h; ++y)

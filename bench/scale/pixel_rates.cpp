@@ -1,0 +1,57 @@
+#include "bench/scale/pixel_rates.h"
+
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace sortlast::scale {
+
+namespace {
+constexpr const char* kNames[] = {"decode_blend8", "decode_blend_into8", "blend_float", "scan",
+                                  "encode", "decode", "decode_rgba8", "copy", "round8", "fill8"};
+static_assert(sizeof kNames / sizeof kNames[0] == size_t(PixelWork::Count));
+}  // namespace
+
+const char* pixelWorkName(PixelWork work) { return kNames[int(work)]; }
+
+PixelRates::PixelRates() {
+  for (auto& row : ns) row[0] = row[1] = -1.0;
+}
+
+double PixelRates::at(PixelWork work, int bytes_per_pixel) const {
+  const double v = ns[int(work)][bytes_per_pixel == 8 ? 1 : 0];
+  if (v < 0)
+    throw std::runtime_error(std::string("pixel rates: no rate for ") + pixelWorkName(work) +
+                             " at " + std::to_string(bytes_per_pixel) + " bytes per pixel");
+  return v;
+}
+
+PixelRates readPixelRates(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("pixel rates: cannot open " + path);
+  PixelRates rates;
+  std::string line;
+  for (int n = 1; std::getline(in, line); ++n) {
+    if (line.empty() || line[0] == '#' || line.rfind("work,", 0) == 0) continue;
+    std::stringstream ss(line);
+    std::string name, bytes, ns;
+    std::getline(ss, name, ',');
+    std::getline(ss, bytes, ',');
+    std::getline(ss, ns, ',');
+    int w = -1;
+    for (int i = 0; i < int(PixelWork::Count); ++i)
+      if (name == kNames[i]) w = i;
+    double v = -1;
+    try {
+      v = std::stod(ns);
+    } catch (const std::exception&) {
+    }
+    if (w < 0 || (bytes != "4" && bytes != "8") || !(v >= 0))
+      throw std::runtime_error("pixel rates: " + path + ":" + std::to_string(n) +
+                               ": expected work,4|8,ns_per_pixel, got '" + line + "'");
+    rates.ns[w][bytes == "8" ? 1 : 0] = v;
+  }
+  return rates;
+}
+
+}  // namespace sortlast::scale

@@ -1,0 +1,25 @@
+// The SMPI build's chargePixels (compositing/pixel_cost.h): the pixels of each compositing kernel
+// become simulated computation on the calling rank's host, at the rates measured by
+// measure_rates, one flop per nanosecond of the measuring machine's core (pixel_rates.h). The run
+// itself is not timed (smpirun --cfg=smpi/simulate-computation:no), so the simulated times do not
+// depend on how busy the simulating machine is.
+#include <smpi/smpi.h>
+
+#include "bench/scale/pixel_rates.h"
+
+namespace sortlast {
+
+namespace {
+// Shared by every simulated rank (SMPI runs them in one process, without privatising globals):
+// every rank sets the same table before its first composite, and nothing writes it after.
+scale::PixelRates g_rates;
+}  // namespace
+
+void scale::usePixelRates(const PixelRates& rates) { g_rates = rates; }
+
+void chargePixels(PixelWork work, long long pixels, int bytes_per_pixel) {
+  if (pixels <= 0) return;
+  smpi_execute_flops(double(pixels) * g_rates.at(work, bytes_per_pixel));
+}
+
+}  // namespace sortlast
