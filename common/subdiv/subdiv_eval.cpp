@@ -143,11 +143,8 @@ void SubdivSurface::fillNode(int index, const LocalNet& net, int depth) {
   nodes_.resize(nodes_.size() + 4);  // the four children side by side, their subtrees after them
   nodes_[index].type = NodeType::Split;
   nodes_[index].firstChild = first;
-  for (int q = 0; q < 4; ++q) {
-    LocalNet child = net;
-    child.descend(q);
-    fillNode(first + q, child, depth + 1);
-  }
+  const std::array<LocalNet, 4> children = net.split();
+  for (int q = 0; q < 4; ++q) fillNode(first + q, children[q], depth + 1);
 }
 
 void SubdivSurface::nodeGrid(int node, std::array<glm::dvec3, 16>& position, std::array<glm::dvec3, 16>& tangent) const {

@@ -119,6 +119,14 @@ void LocalNet::descend(int q) {
   keepOneRing(r.mesh, 4 * face_ + q, (4 - q) % 4);
 }
 
+std::array<LocalNet, 4> LocalNet::split() const {
+  const MeshTopology t = MeshTopology::build(mesh_);
+  const RefinedMesh r = catmullClarkStep(mesh_, t);
+  std::array<LocalNet, 4> out{*this, *this, *this, *this};
+  for (int q = 0; q < 4; ++q) out[q].keepOneRing(r.mesh, 4 * face_ + q, (4 - q) % 4);
+  return out;
+}
+
 void LocalNet::keepOneRing(const PolyMesh& refined, int face, int start) {
   // The faces sharing a vertex with `face`; under Chaikin's method also those sharing a vertex
   // with them: an edge point's rule there depends on its edge's child sharpness at the far end,

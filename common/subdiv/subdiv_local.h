@@ -48,6 +48,9 @@ class LocalNet {
   // frame's orientation: the net becomes the one-ring of that child, its (0,0) at the quadrant's
   // lower left.
   void descend(int q);
+  // All four quadrants' nets from one refinement (what descend(0..3) give, for a quarter of the
+  // work).
+  std::array<LocalNet, 4> split() const;
 
  private:
   // 4 x 4 points round face f with its corner `start` at grid (0, 0) and corner start + 1 at
