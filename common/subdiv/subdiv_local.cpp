@@ -110,18 +110,12 @@ LocalNet::Kind LocalNet::kind() const {
   return irregular < 0 ? Kind::Regular : Kind::Irregular;
 }
 
-void LocalNet::descend(int q) {
-  const MeshTopology t = MeshTopology::build(mesh_);
-  RefinedMesh r = catmullClarkStep(mesh_, t);
-  // Quadrant q of the frame ((0,0), (1,0), (1,1), (0,1)) is child q of face_ (its corner q sits
-  // there); the child's corner at the quadrant's lower left is its corner (4 - q) % 4, with the
-  // next corner along the frame's u: see step().
-  keepOneRing(r.mesh, 4 * face_ + q, (4 - q) % 4);
-}
-
 std::array<LocalNet, 4> LocalNet::split() const {
   const MeshTopology t = MeshTopology::build(mesh_);
   const RefinedMesh r = catmullClarkStep(mesh_, t);
+  // Quadrant q of the frame is child q of face_ (its corner q sits there); the child's corner at
+  // the quadrant's lower left is its corner (4 - q) % 4, with the next corner along the frame's
+  // u: see step().
   std::array<LocalNet, 4> out{*this, *this, *this, *this};
   for (int q = 0; q < 4; ++q) out[q].keepOneRing(r.mesh, 4 * face_ + q, (4 - q) % 4);
   return out;

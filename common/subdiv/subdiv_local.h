@@ -39,17 +39,14 @@ class LocalNet {
   void step(std::array<Grid, 3>* world = nullptr, std::array<Grid, 3>* tangent = nullptr, int only = 0);
   // The grid of the current face (which must be regular), in world and in local coordinates.
   void grid(Grid& world, Grid& tangent) const;
-  // What the current face is: near a semi-sharp edge or vertex (descend further), a B-spline patch
+  // What the current face is: near a semi-sharp edge or vertex (split further), a B-spline patch
   // (with phantom points across infinitely sharp edges), or irregular at the frame's (0, 0) only
   // (a logic_error if elsewhere: refinement keeps irregular vertices at corner 0).
   enum class Kind { SemiSharp, Regular, Irregular };
   Kind kind() const;
-  // One step into quadrant q of the frame (0: (0,0), 1: (1,0), 2: (1,1), 3: (0,1)), keeping the
-  // frame's orientation: the net becomes the one-ring of that child, its (0,0) at the quadrant's
-  // lower left.
-  void descend(int q);
-  // All four quadrants' nets from one refinement (what descend(0..3) give, for a quarter of the
-  // work).
+  // One step into each quadrant q of the frame (0: (0,0), 1: (1,0), 2: (1,1), 3: (0,1)), keeping
+  // the frame's orientation: net q is the one-ring of that child, its (0,0) at the quadrant's
+  // lower left. One refinement serves all four.
   std::array<LocalNet, 4> split() const;
 
  private:
