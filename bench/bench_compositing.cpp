@@ -43,6 +43,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/comma_list.h"
 #include "compositing/compositor.h"
 #include "compositing/rle.h"
 
@@ -76,14 +77,6 @@ extern "C" int MPI_Recv(void* buf, int count, MPI_Datatype type, int source, int
 namespace {
 
 using namespace sortlast;
-
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  for (std::string t; std::getline(ss, t, ',');)
-    if (!t.empty()) out.push_back(t);
-  return out;
-}
 
 // One rank's layer: a soft disc of radius ~0.25 * min(w, h) (about a fifth of the frame), seeded
 // by rank and size, clipped to the frame.
@@ -177,12 +170,12 @@ int main(int argc, char** argv) {
       }
       return argv[++i];
     };
-    if (a == "--sizes") sizes = split(next());
-    else if (a == "--strategies") strategies = split(next());
+    if (a == "--sizes") sizes = splitCommas(next());
+    else if (a == "--strategies") strategies = splitCommas(next());
     else if (a == "--reps") reps = std::max(1, std::stoi(next()));
     else if (a == "--warmup") warmup = std::max(0, std::stoi(next()));
-    else if (a == "--precisions") precisions = split(next());
-    else if (a == "--rle") rles = split(next());
+    else if (a == "--precisions") precisions = splitCommas(next());
+    else if (a == "--rle") rles = splitCommas(next());
     else if (a == "--layers") layers_dir = next();
     else if (a == "--header") header = true;
     else {

@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/comma_list.h"
 #include "bench/scale/pixel_rates.h"
 #include "bench/scale/scale_layers.h"
 #include "compositing/compositor.h"
@@ -85,14 +86,6 @@ namespace {
 
 using namespace sortlast;
 
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  for (std::string t; std::getline(ss, t, ',');)
-    if (!t.empty()) out.push_back(t);
-  return out;
-}
-
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   size_t n = v.size();
@@ -126,11 +119,11 @@ int main(int argc, char** argv) {
         if (i + 1 >= argc) fail(rank, a + " needs a value");
         return argv[++i];
       };
-      if (a == "--sizes") sizes = split(next());
+      if (a == "--sizes") sizes = splitCommas(next());
       else if (a == "--coverage") coverage = std::stod(next());
-      else if (a == "--strategies") strategies = split(next());
-      else if (a == "--precisions") precisions = split(next());
-      else if (a == "--rle") rles = split(next());
+      else if (a == "--strategies") strategies = splitCommas(next());
+      else if (a == "--precisions") precisions = splitCommas(next());
+      else if (a == "--rle") rles = splitCommas(next());
       else if (a == "--reps") reps = std::max(1, std::stoi(next()));
       else if (a == "--warmup") warmup = std::max(0, std::stoi(next()));
       else if (a == "--rates") rates_file = next();

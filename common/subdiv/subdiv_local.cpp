@@ -102,7 +102,7 @@ LocalNet::Kind LocalNet::kind() const {
   for (int c = 0; c < 4; ++c) {
     const CornerKind k = faceCornerKind(mesh_, t, face_, c);
     if (k == CornerKind::SemiSharp) return Kind::SemiSharp;
-    if (k == CornerKind::Irregular || (k == CornerKind::Smooth && !regularVertex(t, mesh_.corner(face_, c)))) {
+    if (irregularCorner(k, t, mesh_.corner(face_, c))) {
       if (irregular >= 0 || c != 0) throw std::logic_error("LocalNet: an irregular corner off the frame's (0, 0)");
       irregular = c;
     }

@@ -565,7 +565,7 @@ ControlMesh buildControlMesh(const PolyMesh& input) {
     for (int c = 0; c < 4; ++c) {
       const CornerKind k = faceCornerKind(mesh, topology, f, c);
       semi |= k == CornerKind::SemiSharp;
-      const bool bad = k == CornerKind::Irregular || (k == CornerKind::Smooth && !regularVertex(topology, mesh.corner(f, c)));
+      const bool bad = irregularCorner(k, topology, mesh.corner(f, c));
       irregular += bad;
       if (c == 0) firstIrregular = bad;
     }

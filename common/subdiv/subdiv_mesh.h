@@ -116,6 +116,10 @@ bool regularVertex(const MeshTopology& topology, int point);
 //              valence)
 enum class CornerKind { Smooth, SemiSharp, Regular, Irregular };
 CornerKind faceCornerKind(const PolyMesh& mesh, const MeshTopology& topology, int f, int c);
+// Not a B-spline patch's corner: Irregular, or Smooth at a vertex that is not interior valence 4.
+inline bool irregularCorner(CornerKind kind, const MeshTopology& topology, int point) {
+  return kind == CornerKind::Irregular || (kind == CornerKind::Smooth && !regularVertex(topology, point));
+}
 
 // (u, v) of a child quad (as catmullClarkStep orders it) in its parent quad's (u, v).
 void childToParentQuad(int corner, double u, double v, double& pu, double& pv);
