@@ -69,8 +69,10 @@ struct Scene {
   double adaptive_tolerance = 0.0;  // adaptive sampling: relative L2 error per block, fraction; 0: off
   int adaptive_blocks = 8;          // adaptive sampling: b, blocks per axis of the whole volume
   std::string adaptive_steps = "own";  // own: a block's samples along rays at its resolution | fine
-  std::string strategy = "direct";  // direct | binary-swap | radix-k
+  std::string strategy = "direct";  // direct | binary-swap | radix-k | auto
   int radix = 4;                    // radix-k: partners per round
+  double network_latency_us = 40;   // auto: the network its cost model assumes
+  double network_gbps = 10;
   std::string precision = "float";  // float | rgba8: how partial composites are held
   bool overlap = true;              // direct send: send while the next brick renders
   bool rle = true;                  // run-length code image messages

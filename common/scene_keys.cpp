@@ -636,10 +636,21 @@ std::vector<SceneKey> makeTable() {
       {"compositing.strategy", "direct",
        "How brick images reach rank 0: `direct` (every brick image to rank 0, which blends them "
        "all), `binary-swap` (each rank blends its own bricks, then pairs of ranks swap halves of "
-       "their image for log2 P rounds and rank 0 gathers the pieces) or `radix-k` (the same with "
-       "`compositing.radix` partners per round). Any rank count: ranks beyond the largest count "
-       "the rounds can take first fold their image into a neighbour's.",
-       Names{member<&Scene::strategy>, names({"direct", "binary-swap", "radix-k"})}},
+       "their image for log2 P rounds and rank 0 gathers the pieces), `radix-k` (the same with "
+       "`compositing.radix` partners per round) or `auto` (each frame, whichever of direct and "
+       "radix-k with k = 2, 4, 8, 16, 32 a cost model forecasts fastest for the rank count, image "
+       "size and the bricks' screen rectangles, with the network of `compositing.latency_us` and "
+       "`compositing.bandwidth_gbps`; every rank makes the same choice, and --stats says which and "
+       "why: docs/compositing.md). Any rank count: ranks beyond the largest count the rounds can "
+       "take first fold their image into a neighbour's.",
+       Names{member<&Scene::strategy>, names({"direct", "binary-swap", "radix-k", "auto"})}},
+      {"compositing.latency_us", "40",
+       "`auto`: one message's latency between two ranks, microseconds (40: 10 Gbit/s Ethernet "
+       "through one switch; about 2-5 for InfiniBand or a fat tree, 1 between ranks of one node).",
+       Real{member<&Scene::network_latency_us>, {{"in [0, 1e6]", "must be {allowed} us"}}}},
+      {"compositing.bandwidth_gbps", "10",
+       "`auto`: one rank's link bandwidth, each way, Gbit/s (10 GbE; 100 for EDR InfiniBand).",
+       Real{member<&Scene::network_gbps>, {{"in [0.001, 1e5]", "must be {allowed} Gbit/s"}}}},
       {"compositing.radix", "4",
        "k of `radix-k`: the most partners per round (2 is binary-swap; a round uses fewer "
        "where the rank count has no factor that large).",

@@ -3,14 +3,16 @@
 
 #include <stdexcept>
 
+#include "compositing/auto_compositor.h"
 #include "compositing/direct_send.h"
 #include "compositing/radix_k.h"
 
 namespace sortlast {
 
 ImageRGBA8 Compositor::composite(std::vector<BrickImage> mine, const VisibilityOrder& order,
-                                 int width, int height, MPI_Comm comm, CompositeStats& stats) {
-  begin(FrameSetup{&order, int(mine.size()), width, height, comm});
+                                 int width, int height, MPI_Comm comm, CompositeStats& stats,
+                                 const FrameFootprint* footprint) {
+  begin(FrameSetup{&order, int(mine.size()), width, height, comm, footprint});
   for (BrickImage& b : mine) add(std::move(b));
   return finish(stats);
 }
@@ -20,6 +22,7 @@ std::unique_ptr<Compositor> makeCompositor(const std::string& strategy, int radi
   if (strategy == "direct") return std::make_unique<DirectSend>(options);
   if (strategy == "binary-swap") return std::make_unique<RadixK>(2, options);
   if (strategy == "radix-k") return std::make_unique<RadixK>(radix, options);
+  if (strategy == "auto") return std::make_unique<AutoCompositor>(options);
   throw std::invalid_argument("unknown compositing strategy '" + strategy + "'");
 }
 

@@ -47,7 +47,13 @@ struct CompositeOptions {
   // above 1 before the final tone map, as WireFormat::Emission (half floats); precision must be
   // Float and the caller asks for the float frame (the RGBA8 one clamps colour to alpha).
   bool emission = false;
+  // `auto` only (strategy_model.h): the network and core sharing its forecasts assume.
+  double network_latency_s = 40e-6;       // one message, end to end
+  double network_bandwidth_Bps = 1.25e9;  // one rank's link, each way
+  double ranks_per_core = 1.0;            // on the busiest node
 };
+
+struct FrameFootprint;
 
 // This rank's part of one frame.
 struct FrameSetup {
@@ -55,6 +61,18 @@ struct FrameSetup {
   int brick_count = 0;                     // bricks this rank will add()
   int width = 0, height = 0;
   MPI_Comm comm = MPI_COMM_NULL;
+  // Every rank's forecast screen rectangles (strategy_model.h), the same on every rank: what
+  // `auto` chooses from. The explicit strategies ignore it.
+  const FrameFootprint* footprint = nullptr;
+};
+
+// What `auto` chose for the last frame, and why (--stats).
+struct StrategyChoice {
+  std::string strategy;  // direct | binary-swap | radix-k
+  int radix = 0;         // k, 0 for direct
+  std::string label;     // "radix-k k=8"
+  double forecast_s = 0;
+  std::string why;       // one line: the forecasts compared and what decided
 };
 
 class Compositor {
@@ -78,13 +96,18 @@ class Compositor {
   // The frame failed on some rank before finish(). Called on every rank: completes or drains the
   // messages already under way, so every rank can stop without a message left unmatched.
   virtual void abandon() = 0;
+  // `auto`: the strategy this frame runs; nullptr for the explicit strategies.
+  virtual const StrategyChoice* choice() const { return nullptr; }
 
   // begin, add each of `mine`, finish.
   ImageRGBA8 composite(std::vector<BrickImage> mine, const VisibilityOrder& order, int width,
-                       int height, MPI_Comm comm, CompositeStats& stats);
+                       int height, MPI_Comm comm, CompositeStats& stats,
+                       const FrameFootprint* footprint = nullptr);
 };
 
-// `strategy`: direct | binary-swap | radix-k (with `radix` partners per round, >= 2).
+// `strategy`: direct | binary-swap | radix-k (with `radix` partners per round, >= 2) | auto (the
+// fastest by the cost model, each frame, from direct send and radix-k with k = 2 ... 32; `radix`
+// is then not used).
 std::unique_ptr<Compositor> makeCompositor(const std::string& strategy, int radix,
                                            const CompositeOptions& options = {});
 

@@ -9,7 +9,7 @@
 #include "compositing/blend.h"
 #include "compositing/mpi_transport.h"
 #include "compositing/pixel_cost.h"
-#include "compositing/schedule.h"
+#include "compositing/radix_k_plan.h"
 
 namespace sortlast {
 
@@ -35,25 +35,6 @@ class Stopwatch {
   }
   CompositeStats& stats_;
   Clock::time_point last_ = Clock::now();
-};
-
-// Who holds which image, and the bounds of what each unit can hold: every rank computes the same
-// from the gathered content rectangles, so sender and receiver agree on which messages exist.
-struct Plan {
-  RadixKSchedule schedule;
-  std::vector<int> rank_at;   // participant position -> rank, far to near
-  std::vector<Rect> content;  // per position: the active rectangle of its own bricks' image
-  Rect whole;                 // union of all content
-
-  int carrier(int unit) const { return rank_at[size_t(schedule.firstPosition(unit))]; }
-  // A rectangle holding every pixel `unit` may hold before `round`.
-  Rect bound(int round, int unit) const {
-    auto [first, last] = schedule.mergedUnits(round, unit);
-    Rect r;
-    for (int p = schedule.firstPosition(first); p <= schedule.lastPosition(last); ++p)
-      r = unionOf(r, content[size_t(p)]);
-    return intersect(r, schedule.region(round, unit, whole));
-  }
 };
 
 class Exchange {
@@ -146,18 +127,14 @@ ImageRGBA8 radixKComposite(std::vector<BrickImage> mine, const VisibilityOrder& 
   watch.lapTransfer();
 
   // 2. The participants: ranks with something to show, far to near.
-  Plan plan;
-  int pos = -1;
-  for (int r : order.ranks) {
-    Rect rc{rects[4 * size_t(r)], rects[4 * size_t(r) + 1], rects[4 * size_t(r) + 2],
-            rects[4 * size_t(r) + 3]};
-    if (rc.empty()) continue;
-    if (r == rank) pos = int(plan.rank_at.size());
-    plan.rank_at.push_back(r);
-    plan.content.push_back(rc);
-    plan.whole = unionOf(plan.whole, rc);
-  }
-  const RadixKSchedule& s = plan.schedule = makeRadixKSchedule(int(plan.rank_at.size()), k);
+  std::vector<Rect> rect_of_rank(size_t(ranks), Rect{});
+  for (int r = 0; r < ranks; ++r)
+    rect_of_rank[size_t(r)] = Rect{rects[4 * size_t(r)], rects[4 * size_t(r) + 1],
+                                   rects[4 * size_t(r) + 2], rects[4 * size_t(r) + 3]};
+  std::vector<int> position_of;
+  const RadixKPlan plan = makeRadixKPlan(order.ranks, rect_of_rank, k, &position_of);
+  const int pos = position_of[size_t(rank)];
+  const RadixKSchedule& s = plan.schedule;
 
   // 3. Folds: the nearer of each pair sends its whole image to the farther.
   int unit = -1;  // the unit this rank carries, if any

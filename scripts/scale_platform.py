@@ -55,6 +55,9 @@ def main():
     ap.add_argument("--loopback-gbps", type=float, default=40.0)
     ap.add_argument("--loopback-us", type=float, default=1.0)
     ap.add_argument("--cores", type=int, default=2)
+    ap.add_argument("--print-network", action="store_true",
+                    help="print LATENCY_US,GBIT_PER_S,RANKS_PER_CORE: the platform as the cost model of "
+                         "compositing.strategy auto sees it (bench_scale --network, forecast_sweep)")
     a = ap.parse_args()
     if a.hosts < 1:
         sys.exit("scale_platform: HOSTS must be >= 1")
@@ -96,6 +99,20 @@ def main():
         with open(a.hostfile, "w") as f:
             hosts = ["node-0"] * n if a.kind == "local" else [f"node-{i}" for i in range(n)]
             f.write("\n".join(hosts) + "\n")
+    if a.print_network:
+        print(model_network(a))
+
+
+def model_network(a):
+    """One message's latency end to end (us), one host's link (Gbit/s), ranks per core."""
+    n = a.hosts
+    if a.kind == "fattree":  # up to 4 links of 1 us on a route (host, leaf, core, leaf, host)
+        return f"4,100,1"
+    if a.kind == "torus":  # 1 us per hop, the mean ring distance n_i / 4 along each axis
+        return f"{1 + sum(d / 4 for d in factor3(n)):g},3.4,1"
+    if a.kind == "ethernet":  # 20 us to the switch and 20 from it
+        return "40,10,1"
+    return f"{a.loopback_us:g},{a.loopback_gbps:g},{max(1.0, n / a.cores):g}"
 
 
 main()

@@ -18,6 +18,11 @@
 // Usage: [smpirun ...] bench_scale [--sizes 1024,2048] [--coverage 0.4] [--reps 3] [--warmup 1]
 //          [--strategies direct,binary-swap,radix-k:4] [--precisions float,rgba8] [--rle on,off]
 //          [--rates RATES.csv] [--platform NAME] [--header] [--check]
+//          [--network LATENCY_US,GBIT_PER_S[,RANKS_PER_CORE]] [--ranks-per-core R]
+// Strategy `auto` (compositing.strategy: auto) forecasts from every rank's layer bound
+// (scale_layers.h sphereLayerBound, as a renderer forecasts from brick boxes) with the network of
+// --network (default 40 us, 10 Gbit/s; scripts/scale_platform.py --print-network gives a platform's) and prints the strategy it chose in the radix column as
+// auto:NAME[:k]; stderr gets its forecasts.
 #include <mpi.h>
 
 #include <algorithm>
@@ -30,10 +35,12 @@
 #include <vector>
 
 #include "bench/comma_list.h"
-#include "bench/scale/pixel_rates.h"
+#include "compositing/pixel_rates.h"
 #include "bench/scale/scale_layers.h"
 #include "compositing/compositor.h"
+#include "compositing/strategy_model.h"
 #ifdef SORTLAST_SMPI
+#include "bench/scale/smpi_charge.h"
 #include "bench/scale/smpi_probe.h"
 #endif
 
@@ -109,7 +116,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> sizes = {"1024"}, strategies = {"direct", "binary-swap", "radix-k:4"};
   std::vector<std::string> precisions = {"float"}, rles = {"on"};
   std::string rates_file, platform = "native";
-  double coverage = 0.4;
+  double coverage = 0.4, latency_us = 40, gbps = 10, ranks_per_core = 1;
   int reps = 3, warmup = 1;
   bool header = false, check = false;
   try {
@@ -128,6 +135,14 @@ int main(int argc, char** argv) {
       else if (a == "--warmup") warmup = std::max(0, std::stoi(next()));
       else if (a == "--rates") rates_file = next();
       else if (a == "--platform") platform = next();
+      else if (a == "--ranks-per-core") ranks_per_core = std::stod(next());
+      else if (a == "--network") {
+        const std::vector<std::string> v = splitCommas(next());
+        if (v.size() != 2 && v.size() != 3)
+          fail(rank, "--network wants LATENCY_US,GBIT_PER_S[,RANKS_PER_CORE]");
+        latency_us = std::stod(v[0]), gbps = std::stod(v[1]);
+        if (v.size() == 3) ranks_per_core = std::stod(v[2]);
+      }
       else if (a == "--header") header = true;
       else if (a == "--check") check = true;
       else fail(rank, "unknown option " + a);
@@ -138,7 +153,7 @@ int main(int argc, char** argv) {
 #ifdef SORTLAST_SMPI
   if (rates_file.empty()) fail(rank, "the SMPI build needs --rates FILE (measure_rates writes it)");
   try {
-    scale::usePixelRates(scale::readPixelRates(rates_file));
+    scale::usePixelRates(readPixelRates(rates_file));
   } catch (const std::exception& e) {
     fail(rank, e.what());
   }
@@ -168,6 +183,13 @@ int main(int argc, char** argv) {
     } catch (const std::exception& e) {
       fail(rank, e.what());
     }
+    // What auto forecasts from: every rank's bound, computed on every rank (no message).
+    FrameFootprint footprint;
+    for (int r = 0; r < ranks; ++r) {
+      footprint.rect.push_back(scale::sphereLayerBound(r, ranks, w, w, coverage));
+      footprint.brick_pixels.push_back(double(footprint.rect.back().area()));
+      footprint.bricks.push_back(1);
+    }
     double mine[2] = {double(layer.rect.area()), layer.rect.empty() ? 0.0 : 1.0}, all[2] = {0, 0};
     MPI_Reduce(mine, all, 2, MPI_DOUBLE, MPI_SUM, 0, MPI_COMM_WORLD);
 
@@ -187,6 +209,9 @@ int main(int argc, char** argv) {
       CompositeOptions opts;
       opts.precision = precision == "rgba8" ? Precision::RGBA8 : Precision::Float;
       opts.rle = rle == "on";
+      opts.network_latency_s = latency_us * 1e-6;
+      opts.network_bandwidth_Bps = gbps * 1e9 / 8;
+      opts.ranks_per_core = ranks_per_core;
       std::unique_ptr<Compositor> compositor;
       try {
         compositor = makeCompositor(name, radix, opts);
@@ -205,7 +230,7 @@ int main(int argc, char** argv) {
         g_counting[rank] = true;
         const double t0 = MPI_Wtime();
         ImageRGBA8 frame =
-            compositor->composite(std::move(mine_images), order, w, w, MPI_COMM_WORLD, cs);
+            compositor->composite(std::move(mine_images), order, w, w, MPI_COMM_WORLD, cs, &footprint);
         const double dt = MPI_Wtime() - t0;
         g_counting[rank] = false;
         double slowest = 0;
@@ -233,10 +258,15 @@ int main(int argc, char** argv) {
           if (precision == "float" && worst > 1) ++bad;
         }
       }
+      std::string radix_col = name == "direct" ? "" : std::to_string(radix);
+      if (const StrategyChoice* c = compositor->choice()) {
+        radix_col = "auto:" + c->strategy + (c->radix ? ":" + std::to_string(c->radix) : "");
+        if (rank == 0) std::fprintf(stderr, "bench_scale: auto %s: %s\n", c->label.c_str(), c->why.c_str());
+      }
       if (rank == 0) {
         std::printf("%s,%s,%s,%s,%s,%d,%d,%d,%.4g,%.6g,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f\n",
                     platform.c_str(), name.c_str(),
-                    name == "direct" ? "" : std::to_string(radix).c_str(), precision.c_str(),
+                    radix_col.c_str(), precision.c_str(),
                     rle.c_str(), ranks, w, w, coverage, median(times), counts[1], max_bytes,
                     counts[0], counts[2], all[0], all[1]);
         std::fflush(stdout);

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "bench/scale/pixel_rates.h"
+#include "compositing/pixel_rates.h"
 #include "bench/scale/scale_layers.h"
 #include "common/image.h"
 #include "compositing/blend.h"
@@ -37,7 +37,7 @@ double medianSeconds(int reps, const std::function<void()>& f) {
 }
 
 void print(PixelWork w, int bytes, double seconds, double pixels) {
-  std::printf("%s,%d,%.4f\n", scale::pixelWorkName(w), bytes, std::max(0.0, seconds * 1e9 / pixels));
+  std::printf("%s,%d,%.4f\n", pixelWorkName(w), bytes, std::max(0.0, seconds * 1e9 / pixels));
 }
 
 }  // namespace

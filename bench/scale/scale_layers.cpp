@@ -91,17 +91,15 @@ VisibilityOrder sphereOrder(int ranks) {
   return order;
 }
 
-BrickImage sphereLayer(int rank, int ranks, int width, int height, double coverage, bool rle) {
+Rect sphereLayerBound(int rank, int ranks, int width, int height, double coverage) {
   if (width < 1 || height < 1) throw std::invalid_argument("scale layers: empty frame");
   if (rank < 0 || rank >= ranks) throw std::invalid_argument("scale layers: rank out of range");
   const View view = makeView();
   const double radius = sphereRadius(view, coverage);
-  const double sigma = -std::log(0.1) / (2.0 * radius);  // a whole diameter: alpha 0.9
   const glm::dvec3 centre(0.5);
   Box box;
   split(Box{}, 0, ranks, 0, view.w, rank, &box, nullptr);
-
-  // Screen rectangle: the box's projected corners, clipped to the sphere's disc and the frame.
+  // The box's projected corners, clipped to the sphere's disc and the frame.
   const double px_u = width / view.side, px_v = height / view.side;
   double umin = 1e9, umax = -1e9, vmin = 1e9, vmax = -1e9;
   for (int c = 0; c < 8; ++c) {
@@ -113,14 +111,29 @@ BrickImage sphereLayer(int rank, int ranks, int width, int height, double covera
   const double cu = glm::dot(centre, view.u), cv = glm::dot(centre, view.v);
   umin = std::max(umin, cu - radius), umax = std::min(umax, cu + radius);
   vmin = std::max(vmin, cv - radius), vmax = std::min(vmax, cv + radius);
-  BrickImage b;
-  b.brick_id = rank;
-  if (umax <= umin || vmax <= vmin) return b;
+  if (umax <= umin || vmax <= vmin) return {};
   const int x0 = std::max(0, int(std::floor((umin - view.u0) * px_u)));
   const int x1 = std::min(width, int(std::ceil((umax - view.u0) * px_u)));
   const int y0 = std::max(0, int(std::floor((vmin - view.v0) * px_v)));
   const int y1 = std::min(height, int(std::ceil((vmax - view.v0) * px_v)));
-  if (x1 <= x0 || y1 <= y0) return b;
+  if (x1 <= x0 || y1 <= y0) return {};
+  return {x0, y0, x1 - x0, y1 - y0};
+}
+
+BrickImage sphereLayer(int rank, int ranks, int width, int height, double coverage, bool rle) {
+  const Rect bound = sphereLayerBound(rank, ranks, width, height, coverage);
+  const View view = makeView();
+  const double radius = sphereRadius(view, coverage);
+  const double sigma = -std::log(0.1) / (2.0 * radius);  // a whole diameter: alpha 0.9
+  const glm::dvec3 centre(0.5);
+  const double cu = glm::dot(centre, view.u), cv = glm::dot(centre, view.v);
+  const double px_u = width / view.side, px_v = height / view.side;
+  Box box;
+  split(Box{}, 0, ranks, 0, view.w, rank, &box, nullptr);
+  BrickImage b;
+  b.brick_id = rank;
+  if (bound.empty()) return b;
+  const int x0 = bound.x, x1 = bound.x + bound.w, y0 = bound.y, y1 = bound.y + bound.h;
 
   std::vector<uint8_t> px(size_t(x1 - x0) * size_t(y1 - y0) * 4, 0);
   int ax0 = x1, ax1 = x0 - 1, ay0 = y1, ay1 = y0 - 1;  // the active rectangle

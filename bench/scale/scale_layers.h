@@ -26,6 +26,11 @@ VisibilityOrder sphereOrder(int ranks);
 
 // Rank `rank`'s image of a width x height frame, RLE-encoded (`rle` false: runs of 1, as long as
 // the raw pixels). Throws std::invalid_argument for a coverage outside (0, maxCoverage()].
+// The rectangle rank `rank`'s image can cover, from geometry alone (its box's projection clipped
+// to the sphere's disc), as a renderer forecasts a brick's rectangle from its box before rendering:
+// what `compositing.strategy: auto` is given. The image's own rectangle lies inside it.
+Rect sphereLayerBound(int rank, int ranks, int width, int height, double coverage);
+
 BrickImage sphereLayer(int rank, int ranks, int width, int height, double coverage, bool rle);
 
 }  // namespace sortlast::scale

@@ -5,14 +5,14 @@
 // depend on how busy the simulating machine is.
 #include <smpi/smpi.h>
 
-#include "bench/scale/pixel_rates.h"
+#include "bench/scale/smpi_charge.h"
 
 namespace sortlast {
 
 namespace {
 // Shared by every simulated rank (SMPI runs them in one process, without privatising globals):
 // every rank sets the same table before its first composite, and nothing writes it after.
-scale::PixelRates g_rates;
+PixelRates g_rates;
 }  // namespace
 
 void scale::usePixelRates(const PixelRates& rates) { g_rates = rates; }

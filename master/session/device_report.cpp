@@ -1,6 +1,10 @@
 #include "master/session/device_report.h"
 
+#include <sched.h>
+
+#include <algorithm>
 #include <string>
+#include <thread>
 
 namespace sortlast {
 
@@ -12,6 +16,18 @@ NodePlace nodePlace(MPI_Comm comm) {
   MPI_Comm_size(node, &p.size);
   MPI_Comm_free(&node);
   return p;
+}
+
+double ranksPerCore(MPI_Comm comm) {
+  const NodePlace p = nodePlace(comm);
+  int cores = 0;
+  cpu_set_t set;
+  if (sched_getaffinity(0, sizeof set, &set) == 0) cores = CPU_COUNT(&set);
+  if (cores < 1) cores = int(std::max(1u, std::thread::hardware_concurrency()));
+  const double mine = double(p.size) / cores;
+  double most = mine;
+  MPI_Allreduce(&mine, &most, 1, MPI_DOUBLE, MPI_MAX, comm);
+  return most;
 }
 
 int ranksSharingDevice(const GlDeviceInfo& mine, MPI_Comm comm) {

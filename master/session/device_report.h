@@ -24,6 +24,10 @@ inline int nodeLocalRank(MPI_Comm comm) { return nodePlace(comm).rank; }
 // rendering: llvmpipe has no device memory of its own). Collective.
 int ranksSharingDevice(const GlDeviceInfo& mine, MPI_Comm comm);
 
+// Ranks per core on the busiest node: the node's ranks over the cores this process may run on
+// (sched_getaffinity), the largest over all nodes, on every rank. Collective.
+double ranksPerCore(MPI_Comm comm);
+
 // Every rank's identity, on rank 0 (index = rank); empty elsewhere. Collective.
 std::vector<GlDeviceInfo> gatherDeviceInfo(const GlDeviceInfo& mine, MPI_Comm comm);
 

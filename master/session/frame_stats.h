@@ -19,6 +19,7 @@ struct RankFrameStats {
   double particles_held = 0;   // particles this rank's bricks hold, ghosts included
   double particle_rounds = 0;  // most sample windows (rounds of passes) any of its bricks needed
   double bytes_sent = 0;       // compositing: bytes this rank sent, message headers included
+  double strategy_code = 0;    // compositing.strategy auto: k of the radix-k it chose, 1 direct
 };
 
 // Gathers every rank's stats to rank 0 (empty vector elsewhere). Collective.

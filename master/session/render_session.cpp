@@ -21,6 +21,7 @@
 #include "master/session/adaptive_loading.h"
 #include "master/session/brick_renderer.h"
 #include "master/session/collective.h"
+#include "master/session/frame_footprint.h"
 #include "master/session/frame_stats.h"
 #include "master/session/device_report.h"
 #include "master/session/memory_budget.h"
@@ -137,6 +138,7 @@ struct CompositorKey {
   int radix = 0;
   std::string precision;
   bool overlap = true, rle = true, float_frame = false, emission = false;
+  double latency_us = 0, gbps = 0;  // auto's network
   bool operator==(const CompositorKey&) const = default;
 };
 
@@ -175,6 +177,7 @@ struct RenderSession::State {
   double particles_held = 0;
   std::unique_ptr<Compositor> compositor;
   CompositorKey compositor_key;
+  double ranks_per_core = 1;  // on the busiest node (auto's cost model)
   // Rank 0's float frame of a glow scene whose caller wants no float frame, kept from frame to
   // frame: the compositor copies into its memory instead of a fresh 16 bytes a pixel.
   ImageF glow_frame;
@@ -322,6 +325,7 @@ const GlDeviceInfo& RenderSession::deviceInfo() const { return s_->renderer->dev
 void RenderSession::State::meetDevices() {
   const GlDeviceInfo& mine = renderer->deviceInfo();
   gpu_budget = gpuMemoryBudget(mine, ranksSharingDevice(mine, comm));
+  ranks_per_core = ranksPerCore(comm);
   devices = gatherDeviceInfo(mine, comm);
 }
 long long RenderSession::particleCount() const { return s_->current ? s_->current->loaded.total : 0; }
@@ -578,7 +582,8 @@ FrameResult RenderSession::render(const FrameRequest& request) {
                                   sc.glow.core_radius, sc.glow.intensity);
     // Glow: the frame comes back in float for the tone map.
     const bool float_frame = request.float_frame || glow;
-    CompositorKey key{sc.strategy, sc.radix, sc.precision, sc.overlap, sc.rle, float_frame, glow};
+    CompositorKey key{sc.strategy, sc.radix, sc.precision, sc.overlap, sc.rle, float_frame, glow,
+                      sc.network_latency_us, sc.network_gbps};
     if (!S.compositor || !(key == S.compositor_key)) {
       CompositeOptions copts;
       copts.precision = sc.precision == "rgba8" ? Precision::RGBA8 : Precision::Float;
@@ -586,6 +591,9 @@ FrameResult RenderSession::render(const FrameRequest& request) {
       copts.rle = sc.rle;
       copts.float_frame = float_frame;
       copts.emission = glow;
+      copts.network_latency_s = sc.network_latency_us * 1e-6;
+      copts.network_bandwidth_Bps = sc.network_gbps * 1e9 / 8;
+      copts.ranks_per_core = S.ranks_per_core;
       S.compositor = makeCompositor(sc.strategy, sc.radix, copts);
       S.compositor_key = key;
     }
@@ -602,7 +610,11 @@ FrameResult RenderSession::render(const FrameRequest& request) {
   const VisibilityOrder order = S.orderFor(cam.position);
   // Each brick image goes to the compositor as soon as it is encoded: direct send starts sending
   // it while the next brick renders.
-  S.compositor->begin(FrameSetup{&order, int(mine.size()), cam.width, cam.height, S.comm});
+  // auto chooses from every rank's bricks on the screen: the same numbers on every rank.
+  const FrameFootprint footprint =
+      sc.strategy == "auto" ? forecastFootprint(S.layout, cam, S.size) : FrameFootprint{};
+  S.compositor->begin(FrameSetup{&order, int(mine.size()), cam.width, cam.height, S.comm,
+                                 sc.strategy == "auto" ? &footprint : nullptr});
   if (!request.dump_layers.empty())  // rank 0 makes the directory first
     collectively(S.comm, [&] { if (rank == 0) dumpOrder(request.dump_layers, cam, order); });
   try {
@@ -649,6 +661,8 @@ FrameResult RenderSession::render(const FrameRequest& request) {
   if (want_surface) out.surface = gatherSurface(surfaces, cam.width, cam.height, S.comm);
   st.transfer_s = cs.transfer_s;
   st.bytes_sent = cs.bytes_sent;
+  const StrategyChoice* choice = S.compositor->choice();
+  if (choice) st.strategy_code = choice->radix ? choice->radix : 1;
   st.peak_rss_mb = peakRssMiB();
   st.rss_mb = currentRssMiB();
   auto all = gatherStats(st, S.comm);
@@ -662,6 +676,16 @@ FrameResult RenderSession::render(const FrameRequest& request) {
     out.stats["ranks"] = S.size;
     if (sc.hasVolume()) out.stats["sample_spacing"] = sc.sample_spacing;
     if (!spacing_info.is_null()) out.stats["sample_spacing_auto"] = spacing_info;
+    if (choice) {
+      // Every rank forecast the same footprint; a rank that chose otherwise is a bug to see.
+      bool same = true;
+      for (const RankFrameStats& r : all) same = same && r.strategy_code == all[0].strategy_code;
+      out.stats["compositing"] = {{"strategy", "auto"},
+                                  {"chose", choice->label},
+                                  {"forecast_s", choice->forecast_s},
+                                  {"why", choice->why},
+                                  {"same_on_every_rank", same}};
+    }
   }
   out.scene = std::move(sc);
   if (!request.probe) ++S.frames_rendered;

@@ -6,7 +6,7 @@
 # and k = 2-4 is checked on images in tests/unit/radix_k_test.cpp (ranks as threads); here one
 # rank count per shape of schedule: binary-swap with no round (1 rank), one round (2), a fold
 # before one round (3), before two (5), three rounds (8); radix-4 with a fold and a round of 4
-# (5), rounds of 3 and 2 (6), a fold and rounds of 3 and 2 (7).
+# (5), rounds of 3 and 2 (6), a fold and rounds of 3 and 2 (7). Then `auto`: see below.
 # Usage: strategies.sh SORTLAST DATA_DIR
 source "$(dirname "$0")/lib.sh" "$1"
 data=$2
@@ -64,4 +64,40 @@ same bswap_d1 direct_d1
 same radixk_d1 direct_d1
 [ "$(quiet_ranks bswap_d1)" -eq 1 ] || fail "binary-swap: rank 1 should own nothing"
 [ "$(quiet_ranks radixk_d1)" -eq 2 ] || fail "radix-k: ranks 1 and 2 should own nothing"
-echo "binary-swap and radix-k agree with direct send on 1-8 ranks"
+
+# auto: every rank makes the same choice, --stats says which and why, and the frame is the chosen
+# strategy's to the bit. Two shapes that choose differently: 27 bricks on 3 ranks (rank 0 would
+# decode all 27 under direct send: a swap strategy), one brick on 2 ranks (direct send).
+# Prints the explicit --set options of the strategy auto chose in NAME.json.
+chosen() {
+  python3 - "$WORK/$1.json" <<'PY' || fail "auto's choice in $1"
+import json, sys
+s = json.load(open(sys.argv[1]))
+c = s["frames"][0]["compositing"]
+assert c["strategy"] == "auto" and c["same_on_every_rank"] is True, c
+assert c["why"].startswith("forecast direct") and c["forecast_s"] > 0, c
+label = c["chose"]
+if label.startswith("radix-k k="):
+    print(f"--set compositing.strategy=radix-k --set compositing.radix={label[10:]}")
+else:
+    assert label in ("direct", "binary-swap"), label
+    print(f"--set compositing.strategy={label}")
+PY
+}
+render auto_d3 3 "${d3[@]}" --set compositing.strategy=auto
+read -r -a pick <<<"$(chosen auto_d3)"
+[ "${pick[1]}" != compositing.strategy=direct ] || fail "auto chose direct send for 27 bricks on 3 ranks"
+render picked_d3 3 "${d3[@]}" "${pick[@]}"
+"$SORTLAST" compare "$WORK/auto_d3.png" "$WORK/picked_d3.png" --max-diff 0 >/dev/null ||
+  fail "auto's frame differs from ${pick[*]}'s"
+# The same messages too: strategies can make the same frame (binary-swap and radix-k on 3 ranks).
+python3 - "$WORK/auto_d3.json" "$WORK/picked_d3.json" <<'PY' || fail "auto sent other bytes than ${pick[*]}"
+import json, sys
+a, b = (json.load(open(p))["frames"][0]["bytes_sent"] for p in sys.argv[1:])
+assert a == b, (a, b)
+PY
+render auto_d1 2 "${d1[@]}" --set compositing.strategy=auto
+[ "$(chosen auto_d1)" = "--set compositing.strategy=direct" ] || fail "auto: $(chosen auto_d1) for one brick"
+"$SORTLAST" compare "$WORK/auto_d1.png" "$WORK/direct_d1.png" --max-diff 0 >/dev/null ||
+  fail "auto's frame differs from direct send's"
+echo "binary-swap and radix-k agree with direct send on 1-8 ranks; auto is its choice"

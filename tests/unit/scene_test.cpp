@@ -164,7 +164,7 @@ TEST(Scene, InvalidValuesThrow) {
 }
 
 TEST(Scene, CompositingStrategies) {
-  for (const char* name : {"direct", "binary-swap", "radix-k"})
+  for (const char* name : {"direct", "binary-swap", "radix-k", "auto"})
     EXPECT_EQ(loadScene("", {std::string("compositing.strategy=") + name}).strategy, name);
   EXPECT_EQ(loadScene("", {}).radix, std::stoi(tableDefault("compositing.radix")));
   EXPECT_EQ(loadScene("", {"compositing.radix=2"}).radix, 2);
@@ -394,8 +394,10 @@ TEST(SceneKeys, ErrorsKeepTheirWording) {
       {"adaptive.blocks=0",
        "scene key 'adaptive.blocks': must be a power of two in [1, 256], got 0"},
       {"adaptive.steps=auto", "scene key 'adaptive.steps': expected own or fine, got 'auto'"},
-      {"compositing.strategy=auto",
-       "scene key 'compositing.strategy': expected direct, binary-swap or radix-k, got 'auto'"},
+      {"compositing.strategy=fastest",
+       "scene key 'compositing.strategy': expected direct, binary-swap, radix-k or auto, got 'fastest'"},
+      {"compositing.bandwidth_gbps=0",
+       "scene key 'compositing.bandwidth_gbps': must be in [0.001, 1e5] Gbit/s"},
       {"compositing.radix=0", "scene key 'compositing.radix': must be >= 2"},
       {"compositing.precision=auto",
        "scene key 'compositing.precision': expected float or rgba8, got 'auto'"},

@@ -1,0 +1,192 @@
+#include "compositing/strategy_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "compositing/radix_k_plan.h"
+#include "compositing/rect_image.h"
+
+namespace sortlast {
+
+namespace {
+
+// Seconds for `pixels` of `work` (wire format of `bytes` per pixel where it matters).
+struct Cost {
+  const PixelRates& rates;
+  double operator()(PixelWork work, double pixels, int bytes = 4) const {
+    return pixels <= 0 ? 0.0 : pixels * rates.at(work, bytes) * 1e-9;
+  }
+};
+
+constexpr double kHeaderBytes = 24;  // packBrickImage's header
+
+StrategyForecast forecastDirect(const FrameFootprint& fp, int width, int height,
+                                const CompositeOptions& opt, const ModelSettings& m) {
+  const Cost cost{m.rates};
+  const int ranks = int(fp.rect.size());
+  const int brick_bytes = opt.emission ? 8 : 4;
+  Rect dirty;
+  double pixels = 0, bytes_in = 0;
+  int messages = 0;
+  for (int r = 0; r < ranks; ++r) {
+    dirty = unionOf(dirty, fp.rect[size_t(r)]);
+    pixels += fp.brick_pixels[size_t(r)];
+    if (r != 0) {
+      bytes_in += fp.brick_pixels[size_t(r)] * brick_bytes + kHeaderBytes * fp.bricks[size_t(r)];
+      messages += fp.bricks[size_t(r)];
+    }
+  }
+  StrategyForecast f{"direct", 0};
+  const bool float_frame = opt.precision == Precision::Float;
+  const double clear = float_frame && !m.first_frame ? cost(PixelWork::Copy, double(dirty.area())) : 0;
+  const double blend = cost(float_frame ? PixelWork::DecodeBlend8 : PixelWork::DecodeBlendInto8,
+                            pixels, brick_bytes);
+  const double round = float_frame ? cost(PixelWork::Fill8, double(width) * height) +
+                                         cost(PixelWork::Round8, double(dirty.area()))
+                                   : 0;
+  // Rank 0 takes one message at a time, and each costs it a latency: a large message goes by
+  // rendezvous, its transfer starting when the receive is posted (SMPI sends every message so).
+  const double transfer = messages * m.network.latency_s + bytes_in / m.network.bandwidth_Bps;
+  f.phases = {{"clear", clear}, {"receive", transfer}, {"blend", blend}, {"round", round}};
+  f.compute_s = clear + blend + round;
+  for (const auto& [name, s] : f.phases) f.seconds += s;
+  return f;
+}
+
+StrategyForecast forecastRadixK(const VisibilityOrder& order, const FrameFootprint& fp, int width,
+                                int height, int k, const CompositeOptions& opt,
+                                const ModelSettings& m) {
+  const Cost cost{m.rates};
+  const double slow = std::max(1.0, m.ranks_per_core);  // ranks sharing a core share its time
+  const double lat = m.network.latency_s, bw = m.network.bandwidth_Bps;
+  const int ranks = int(fp.rect.size());
+  const int brick_bytes = opt.emission ? 8 : 4;
+  const int partial = opt.emission ? 8 : opt.precision == Precision::RGBA8 ? 4 : 8;
+  const int finals = opt.emission || opt.float_frame ? 8 : 4;
+  StrategyForecast f{k == 2 ? "binary-swap" : "radix-k", k};
+  auto phase = [&](const char* name, double compute, double other) {
+    f.phases.emplace_back(name, compute * slow + other);
+    f.compute_s += compute * slow;
+    f.seconds += compute * slow + other;
+  };
+
+  // 1. Own bricks into one image (zero fill, decode and blend, active-rectangle scan), then the
+  // allgather of rectangles (Bruck: ceil(log2 P) steps).
+  double local = 0;
+  for (int r = 0; r < ranks; ++r) {
+    const double a = double(fp.rect[size_t(r)].area());
+    local = std::max(local, cost(PixelWork::Copy, a) +
+                                cost(PixelWork::DecodeBlend8, fp.brick_pixels[size_t(r)], brick_bytes) +
+                                cost(PixelWork::Scan, a));
+  }
+  phase("own bricks", local, 0);
+  phase("allgather", 0, lat * std::ceil(std::log2(std::max(2, ranks))));
+
+  const RadixKPlan plan = makeRadixKPlan(order.ranks, fp.rect, k);
+  const RadixKSchedule& s = plan.schedule;
+  auto encode = [&](double a, int bytes) {
+    return cost(PixelWork::Scan, a) + cost(PixelWork::Encode, a, bytes);
+  };
+
+  // 2. Folds: the nearer of each pair sends its whole image to the farther.
+  double fold_c = 0, fold_n = 0;
+  for (int i = 0; i < s.folds; ++i) {
+    const Rect& far = plan.content[size_t(2 * i)];
+    const Rect& near = plan.content[size_t(2 * i + 1)];
+    const double a = double(near.area());
+    const double c = encode(a, partial) + cost(PixelWork::Decode, a, partial) +
+                     cost(PixelWork::Copy, double(unionOf(far, near).area())) +
+                     cost(PixelWork::BlendFloat, double(far.area()) + a);
+    if (c > fold_c) fold_c = c, fold_n = lat + (a * partial + kHeaderBytes) / bw;
+  }
+  if (s.folds) phase("folds", fold_c, fold_n);
+
+  // 3. Rounds: per unit, the parts it encodes and sends, the parts it receives, decodes and
+  // blends with its own; the slowest unit sets the round's time.
+  for (int t = 0; t < s.rounds(); ++t) {
+    double worst = 0, worst_c = 0;
+    for (int u = 0; u < s.units(); ++u) {
+      const std::vector<int> group = s.group(t, u);
+      const int me = s.digit(t, u);
+      const std::vector<Rect> parts = splitRect(s.region(t, u, plan.whole), int(group.size()));
+      const Rect mine = plan.bound(t, u);
+      double c = 0, out = 0, in = 0;
+      int received = 0;
+      const Rect own = intersect(mine, parts[size_t(me)]);
+      Rect all = own;
+      double layers = double(own.area());
+      for (size_t j = 0; j < group.size(); ++j) {
+        if (int(j) == me) continue;
+        const double sent = double(intersect(mine, parts[j]).area());
+        if (sent > 0) c += encode(sent, partial), out += sent * partial + kHeaderBytes;
+        const Rect got = intersect(plan.bound(t, group[j]), parts[size_t(me)]);
+        if (!got.empty()) {
+          c += cost(PixelWork::Decode, double(got.area()), partial);
+          in += double(got.area()) * partial + kHeaderBytes;
+          all = unionOf(all, got);
+          layers += double(got.area());
+          ++received;
+        }
+      }
+      c += cost(PixelWork::Copy, double(own.area())) + cost(PixelWork::Copy, double(all.area())) +
+           cost(PixelWork::BlendFloat, layers);
+      // Sends go out together; receives are taken one at a time, a latency each (see direct).
+      const double total = c * slow + received * lat + std::max(out, in) / bw;
+      if (total > worst) worst = total, worst_c = c;
+    }
+    phase(("round " + std::to_string(t + 1) + " (k=" + std::to_string(s.radices[size_t(t)]) + ")").c_str(),
+          worst_c, worst - worst_c * slow);
+  }
+
+  // 4. Gather: every unit encodes its final part; rank 0 zero-fills the frame and decodes each
+  // part into it as it arrives.
+  double enc = 0, dec = 0, bytes = 0;
+  int messages = 0;
+  for (int u = 0; u < s.units(); ++u) {
+    const double a = double(intersect(plan.bound(s.rounds(), u),
+                                      s.region(s.rounds(), u, plan.whole)).area());
+    if (a <= 0) continue;
+    enc = std::max(enc, encode(a, finals));
+    dec += finals == 8 ? cost(PixelWork::Decode, a, 8) + cost(PixelWork::Copy, a)
+                       : cost(PixelWork::DecodeRGBA8, a);
+    if (plan.carrier(u) != 0) bytes += a * finals + kHeaderBytes, ++messages;
+  }
+  const double fill = cost(PixelWork::Fill8, double(width) * height);
+  const double transfer = messages * lat + bytes / bw;
+  // Rank 0 alone: its compute is not shared with other ranks' (they are done), so not slowed.
+  f.phases.emplace_back("gather", enc * slow + fill + dec + transfer);
+  f.compute_s += enc * slow + fill + dec;
+  f.seconds += f.phases.back().second;
+  return f;
+}
+
+}  // namespace
+
+std::string StrategyForecast::label() const {
+  return strategy == "radix-k" ? "radix-k k=" + std::to_string(radix) : strategy;
+}
+
+std::vector<StrategyForecast> forecastStrategies(const VisibilityOrder& order,
+                                                 const FrameFootprint& footprint, int width,
+                                                 int height, const CompositeOptions& options,
+                                                 const ModelSettings& model,
+                                                 const std::vector<int>& radices) {
+  const size_t ranks = footprint.rect.size();
+  if (footprint.brick_pixels.size() != ranks || footprint.bricks.size() != ranks ||
+      order.ranks.size() != ranks)
+    throw std::invalid_argument("strategy model: the footprint and the rank order disagree on the rank count");
+  std::vector<StrategyForecast> out{forecastDirect(footprint, width, height, options, model)};
+  for (int k : radices) out.push_back(forecastRadixK(order, footprint, width, height, k, options, model));
+  return out;
+}
+
+const StrategyForecast& fastest(const std::vector<StrategyForecast>& forecasts) {
+  if (forecasts.empty()) throw std::invalid_argument("strategy model: no candidates");
+  size_t best = 0;
+  for (size_t i = 1; i < forecasts.size(); ++i)
+    if (forecasts[i].seconds < forecasts[best].seconds - 1e-12) best = i;
+  return forecasts[best];
+}
+
+}  // namespace sortlast
