@@ -16,6 +16,14 @@ AutoCompositor::AutoCompositor(const CompositeOptions& options, std::vector<int>
 void AutoCompositor::begin(const FrameSetup& setup) {
   if (!setup.footprint)
     throw std::logic_error("compositing.strategy auto: the frame has no footprint to forecast from");
+  if (current_ && last_footprint_ && *last_footprint_ == *setup.footprint &&
+      last_ranks_ == setup.order->ranks && last_width_ == setup.width && last_height_ == setup.height) {
+    current_->begin(setup);
+    return;
+  }
+  last_footprint_ = std::make_unique<FrameFootprint>(*setup.footprint);
+  last_ranks_ = setup.order->ranks;
+  last_width_ = setup.width, last_height_ = setup.height;
   ModelSettings m;
   m.network = {opt_.network_latency_s, opt_.network_bandwidth_Bps};
   m.ranks_per_core = opt_.ranks_per_core;

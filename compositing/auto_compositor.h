@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "compositing/compositor.h"
+#include "compositing/strategy_model.h"
 
 namespace sortlast {
 
@@ -36,6 +37,11 @@ class AutoCompositor final : public Compositor {
   std::map<std::pair<std::string, int>, std::unique_ptr<Compositor>> made_;
   Compositor* current_ = nullptr;
   StrategyChoice choice_;
+  // The last frame's inputs: the same again (a still camera) keeps its choice without a forecast,
+  // which costs milliseconds at thousands of ranks.
+  std::unique_ptr<FrameFootprint> last_footprint_;
+  std::vector<int> last_ranks_;
+  int last_width_ = 0, last_height_ = 0;
 };
 
 }  // namespace sortlast

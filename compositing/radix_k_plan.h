@@ -19,6 +19,13 @@ struct RadixKPlan {
   int carrier(int unit) const { return rank_at[size_t(schedule.firstPosition(unit))]; }
   // A rectangle holding every pixel `unit` may hold before `round`.
   Rect bound(int round, int unit) const;
+  // Every unit's region and bound before each round 0 ... rounds() (index [round][unit]), in
+  // O(units) a round: bound() costs O(units) at the last rounds, so calling it for every unit
+  // (as the cost model does) would cost O(units^2).
+  struct Rounds {
+    std::vector<std::vector<Rect>> region, bound;
+  };
+  Rounds everyRound() const;
 };
 
 // `ranks_far_to_near`: every rank (VisibilityOrder::ranks); `rect_of_rank[r]`: rank r's content

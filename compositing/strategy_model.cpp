@@ -85,6 +85,7 @@ StrategyForecast forecastRadixK(const VisibilityOrder& order, const FrameFootpri
 
   const RadixKPlan plan = makeRadixKPlan(order.ranks, fp.rect, k);
   const RadixKSchedule& s = plan.schedule;
+  const RadixKPlan::Rounds at = plan.everyRound();
   auto encode = [&](double a, int bytes) {
     return cost(PixelWork::Scan, a) + cost(PixelWork::Encode, a, bytes);
   };
@@ -103,37 +104,42 @@ StrategyForecast forecastRadixK(const VisibilityOrder& order, const FrameFootpri
   if (s.folds) phase("folds", fold_c, fold_n);
 
   // 3. Rounds: per unit, the parts it encodes and sends, the parts it receives, decodes and
-  // blends with its own; the slowest unit sets the round's time.
+  // blends with its own; the slowest unit sets the round's time. (The group of units differing
+  // only in round t's digit: base + j * stride, j < k_t.)
   for (int t = 0; t < s.rounds(); ++t) {
     double worst = 0, worst_c = 0;
-    for (int u = 0; u < s.units(); ++u) {
-      const std::vector<int> group = s.group(t, u);
-      const int me = s.digit(t, u);
-      const std::vector<Rect> parts = splitRect(s.region(t, u, plan.whole), int(group.size()));
-      const Rect mine = plan.bound(t, u);
-      double c = 0, out = 0, in = 0;
-      int received = 0;
-      const Rect own = intersect(mine, parts[size_t(me)]);
-      Rect all = own;
-      double layers = double(own.area());
-      for (size_t j = 0; j < group.size(); ++j) {
-        if (int(j) == me) continue;
-        const double sent = double(intersect(mine, parts[j]).area());
-        if (sent > 0) c += encode(sent, partial), out += sent * partial + kHeaderBytes;
-        const Rect got = intersect(plan.bound(t, group[j]), parts[size_t(me)]);
-        if (!got.empty()) {
-          c += cost(PixelWork::Decode, double(got.area()), partial);
-          in += double(got.area()) * partial + kHeaderBytes;
-          all = unionOf(all, got);
-          layers += double(got.area());
-          ++received;
+    const int kt = s.radices[size_t(t)], stride = s.stride(t);
+    const std::vector<Rect>& bound = at.bound[size_t(t)];
+    // Group by group (its units share one region, so one split): O(units * k) a round.
+    for (int base = 0; base < s.units(); ++base) {
+      if (s.digit(t, base) != 0) continue;
+      const std::vector<Rect> parts = splitRect(at.region[size_t(t)][size_t(base)], kt);
+      for (int me = 0; me < kt; ++me) {
+        const Rect& mine = bound[size_t(base + me * stride)];
+        double c = 0, out = 0, in = 0;
+        int received = 0;
+        const Rect own = intersect(mine, parts[size_t(me)]);
+        Rect all = own;
+        double layers = double(own.area());
+        for (int j = 0; j < kt; ++j) {
+          if (j == me) continue;
+          const double sent = double(intersect(mine, parts[size_t(j)]).area());
+          if (sent > 0) c += encode(sent, partial), out += sent * partial + kHeaderBytes;
+          const Rect got = intersect(bound[size_t(base + j * stride)], parts[size_t(me)]);
+          if (!got.empty()) {
+            c += cost(PixelWork::Decode, double(got.area()), partial);
+            in += double(got.area()) * partial + kHeaderBytes;
+            all = unionOf(all, got);
+            layers += double(got.area());
+            ++received;
+          }
         }
+        c += cost(PixelWork::Copy, double(own.area())) + cost(PixelWork::Copy, double(all.area())) +
+             cost(PixelWork::BlendFloat, layers);
+        // Sends go out together; receives are taken one at a time, a latency each (see direct).
+        const double total = c * slow + received * lat + std::max(out, in) / bw;
+        if (total > worst) worst = total, worst_c = c;
       }
-      c += cost(PixelWork::Copy, double(own.area())) + cost(PixelWork::Copy, double(all.area())) +
-           cost(PixelWork::BlendFloat, layers);
-      // Sends go out together; receives are taken one at a time, a latency each (see direct).
-      const double total = c * slow + received * lat + std::max(out, in) / bw;
-      if (total > worst) worst = total, worst_c = c;
     }
     phase(("round " + std::to_string(t + 1) + " (k=" + std::to_string(s.radices[size_t(t)]) + ")").c_str(),
           worst_c, worst - worst_c * slow);
@@ -144,8 +150,7 @@ StrategyForecast forecastRadixK(const VisibilityOrder& order, const FrameFootpri
   double enc = 0, dec = 0, bytes = 0;
   int messages = 0;
   for (int u = 0; u < s.units(); ++u) {
-    const double a = double(intersect(plan.bound(s.rounds(), u),
-                                      s.region(s.rounds(), u, plan.whole)).area());
+    const double a = double(at.bound[size_t(s.rounds())][size_t(u)].area());
     if (a <= 0) continue;
     enc = std::max(enc, encode(a, finals));
     dec += finals == 8 ? cost(PixelWork::Decode, a, 8) + cost(PixelWork::Copy, a)

@@ -38,6 +38,7 @@ struct FrameFootprint {
   std::vector<Rect> rect;            // the union of its brick images' rectangles (empty: none)
   std::vector<double> brick_pixels;  // the sum of their areas
   std::vector<int> bricks;           // how many brick images it adds (direct send: messages)
+  bool operator==(const FrameFootprint&) const = default;
 };
 
 struct ModelSettings {

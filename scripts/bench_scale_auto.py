@@ -30,9 +30,12 @@ def main():
     ap.add_argument("--tolerance", type=float, default=0.10)
     a = ap.parse_args()
     sim = collections.defaultdict(dict)
+    ran = {}  # point -> (the strategy auto chose in the simulation, its simulated seconds)
     for path in a.sweeps:
         for r in csv.DictReader(open(path)):
-            if r["strategy"] == "auto":
+            if r["strategy"] == "auto":  # radix column: auto:NAME[:k]
+                parts = r["radix"].split(":")
+                ran[key(r)] = (label(parts[1], parts[2] if len(parts) > 2 else ""), float(r["seconds"]))
                 continue
             sim[key(r)][label(r["strategy"], r["radix"])] = float(r["seconds"])
     fc = collections.defaultdict(dict)
@@ -49,6 +52,12 @@ def main():
             continue
         s, f, c = sim[k], fc[k], chosen[k]
         best = min(s, key=s.get)
+        if k in ran:  # auto itself ran there: its choice must be the forecast's, its time the choice's
+            if ran[k][0] != c:
+                print(f"{k}: auto chose {ran[k][0]} in the simulation, the forecast says {c}", file=sys.stderr)
+                bad += 1
+            elif c in s and abs(ran[k][1] / s[c] - 1) > 0.01:
+                print(f"{k}: auto took {ran[k][1]:.6g} s, {c} alone {s[c]:.6g} s", file=sys.stderr)
         for name, t in s.items():
             if name in f:
                 ratios[name].append(f[name] / t)
@@ -72,7 +81,9 @@ def main():
     lines = [f"# `compositing.strategy: auto` on the simulated sweep", "",
              f"Written by `scripts/bench_scale_auto.py`. {n} points; auto within "
              f"{100 * a.tolerance:.0f} % of the best simulated strategy at {n - bad - unsimulated} "
-             f"of {n - unsimulated} simulated choices" +
+             f"of {n - unsimulated} simulated choices; auto itself ran in the simulation at "
+             f"{sum(k in ran for k in sim)} points, choosing as forecast at "
+             f"{sum(k in ran and ran[k][0] == chosen.get(k) for k in sim)}" +
              (f" ({unsimulated} choices not simulated)" if unsimulated else "") +
              (f"; worst +{100 * worst[10]:.1f} % ({worst[0]}, {worst[3]} ranks, {worst[4]}², {worst[6]} "
               f"against {worst[8]})" if worst else "") + ".", "",

@@ -9,13 +9,16 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <algorithm>
 #include <numeric>
+#include <random>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "compositing/pixel_cost.h"
 #include "compositing/radix_k.h"
+#include "compositing/radix_k_plan.h"
 #include "compositing/rle.h"
 #include "tests/unit/thread_transport.h"
 
@@ -94,6 +97,29 @@ TEST(StrategyModel, ForecastsTheRadixKPixelsOfEveryKindOfWork) {
             << pixelWorkName(PixelWork(w)) << ", " << c.ranks << " ranks, k = " << c.k << ", "
             << c.width << "x" << c.height << (rgba8 ? ", rgba8" : ", float");
       }
+    }
+}
+
+TEST(StrategyModel, EveryRoundsBoundsAreTheStrategysBounds) {
+  // The model's O(units) table of bounds against RadixKPlan::bound, which radix_k.cpp uses.
+  std::mt19937 rng(7);
+  for (int ranks : {1, 2, 3, 5, 8, 13, 30, 64, 100})
+    for (int k : {2, 3, 4, 8, 16}) {
+      std::vector<int> order(static_cast<size_t>(ranks));
+      std::iota(order.begin(), order.end(), 0);
+      std::shuffle(order.begin(), order.end(), rng);
+      std::vector<Rect> rects;
+      for (int r = 0; r < ranks; ++r)
+        rects.push_back(rng() % 5 == 0 ? Rect{} : Rect{int(rng() % 200), int(rng() % 100),
+                                                        int(rng() % 150) + 1, int(rng() % 90) + 1});
+      const RadixKPlan plan = makeRadixKPlan(order, rects, k);
+      const RadixKPlan::Rounds at = plan.everyRound();
+      for (int t = 0; t <= plan.schedule.rounds(); ++t)
+        for (int u = 0; u < plan.schedule.units(); ++u) {
+          EXPECT_EQ(at.bound[size_t(t)][size_t(u)], plan.bound(t, u))
+              << ranks << " ranks, k = " << k << ", round " << t << ", unit " << u;
+          EXPECT_EQ(at.region[size_t(t)][size_t(u)], plan.schedule.region(t, u, plan.whole));
+        }
     }
 }
 
