@@ -38,11 +38,13 @@ def load(name):
             r[k] = int(float(r[k]))
         for k in ("seconds", "bytes_sent", "max_rank_bytes", "messages", "pixels_composited", "layer_pixels"):
             r[k] = float(r[k])
-        r["name"] = r["strategy"] if r["strategy"] in ("direct", "binary-swap") else f"radix-k k={r['radix']}"
+        r["name"] = r["strategy"] if r["strategy"] in ("direct", "binary-swap", "auto") else f"radix-k k={r['radix']}"
     return rows
 
 
-sweep = load("bench-scale.csv") + load("big.csv")
+# The strategies' own runs at coverage 0.4 (auto's runs and other coverages: bench_scale_auto.py).
+sweep = [r for r in load("bench-scale.csv") + load("sweep-k32.csv") + load("big.csv")
+         if r["strategy"] != "auto" and abs(float(r["coverage"]) - 0.4) < 1e-9]
 valid = load("validation.csv")
 
 # The fitted model (non-negative fit, the first table of fit.md).
@@ -66,7 +68,7 @@ def predict(r):
 
 
 colours = {"direct": "tab:red", "binary-swap": "tab:blue", "radix-k k=4": "tab:green",
-           "radix-k k=8": "tab:purple", "radix-k k=16": "tab:brown"}
+           "radix-k k=8": "tab:purple", "radix-k k=16": "tab:brown", "radix-k k=32": "tab:olive"}
 md = ["# Compositing at scale: summary", "",
       "Written by `scripts/bench_scale_chart.py` from the CSVs here. Simulated seconds: SimGrid SMPI, "
       "the real strategies, compute charged at `rates.csv` (one simulated host = one core of the "

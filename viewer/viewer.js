@@ -325,6 +325,9 @@ function updateStats(meta, s, latency) {
     ['spacing', typeof s.sample_spacing === 'number' ? `${s.sample_spacing} voxel${s.sample_spacing_auto ? ' (auto)' : ''}` : '–'],
     ['ranks', s.ranks ?? state.scene.ranks ?? '–'],
   ];
+  // compositing.strategy auto: what it chose this frame, and its forecast.
+  if (s.compositing && s.compositing.chose)
+    rows.splice(6, 0, ['strategy', `auto: ${s.compositing.chose} (${ms(s.compositing.forecast_s)} ms forecast)`]);
   const el = $('stats');
   el.replaceChildren(...rows.map(([k, v]) => {
     const row = document.createElement('div');
@@ -591,7 +594,7 @@ function applyScene(scene) {
   $('shading').checked = settings['render.shading'] === true;
   const scenePreint = settings['transfer.preintegrated'] === true ? 'on' : 'off';
   setOptions($('preint'), [['scene', `as in scene (${scenePreint})`], ['auto', 'auto'], ['on', 'on'], ['off', 'off']], 'scene');
-  setOptions($('strategy'), ['direct', 'binary-swap', 'radix-k'], settings['compositing.strategy'] || 'direct');
+  setOptions($('strategy'), ['direct', 'binary-swap', 'radix-k', 'auto'], settings['compositing.strategy'] || 'direct');
   // The scene's own `auto` (the default) leaves the choice to the session; the number box then
   // shows 1 until the user takes it over.
   $('spacing-auto').checked = settings['render.sample_spacing'] === 'auto';
