@@ -44,6 +44,7 @@
 #include <vector>
 
 #include "bench/comma_list.h"
+#include "bench/layer_dump.h"
 #include "compositing/compositor.h"
 #include "compositing/rle.h"
 
@@ -110,38 +111,6 @@ BrickImage makeLayer(int rank, int w, int h) {
   return b;
 }
 
-// A dump of one rendered frame (sortlast render --dump-layers): frame size, brick order far to
-// near, and each brick's packed image.
-struct Dump {
-  int width = 0, height = 0;
-  std::vector<int> order;
-};
-
-Dump readDump(const std::string& dir) {
-  Dump d;
-  std::ifstream in(dir + "/order.txt");
-  if (!(in >> d.width >> d.height)) throw std::runtime_error("cannot read " + dir + "/order.txt");
-  for (int id; in >> id;) d.order.push_back(id);
-  return d;
-}
-
-BrickImage readBrick(const std::string& dir, int id) {
-  std::ifstream in(dir + "/brick_" + std::to_string(id) + ".bin", std::ios::binary);
-  std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (!in.good() && !in.eof()) throw std::runtime_error("cannot read brick " + std::to_string(id));
-  return unpackBrickImage(bytes);
-}
-
-// The same image with RLE off: decoded and re-encoded with runs of 1.
-BrickImage withoutRle(const BrickImage& b) {
-  BrickImage out{b.brick_id, b.rect, {}};
-  if (b.rect.empty()) return out;
-  std::vector<uint8_t> px(size_t(b.rect.area()) * 4);
-  rleDecode(b.rle, size_t(b.rect.area()), px);
-  rleEncode(px, out.rle, 4, 1);
-  return out;
-}
-
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   size_t n = v.size();
@@ -190,16 +159,15 @@ int main(int argc, char** argv) {
   // Far to near: a seeded permutation of the ranks (one brick per rank, brick id = rank), or the
   // dump's brick order cut into one contiguous run per rank.
   VisibilityOrder order;
-  Dump dump;
+  LayerDump dump;
   std::vector<BrickImage> dumped;  // this rank's run
   if (!layers_dir.empty()) {
-    dump = readDump(layers_dir);
+    dump = readLayerDump(layers_dir);
     sizes = {std::to_string(dump.width)};
     order.bricks = dump.order;
     for (int r = 0; r < ranks; ++r) order.ranks.push_back(r);
-    const size_t n = dump.order.size();
-    for (size_t i = n * size_t(rank) / size_t(ranks); i < n * size_t(rank + 1) / size_t(ranks); ++i)
-      dumped.push_back(readBrick(layers_dir, dump.order[i]));
+    for (size_t i = dump.first(rank, ranks); i < dump.last(rank, ranks); ++i)
+      dumped.push_back(readDumpedBrick(layers_dir, dump.order[i]));
   } else {
     for (int r = 0; r < ranks; ++r) order.ranks.push_back(r);
     std::shuffle(order.ranks.begin(), order.ranks.end(), std::mt19937(42));

@@ -47,6 +47,8 @@ def main():
             chosen[k] = label(r["strategy"], r["radix"])
     rows, bad, unsimulated, ratios = [], 0, 0, collections.defaultdict(list)
     for k in sorted(sim, key=lambda k: (k[0], k[1], k[2], k[4], k[3])):
+        if k not in chosen and k in ran:  # real layers: no forecast here, auto's own choice
+            chosen[k] = ran[k][0]
         if k not in chosen:
             print(f"no forecast for {k}", file=sys.stderr)
             continue

@@ -19,6 +19,12 @@
 //          [--strategies direct,binary-swap,radix-k:4] [--precisions float,rgba8] [--rle on,off]
 //          [--rates RATES.csv] [--platform NAME] [--header] [--check]
 //          [--network LATENCY_US,GBIT_PER_S[,RANKS_PER_CORE]] [--ranks-per-core R]
+//          [--layers DIR]
+// --layers DIR: real brick images instead of spheres, one rendered frame dumped by `sortlast render
+// --dump-layers DIR` (bench/layer_dump.h), its brick order dealt to the P ranks as contiguous runs
+// (ranks beyond the brick count own nothing); the frame size is the dump's, the coverage column
+// the frame's covered fraction, and auto forecasts from the bricks' own rectangles (allgathered
+// before the timing).
 // Strategy `auto` (compositing.strategy: auto) forecasts from every rank's layer bound
 // (scale_layers.h sphereLayerBound, as a renderer forecasts from brick boxes) with the network of
 // --network (default 40 us, 10 Gbit/s; scripts/scale_platform.py --print-network gives a platform's) and prints the strategy it chose in the radix column as
@@ -35,9 +41,11 @@
 #include <vector>
 
 #include "bench/comma_list.h"
+#include "bench/layer_dump.h"
 #include "compositing/pixel_rates.h"
 #include "bench/scale/scale_layers.h"
 #include "compositing/compositor.h"
+#include "compositing/rect_image.h"
 #include "compositing/strategy_model.h"
 #ifdef SORTLAST_SMPI
 #include "bench/scale/smpi_charge.h"
@@ -115,7 +123,7 @@ int main(int argc, char** argv) {
   if (ranks > kMaxRanks) fail(rank, "at most " + std::to_string(kMaxRanks) + " ranks");
   std::vector<std::string> sizes = {"1024"}, strategies = {"direct", "binary-swap", "radix-k:4"};
   std::vector<std::string> precisions = {"float"}, rles = {"on"};
-  std::string rates_file, platform = "native";
+  std::string rates_file, platform = "native", layers_dir;
   double coverage = 0.4, latency_us = 40, gbps = 10, ranks_per_core = 1;
   int reps = 3, warmup = 1;
   bool header = false, check = false;
@@ -136,6 +144,7 @@ int main(int argc, char** argv) {
       else if (a == "--rates") rates_file = next();
       else if (a == "--platform") platform = next();
       else if (a == "--ranks-per-core") ranks_per_core = std::stod(next());
+      else if (a == "--layers") layers_dir = next();
       else if (a == "--network") {
         const std::vector<std::string> v = splitCommas(next());
         if (v.size() != 2 && v.size() != 3)
@@ -164,7 +173,20 @@ int main(int argc, char** argv) {
     std::printf("platform,strategy,radix,precision,rle,ranks,width,height,coverage,seconds,"
                 "bytes_sent,max_rank_bytes,messages,pixels_composited,layer_pixels,active_ranks\n");
 
-  const VisibilityOrder order = scale::sphereOrder(ranks);
+  VisibilityOrder order;
+  LayerDump dump;
+  if (layers_dir.empty()) {
+    order = scale::sphereOrder(ranks);
+  } else {
+    try {
+      dump = readLayerDump(layers_dir);
+    } catch (const std::exception& e) {
+      fail(rank, e.what());
+    }
+    sizes = {std::to_string(dump.width)};
+    order.bricks = dump.order;
+    for (int r = 0; r < ranks; ++r) order.ranks.push_back(r);  // rank r: the r-th run, far to near
+  }
   int bad = 0;
   for (const std::string& size : sizes) {
     int w = 0;
@@ -173,27 +195,51 @@ int main(int argc, char** argv) {
     } catch (const std::exception&) {
     }
     if (w < 1) fail(rank, "bad size '" + size + "'");
-    // The raw layer only where a variant needs it: at 4,096 ranks every copy of every rank's
+    const int h = layers_dir.empty() ? w : dump.height;
+    // The raw layers only where a variant needs them: at 4,096 ranks every copy of every rank's
     // layer is in this one process's memory.
-    BrickImage layer, layer_raw;
+    std::vector<BrickImage> layers, layers_raw;
     const bool need_raw = std::find(rles.begin(), rles.end(), "off") != rles.end();
+    FrameFootprint footprint;
     try {
-      layer = scale::sphereLayer(rank, ranks, w, w, coverage, true);
-      if (need_raw) layer_raw = scale::sphereLayer(rank, ranks, w, w, coverage, false);
+      if (layers_dir.empty()) {
+        layers = {scale::sphereLayer(rank, ranks, w, w, coverage, true)};
+        if (need_raw) layers_raw = {scale::sphereLayer(rank, ranks, w, w, coverage, false)};
+        // What auto forecasts from: every rank's bound, computed on every rank (no message).
+        for (int r = 0; r < ranks; ++r) {
+          footprint.rect.push_back(scale::sphereLayerBound(r, ranks, w, w, coverage));
+          footprint.brick_pixels.push_back(double(footprint.rect.back().area()));
+          footprint.bricks.push_back(1);
+        }
+      } else {
+        for (size_t i = dump.first(rank, ranks); i < dump.last(rank, ranks); ++i) {
+          layers.push_back(readDumpedBrick(layers_dir, dump.order[i]));
+          if (need_raw) layers_raw.push_back(withoutRle(layers.back()));
+        }
+      }
     } catch (const std::exception& e) {
       fail(rank, e.what());
     }
-    // What auto forecasts from: every rank's bound, computed on every rank (no message).
-    FrameFootprint footprint;
-    for (int r = 0; r < ranks; ++r) {
-      footprint.rect.push_back(scale::sphereLayerBound(r, ranks, w, w, coverage));
-      footprint.brick_pixels.push_back(double(footprint.rect.back().area()));
-      footprint.bricks.push_back(1);
+    long long area = 0;
+    Rect bound;
+    for (const BrickImage& b : layers) area += b.rect.area(), bound = unionOf(bound, b.rect);
+    if (!layers_dir.empty()) {
+      // Real layers: every rank's rectangle and pixels, gathered once, outside the timing.
+      const long long mine6[6] = {bound.x, bound.y, bound.w, bound.h, area, (long long)layers.size()};
+      std::vector<long long> every(6 * size_t(ranks));
+      MPI_Allgather(mine6, 6, MPI_LONG_LONG, every.data(), 6, MPI_LONG_LONG, MPI_COMM_WORLD);
+      for (int r = 0; r < ranks; ++r) {
+        const long long* e = &every[6 * size_t(r)];
+        footprint.rect.push_back(Rect{int(e[0]), int(e[1]), int(e[2]), int(e[3])});
+        footprint.brick_pixels.push_back(double(e[4]));
+        footprint.bricks.push_back(int(e[5]));
+      }
     }
-    double mine[2] = {double(layer.rect.area()), layer.rect.empty() ? 0.0 : 1.0}, all[2] = {0, 0};
+    double mine[2] = {double(area), area > 0 ? 1.0 : 0.0}, all[2] = {0, 0};
     MPI_Reduce(mine, all, 2, MPI_DOUBLE, MPI_SUM, 0, MPI_COMM_WORLD);
 
     ImageRGBA8 first_frame;
+    double covered_fraction = coverage;  // real layers: the first frame's, on rank 0
     for (const std::string& spec : strategies)
     for (const std::string& precision : precisions)
     for (const std::string& rle : rles) {
@@ -223,14 +269,14 @@ int main(int argc, char** argv) {
       for (int i = 0; i < warmup + reps; ++i) {
         // Every rank adds its brick even when it shows nothing (an empty rectangle): direct send's
         // rank 0 counts one image per brick of the order.
-        std::vector<BrickImage> mine_images{opts.rle ? layer : layer_raw};
+        std::vector<BrickImage> mine_images = opts.rle ? layers : layers_raw;
         CompositeStats cs;
         g_messages[rank] = g_bytes[rank] = g_pixels[rank] = 0;
         MPI_Barrier(MPI_COMM_WORLD);
         g_counting[rank] = true;
         const double t0 = MPI_Wtime();
         ImageRGBA8 frame =
-            compositor->composite(std::move(mine_images), order, w, w, MPI_COMM_WORLD, cs, &footprint);
+            compositor->composite(std::move(mine_images), order, w, h, MPI_COMM_WORLD, cs, &footprint);
         const double dt = MPI_Wtime() - t0;
         g_counting[rank] = false;
         double slowest = 0;
@@ -244,16 +290,17 @@ int main(int argc, char** argv) {
           first_frame = frame;
           long long covered = 0;
           for (size_t p = 3; p < frame.px.size(); p += 4) covered += frame.px[p] > 0;
-          const double f = double(covered) / (double(w) * w);
-          std::fprintf(stderr, "bench_scale: %dx%d covered fraction %.4f (asked %.4f)\n", w, w, f,
-                       coverage);
-          if (std::abs(f - coverage) > 0.05 * coverage) ++bad;
+          const double f = double(covered) / (double(w) * h);
+          std::fprintf(stderr, "bench_scale: %dx%d covered fraction %.4f (asked %.4f)\n", w, h, f,
+                       layers_dir.empty() ? coverage : f);
+          if (layers_dir.empty() && std::abs(f - coverage) > 0.05 * coverage) ++bad;
+          if (!layers_dir.empty()) covered_fraction = f;
         } else {
           int worst = 0;
           for (size_t p = 0; p < frame.px.size() && p < first_frame.px.size(); ++p)
             worst = std::max(worst, std::abs(int(frame.px[p]) - int(first_frame.px[p])));
           if (frame.px.size() != first_frame.px.size()) worst = 255;
-          std::fprintf(stderr, "bench_scale: %dx%d %s %s rle-%s: largest difference %d/255\n", w, w,
+          std::fprintf(stderr, "bench_scale: %dx%d %s %s rle-%s: largest difference %d/255\n", w, h,
                        spec.c_str(), precision.c_str(), rle.c_str(), worst);
           if (precision == "float" && worst > 1) ++bad;
         }
@@ -267,7 +314,7 @@ int main(int argc, char** argv) {
         std::printf("%s,%s,%s,%s,%s,%d,%d,%d,%.4g,%.6g,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f\n",
                     platform.c_str(), name.c_str(),
                     radix_col.c_str(), precision.c_str(),
-                    rle.c_str(), ranks, w, w, coverage, median(times), counts[1], max_bytes,
+                    rle.c_str(), ranks, w, h, covered_fraction, median(times), counts[1], max_bytes,
                     counts[0], counts[2], all[0], all[1]);
         std::fflush(stdout);
       }
