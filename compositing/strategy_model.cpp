@@ -190,7 +190,7 @@ const StrategyForecast& fastest(const std::vector<StrategyForecast>& forecasts) 
   if (forecasts.empty()) throw std::invalid_argument("strategy model: no candidates");
   size_t best = 0;
   for (size_t i = 1; i < forecasts.size(); ++i)
-    if (forecasts[i].seconds < forecasts[best].seconds - 1e-12) best = i;
+    if (forecasts[i].seconds <= forecasts[best].seconds + 1e-12) best = i;
   return forecasts[best];
 }
 
