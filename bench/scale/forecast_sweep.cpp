@@ -8,7 +8,6 @@
 //   platform,precision,rle,ranks,width,height,coverage,strategy,radix,forecast_s,chosen
 // Usage: forecast_sweep --networks NETWORKS.csv [--radices 2,4,8,16,32] [--first-frame] SWEEP.csv...
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <map>
