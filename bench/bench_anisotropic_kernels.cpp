@@ -1,4 +1,4 @@
-// Times computeAnisotropicKernels (common/anisotropic_kernels.h) with the default parameters on a
+// Times computeAnisotropicKernels (io/anisotropic_kernels.h) with the default parameters on a
 // procedural set (h = 2 spacings, as configs/particles_layers.yaml): the grid renderer runs it
 // once per brick and time step on the brick's particles and ghosts. One thread. Prints one JSON
 // line: the fastest of `repeats` runs, seconds per million particles, and how many particles
@@ -10,8 +10,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "common/anisotropic_kernels.h"
-#include "common/particles.h"
+#include "io/anisotropic_kernels.h"
+#include "io/particles.h"
 
 int main(int argc, char** argv) {
   using namespace sortlast;

@@ -1,7 +1,7 @@
 // The glow emitters' GL cost alone (issue 16): one fullscreen pass per frame evaluates every
-// emitter's exact segment integral (worker/glow/glow_segment.glsl) over each pixel's ray inside the
+// emitter's exact segment integral (render/glow/glow_segment.glsl) over each pixel's ray inside the
 // glow box, on llvmpipe; then the frame's PSNR (8-bit, after the tone map) against the same
-// integral in double on the CPU. What one brick's glow pass (worker/glow/glow_renderer.h) costs
+// integral in double on the CPU. What one brick's glow pass (render/glow/glow_renderer.h) costs
 // with d = 1, without the pipeline around it (scripts/bench-glow measures that too, through
 // `sortlast render`).
 //
@@ -18,12 +18,12 @@
 
 #include "bench/glsl_files.h"  // generated from bench/*.glsl (cmake/embed_shaders.cmake)
 #include "common/camera.h"
-#include "common/glow_integral.h"
-#include "worker/gl/gl_context.h"
-#include "worker/gl/gl_program.h"
-#include "worker/gl/glsl_files.h"
-#include "worker/glow/glow_gl.h"
-#include "worker/glow/glsl_files.h"
+#include "glow/glow_integral.h"
+#include "render/gl/gl_context.h"
+#include "render/gl/gl_program.h"
+#include "render/gl/glsl_files.h"
+#include "render/glow/glow_gl.h"
+#include "render/glow/glsl_files.h"
 
 using namespace sortlast;
 
@@ -61,7 +61,7 @@ int main(int argc, char** argv) {
 
   auto ctx = createGlContext(argc > 4 ? argv[4] : "osmesa");  // egl: scripts/gpu-check
   const GlApi& gl = ctx->gl();
-  // The glow pass's chunks (worker/glow/glow_renderer.cpp) with this benchmark's main.
+  // The glow pass's chunks (render/glow/glow_renderer.cpp) with this benchmark's main.
   unsigned program = linkProgram(gl, ShaderSource().add(glsl::fullscreen_vert),
                                  ShaderSource()
                                      .add(glsl::glow_segment)

@@ -1,4 +1,4 @@
-// Times buildParticleGrid (worker/particles/metaball_grid.h) the way the grid renderer calls it (cells of
+// Times buildParticleGrid (render/particles/metaball_grid.h) the way the grid renderer calls it (cells of
 // h/2 over the particles' box plus h), on a procedural set: it runs once per brick and time step,
 // so in situ it is paid every step. Prints one JSON line; the fastest of --repeats runs.
 // Usage: bench_metaball_grid [procedural (splash | layers)] [count] [repeats]
@@ -8,8 +8,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "common/particles.h"
-#include "worker/particles/metaball_grid.h"
+#include "io/particles.h"
+#include "render/particles/metaball_grid.h"
 
 int main(int argc, char** argv) {
   using namespace sortlast;

@@ -1,4 +1,4 @@
-// Times the slices method's per-brick work (worker/particles/metaball_slices_renderer.h), paid once
+// Times the slices method's per-brick work (render/particles/metaball_slices_renderer.h), paid once
 // per brick and time step: the coarse bit voxelization, the slots and lists (CPU,
 // buildSliceLattice), and the whole addBrick (that, the upload and the splat in a compute shader).
 // Also the bit voxelization done in GL instead (bench_voxelize.comp.glsl, one invocation per
@@ -14,10 +14,10 @@
 #include <string>
 
 #include "bench/glsl_files.h"  // generated from bench/*.glsl (cmake/embed_shaders.cmake)
-#include "common/particles.h"
-#include "worker/gl/gl_program.h"
-#include "worker/particles/metaball_slices.h"
-#include "worker/particles/metaball_slices_renderer.h"
+#include "io/particles.h"
+#include "render/gl/gl_program.h"
+#include "render/particles/metaball_slices.h"
+#include "render/particles/metaball_slices_renderer.h"
 
 namespace {
 

@@ -1,5 +1,5 @@
 // bench/bench_metaball_slices.cpp's GL bit voxelization: the same test as
-// worker/particles/metaball_slices.cpp (sphere of radius h padded 1% against each voxel's closed
+// render/particles/metaball_slices.cpp (sphere of radius h padded 1% against each voxel's closed
 // box), one invocation per particle, one bit per voxel (atomicOr), x fastest. Not used by the
 // renderer: measured against the CPU pass it would replace.
 layout(local_size_x = 64) in;

@@ -3,7 +3,7 @@
 // figures of the tests (exact evaluation against OpenSubdiv, float tables against exact) and the
 // coarse meshes' deviation from the limit surface. One CSV row per mesh on stdout.
 //
-// Usage: subdiv_bench MESH[@R] ...   MESH: a procedural name (common/subdiv/subdiv_input.h) or an .obj
+// Usage: subdiv_bench MESH[@R] ...   MESH: a procedural name (subdiv/subdiv_input.h) or an .obj
 //        file; @R refines it R times first (Catmull-Clark, then a small irregular deformation) to
 //        reach a face count.
 #include <glm/geometric.hpp>
@@ -15,9 +15,9 @@
 #include <string>
 
 #include "common/error.h"
-#include "common/subdiv/subdiv_coarse.h"
-#include "common/subdiv/subdiv_input.h"
-#include "common/subdiv/subdiv_tables.h"
+#include "subdiv/subdiv_coarse.h"
+#include "subdiv/subdiv_input.h"
+#include "subdiv/subdiv_tables.h"
 #include "subdiv_reference.h"
 
 using namespace sortlast;

@@ -17,8 +17,8 @@
 #include <string>
 
 #include "common/error.h"
-#include "common/subdiv/subdiv_input.h"
-#include "worker/surfaces/subdiv_renderer.h"
+#include "subdiv/subdiv_input.h"
+#include "render/surfaces/subdiv_renderer.h"
 
 using namespace sortlast;
 

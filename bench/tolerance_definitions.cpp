@@ -1,7 +1,7 @@
 // One-off experiment behind the choice of what "tolerance x %" means (results/adaptive/README.md).
 // The paper gives eq. 3 (a block's squared error) and tolerances in percent, but not what the
 // percentage is of. For every block and level this computes eq. 3 exactly as the preprocessing does
-// (it includes common/adaptive_blocks.cpp to reach the per-level errors), then the data left under
+// (it includes adaptive/adaptive_blocks.cpp to reach the per-level errors), then the data left under
 // four readings of "E <= x %":
 //   A: E <= x * sum v^2          B: E <= x^2 * n * R^2       (R: the value range, n: samples)
 //   C: E <= x * n * R^2          D: E <= x^2 * sum v^2       (the one sortlast uses)
@@ -12,7 +12,7 @@
 #include <cstdlib>
 #include <fstream>
 
-#include "common/adaptive_blocks.cpp"
+#include "adaptive/adaptive_blocks.cpp"
 
 using namespace sortlast;
 

@@ -3,8 +3,8 @@
 #
 #   include(cmake/embed_shaders.cmake)              (the top-level CMakeLists.txt) defines
 #   sortlast_embed_glsl(TARGET HEADER [DIR dir])    which generates, under the build tree,
-#       generated/HEADER (e.g. worker/volume/glsl_files.h) declaring one
-#       `extern const sortlast::GlslFile` (worker/gl/shader_source.h) per file of DIR (default: the
+#       generated/HEADER (e.g. render/volume/glsl_files.h) declaring one
+#       `extern const sortlast::GlslFile` (render/gl/shader_source.h) per file of DIR (default: the
 #       calling folder), named after the file: raycast_march.frag.glsl -> glsl::raycast_march_frag,
 #       and generated/HEADER's .cpp defining them (added to TARGET), written again whenever a
 #       .glsl file there (or this script) changes; the header only when its names change. A
@@ -54,7 +54,7 @@ if(CMAKE_SCRIPT_MODE_FILE)
   # recompiles the generated .cpp alone (Ninja re-stats a custom command's outputs).
   file(WRITE "${OUT_H}.new" "${banner}
 #pragma once
-#include \"worker/gl/shader_source.h\"
+#include \"render/gl/shader_source.h\"
 
 namespace sortlast::glsl {
 

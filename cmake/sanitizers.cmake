@@ -25,7 +25,7 @@ if(SORTLAST_FUZZ)
 elseif(SORTLAST_SANITIZE)
   # -O0 (after the build type's -O2/-O3 on the command line, so it wins) for what costs compile
   # time and little run time, -O1 (sortlast_sanitizer_optimise below) for the libraries where the
-  # unit tests spend theirs. Measured: master/session/render_session.cpp compiles in 11.2 s at -O0,
+  # unit tests spend theirs. Measured: session/render_session.cpp compiles in 11.2 s at -O0,
   # 17.5 s at -O1 (8.9 s at the Release build's -O3); the sanitizer unit tests ran 170 s with
   # everything at -O0, about 40 s at -O1.
   add_compile_options(${SORTLAST_SANITIZER_FLAGS} -O0)

@@ -1,7 +1,7 @@
 #pragma once
 // A brick: one of the d x d x d subvolumes of the grid. Neighbouring bricks share their face
 // samples; each also stores one ghost layer beyond its faces so interpolation, and the gradients of
-// render.shading (differences one voxel beyond a face: worker/volume/volume_shading.h), never read
+// render.shading (differences one voxel beyond a face: render/volume/volume_shading.h), never read
 // outside its own texture.
 #include <vector>
 

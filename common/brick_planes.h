@@ -3,7 +3,7 @@
 // sample grid; particle bricks use the same planes when there is a volume (so a volume brick and
 // the particles inside it make one brick image), with the outer planes moved out to hold every
 // particle, or d equal slabs of the particles' domain when there is none. Either way the bricks
-// form a rectilinear grid, which is what the visibility order (compositing/visibility.h) needs.
+// form a rectilinear grid, which is what the visibility order (common/visibility.h) needs.
 #include <array>
 #include <vector>
 

@@ -4,7 +4,7 @@
 // strategies do, so that grouping the blends differently cannot change the frame).
 #include <vector>
 
-#include "common/image.h"
+#include "io/image.h"
 #include "compositing/brick_image.h"
 #include "compositing/rect_image.h"
 

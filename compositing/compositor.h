@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "common/image.h"
+#include "io/image.h"
 #include "compositing/brick_image.h"
-#include "compositing/visibility.h"
+#include "common/visibility.h"
 
 namespace sortlast {
 

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "common/camera.h"
-#include "common/image.h"
+#include "io/image.h"
 #include "compositing/brick_image.h"
 
 namespace sortlast {

@@ -24,7 +24,7 @@
 #include "common/camera.h"
 #include "compositing/compositor.h"
 #include "compositing/pixel_rates.h"
-#include "compositing/visibility.h"
+#include "common/visibility.h"
 
 namespace sortlast {
 

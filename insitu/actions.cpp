@@ -9,9 +9,9 @@
 #include <set>
 
 #include "common/error.h"
-#include "common/scene.h"
+#include "scene/scene.h"
 #include "insitu/output_names.h"
-#include "master/service/listen_address.h"
+#include "common/listen_address.h"
 
 namespace sortlast {
 

@@ -27,7 +27,7 @@ struct RenderAction {
   std::string output;  // image pattern with {step} (insitu/output_names.h); empty: cinema only
   Trigger trigger;
   // key.path=VALUE (the value as YAML flow text), frame keys only, from `scene:`; the session's
-  // request keys (master/session/render_session.h FrameRequest::overrides).
+  // request keys (session/render_session.h FrameRequest::overrides).
   std::vector<std::string> overrides;
   std::optional<CinemaSpec> cinema;
 };

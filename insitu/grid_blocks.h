@@ -13,7 +13,7 @@
 #include "common/brick.h"
 #include "common/grid.h"
 #include "sortlast/insitu.h"
-#include "worker/volume/brick_samples.h"
+#include "render/volume/brick_samples.h"
 
 namespace sortlast {
 

@@ -13,7 +13,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "common/error.h"
-#include "common/particles.h"
+#include "io/particles.h"
 #include "compositing/box_order.h"
 #include "insitu/actions.h"
 #include "insitu/cinema.h"
@@ -21,13 +21,13 @@
 #include "insitu/output_names.h"
 #include "insitu/particle_exchange.h"
 #include "insitu/trigger.h"
-#include "master/session/brick_renderer.h"
-#include "master/session/collective.h"
-#include "master/service/frame_service.h"
-#include "master/session/render_session.h"
-#include "master/service/listen_address.h"
-#include "master/service/serve_job.h"
-#include "master/session/session_layout.h"
+#include "render/brick_renderer.h"
+#include "session/collective.h"
+#include "service/frame_service.h"
+#include "session/render_session.h"
+#include "common/listen_address.h"
+#include "service/serve_job.h"
+#include "session/session_layout.h"
 
 namespace sortlast {
 

@@ -5,7 +5,7 @@
 #include <system_error>
 
 #include "common/error.h"
-#include "common/image.h"
+#include "io/image.h"
 
 namespace sortlast {
 

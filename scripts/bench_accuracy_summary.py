@@ -14,7 +14,7 @@ import sys
 
 NEW_TAGS = ("pre", "astep", "shade")  # issue 13's features, as tags in the setting names
 # The setting that was sortlast's defaults per data set before issue 30 (ray casting, 0.5 voxel,
-# ERT 0.99, pre-integration `auto`: on for neghip's steep band only, common/scene.h
+# ERT 0.99, pre-integration `auto`: on for neghip's steep band only, scene/scene.h
 # kSteepOpacitySlope); since issue 30 the defaults are `defaults_auto` (render.sample_spacing: auto).
 DEFAULTS = {"neghip": "raycast_s0.5_ert0.99_pre"}
 DEFAULT_PLAIN = "raycast_s0.5_ert0.99"

@@ -1,7 +1,7 @@
 // Colour-map presets for the transfer-function editor: a few control colours of each published
 // map (ParaView's "Cool to Warm" is Moreland's diverging map; Viridis, Inferno and Plasma are
 // matplotlib's), interpolated linearly in RGB between them. Colours are 0..1. They are previews:
-// every name here is one of the server's built-in colour maps (common/colormaps/), and a request
+// every name here is one of the server's built-in colour maps (transfer/colormaps/), and a request
 // names it (transfer.colormap), so the volume is drawn with the full definition.
 
 const hex = (h) => [1, 3, 5].map((i) => parseInt(h.slice(i, i + 2), 16) / 255);

@@ -16,7 +16,7 @@
 
 #include "compositing/pixel_rates.h"
 #include "bench/scale/scale_layers.h"
-#include "common/image.h"
+#include "io/image.h"
 #include "compositing/blend.h"
 #include "compositing/rect_image.h"
 

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "compositing/brick_image.h"
-#include "compositing/visibility.h"
+#include "common/visibility.h"
 
 namespace sortlast::scale {
 

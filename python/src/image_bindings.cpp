@@ -1,4 +1,4 @@
-// Frames out of Python the way `sortlast render` writes them (common/image.h): over the scene's
+// Frames out of Python the way `sortlast render` writes them (io/image.h): over the scene's
 // background, PNG (8-bit) or EXR (float). The Image type's _repr_png_ and save() use these.
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
@@ -7,8 +7,8 @@
 
 #include "bindings.h"
 #include "common/error.h"
-#include "common/image.h"
-#include "common/image_files.h"
+#include "io/image.h"
+#include "io/image_files.h"
 
 namespace sortlast_py {
 

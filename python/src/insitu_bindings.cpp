@@ -11,7 +11,7 @@
 #include "arrays.h"
 #include "bindings.h"
 #include "common/error.h"
-#include "master/session/collective.h"
+#include "session/collective.h"
 
 namespace sortlast_py {
 

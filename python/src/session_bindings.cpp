@@ -1,6 +1,6 @@
 // sortlast.Session (and through it sortlast.render): a thin client of the resident session
-// (master/session/render_session.h), driven the way `sortlast render` drives it
-// (master/cli/render_job.cpp). Long calls release the GIL; a JobFailed becomes sortlast.InputError
+// (session/render_session.h), driven the way `sortlast render` drives it
+// (app/render_job.cpp). Long calls release the GIL; a JobFailed becomes sortlast.InputError
 // with its message on every rank, and the session stays usable.
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
@@ -9,9 +9,9 @@
 #include <optional>
 
 #include "bindings.h"
-#include "common/scene.h"
-#include "master/session/collective.h"
-#include "master/session/render_session.h"
+#include "scene/scene.h"
+#include "session/collective.h"
+#include "session/render_session.h"
 
 namespace sortlast_py {
 

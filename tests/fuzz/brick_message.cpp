@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "common/image.h"
+#include "io/image.h"
 #include "compositing/blend.h"
 #include "compositing/brick_image.h"
 #include "compositing/rect_image.h"

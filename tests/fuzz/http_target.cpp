@@ -1,10 +1,10 @@
-// libFuzzer target: the service's request target (master/service/http_common.h): split at '?', the path
+// libFuzzer target: the service's request target (service/http_common.h): split at '?', the path
 // percent-decoded, query parameters looked up and decoded. Malformed escapes give nullopt, never
 // an exception or a read past the end.
 #include <cstdint>
 #include <string_view>
 
-#include "master/service/http_common.h"
+#include "service/http_common.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace sortlast::front;

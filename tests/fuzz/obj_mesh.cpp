@@ -1,4 +1,4 @@
-// libFuzzer target: an OBJ surface mesh with subdivision tags (common/subdiv/subdiv_input.h,
+// libFuzzer target: an OBJ surface mesh with subdivision tags (subdiv/subdiv_input.h,
 // readObjMesh) on any text, then, for small meshes, the control mesh, the exact evaluation with
 // its patch trees and the tables. Bad input must end in InputError; anything else (a logic_error
 // from a broken invariant, a crash) is a bug.
@@ -9,9 +9,9 @@
 #include <string>
 
 #include "common/error.h"
-#include "common/subdiv/subdiv_eval.h"
-#include "common/subdiv/subdiv_input.h"
-#include "common/subdiv/subdiv_tables.h"
+#include "subdiv/subdiv_eval.h"
+#include "subdiv/subdiv_input.h"
+#include "subdiv/subdiv_tables.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace sortlast;

@@ -1,11 +1,11 @@
-// libFuzzer target: the CSV particle reader (common/particles.h, parseCsvParticles) on any text.
+// libFuzzer target: the CSV particle reader (io/particles.h, parseCsvParticles) on any text.
 // Bad input must end in InputError naming the line.
 #include <cstdint>
 #include <string_view>
 
 #include "common/error.h"
-#include "common/particles.h"
-#include "common/particle_readers.h"
+#include "io/particles.h"
+#include "io/particle_readers.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace sortlast;

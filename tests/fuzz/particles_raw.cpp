@@ -1,11 +1,11 @@
-// libFuzzer target: the raw particle reader (common/particles.h, parseRawParticles) on any bytes,
+// libFuzzer target: the raw particle reader (io/particles.h, parseRawParticles) on any bytes,
 // with and without a declared count. Bad input must end in InputError.
 #include <cstdint>
 #include <string_view>
 
 #include "common/error.h"
-#include "common/particles.h"
-#include "common/particle_readers.h"
+#include "io/particles.h"
+#include "io/particle_readers.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace sortlast;

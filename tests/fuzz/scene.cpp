@@ -1,4 +1,4 @@
-// libFuzzer target: the scene parser (common/scene.h) on a scene file's text plus `--set`
+// libFuzzer target: the scene parser (scene/scene.h) on a scene file's text plus `--set`
 // overrides. Input: the YAML text, then each override after a NUL byte. Bad input must end in
 // InputError (the message naming the key that main prints); any other exception escapes and
 // libFuzzer reports it.
@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "common/error.h"
-#include "common/scene.h"
+#include "scene/scene.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace sortlast;

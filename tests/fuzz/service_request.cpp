@@ -1,7 +1,7 @@
 // libFuzzer target: a frame request as the service receives it (an HTTP body or a WebSocket text
-// message): parsed as JSON the way master/service/http_session.cpp and ws_session.cpp do, translated to
-// overrides (master/service/request_translation.h), packed for the broadcast to the other ranks and
-// unpacked, then applied to the default scene as the session does (common/scene.h). A bad request
+// message): parsed as JSON the way service/http_session.cpp and ws_session.cpp do, translated to
+// overrides (service/request_translation.h), packed for the broadcast to the other ranks and
+// unpacked, then applied to the default scene as the session does (scene/scene.h). A bad request
 // must end in a JSON parse error or InputError (both answered 400 with the message).
 #include <cstdint>
 #include <cstdlib>
@@ -10,8 +10,8 @@
 #include <nlohmann/json.hpp>
 
 #include "common/error.h"
-#include "common/scene.h"
-#include "master/service/request_translation.h"
+#include "scene/scene.h"
+#include "service/request_translation.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace sortlast;

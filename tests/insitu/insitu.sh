@@ -54,7 +54,7 @@ case "$MODE" in
       close "$WORK/d_$1_$2_000000.png" "$WORK/batch_$1_$2.png" "$spec: in situ differs from the batch render"
     done
     # The ray caster and binary-swap on an uneven decomposition, three steps of a changing field:
-    # steps 1 and 2 overwrite the brick textures step 0 left (worker/volume/volume_texture_pool.h),
+    # steps 1 and 2 overwrite the brick textures step 0 left (render/volume/volume_texture_pool.h),
     # so a texel left stale would show against the batch render of step 2's field.
     actions "rc" report ", render: {method: raycast}, compositing: {strategy: binary-swap}"
     run_driver 3 --size $size --split uneven --steps 3 --actions "$WORK/actions.yaml" --dump "$WORK/field.raw" > /dev/null ||

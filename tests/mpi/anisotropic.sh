@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Smoothed anisotropic metaballs (particles.smoothing: anisotropic, common/anisotropic_kernels.h)
+# Smoothed anisotropic metaballs (particles.smoothing: anisotropic, io/anisotropic_kernels.h)
 # in the grid ray caster, against round metaballs, the CPU reference and other rank counts.
 # Usage: anisotropic.sh SORTLAST DATA_DIR
 source "$(dirname "$0")/lib.sh" "$1"

@@ -132,7 +132,7 @@ run_np 2 render -q "$scene" "${vol[@]}" --set "glow.emitters=[]" -o "$WORK/vgl0.
 # An emitter core inside a dense absorbing volume (black, transmittance about 0.15 across it), its
 # axis and dividing plane through it (a != b): the rays grazing the core are where the ray caster's
 # pieces (weighted by their mean transmittance, corrected to first order) must shrink to single
-# segments, and its plane is where they must be split (worker/volume/raycast_glow.frag.glsl: at
+# segments, and its plane is where they must be split (render/volume/raycast_glow.frag.glsl: at
 # most 1/1024 of radiance per pixel against the reference's rule). What is left is the volume's own sampling at
 # the box's faces (both step 1/4 voxel here). Measured 2 levels, 57.2 dB; pieces as long as
 # between planes, with no bound from the ray's distance to the core and axis: 124 levels, 42.5 dB.

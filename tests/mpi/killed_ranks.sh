@@ -50,7 +50,7 @@ kill_mid_orbit() {
 kill_mid_orbit direct $((np - 1))
 kill_mid_orbit binary-swap 0
 # An MPI error (a send to a rank that does not exist) is a message naming the rank, the phase and
-# MPI's own text (master/session/mpi_errors.h), not an abort without text.
+# MPI's own text (session/mpi_errors.h), not an abort without text.
 if [ "$np" = 2 ]; then
   rc=0
   SORTLAST_TEST_MPI_ERROR_RANK=1 run_np 2 render "$data/neghip.yaml" -q -o "$WORK/e.png" \

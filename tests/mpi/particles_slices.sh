@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# particles.method: slices (the field sampled on a global lattice, worker/particles/metaball_slices_renderer.h)
+# particles.method: slices (the field sampled on a global lattice, render/particles/metaball_slices_renderer.h)
 # against the double-precision reference, across ranks and bricks, with a volume, and bad input.
 # A sampled field: the surface is the isosurface of the trilinear interpolation of the lattice,
 # not of the field itself, so its bounds are looser than the grid method's (tests/mpi/particles.sh)

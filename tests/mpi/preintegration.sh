@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Pre-integrated transfer functions (transfer.preintegrated; common/preintegration.h), in both GL
+# Pre-integrated transfer functions (transfer.preintegrated; transfer/preintegration.h), in both GL
 # volume renderers, against the reference integrator and against themselves.
 # Usage: preintegration.sh SORTLAST DATA_DIR MODE
 #   accuracy  coarse steps (1 and 2 voxels) on two sharp transfer functions: neghip's `sharp` preset

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Gradient shading (render.shading: common/shading.h) in both GL volume renderers.
+# Gradient shading (render.shading: transfer/shading.h) in both GL volume renderers.
 # Usage: shading.sh SORTLAST DATA_DIR MODE
 #   reference  shaded ray caster and slicing (ERT off) against the shaded CPU reference on
 #              Marschner-Lobb and neghip at 0.5 and 0.25 voxel (a PSNR bound each; halving the
@@ -8,7 +8,7 @@
 #              33.3 dB, under the bound)
 #   bricks     no seams: 2^3 and 3^3 bricks give the 1-brick shaded image within the 2/255 of the
 #              RGBA8 intermediate images (the differences one voxel beyond a brick face read the
-#              ghost layer: worker/volume/volume_shading.h; differences two voxels out, one beyond the
+#              ghost layer: render/volume/volume_shading.h; differences two voxels out, one beyond the
 #              ghost, measured 25/255 on 182 pixels), with no exception for the ray caster and the
 #              20 silhouette pixels of tests/mpi/seams.sh for slicing; 1-4 ranks (slicing: 1 and 3)
 #              give one image within 1/255
@@ -108,7 +108,7 @@ onoff)
     p=$(psnr_of "$WORK/off.png" "$WORK/on.png")
     at_least 30 "$p" "$method: shaded and unshaded images agree to $p dB: shading hardly acts"
     echo "$method: shaded vs unshaded $p dB; the identity model is bit-identical"
-    # The float filter of hardware GPUs (FLOAT_FILTER, worker/volume/volume_filter.glsl): on
+    # The float filter of hardware GPUs (FLOAT_FILTER, render/volume/volume_filter.glsl): on
     # llvmpipe, which filters in float itself, the same image (measured: bit-identical).
     SORTLAST_FLOAT_FILTER=1 render 2 "$DATA/neghip.yaml" "$WORK/float_filter.png" "${m[@]}" --set render.shading=true
     "$S" compare "$WORK/on.png" "$WORK/float_filter.png" --max-diff 1 \

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Subdivision surfaces (the `surfaces` scene key, docs/subdivision.md) in the sort-last frame loop,
-# against the CPU reference (master/reference/surface_reference.h), on 1-4 ranks and d = 1-3 bricks.
+# against the CPU reference (reference/surface_reference.h), on 1-4 ranks and d = 1-3 bricks.
 # Usage: surfaces.sh SORTLAST MODE
 #   alone       two surfaces: GL against the reference (colour, depth, normals), 1-4 ranks, d = 1-3
 #   volume      the surfaces inside a semi-transparent volume: against the reference, 1-4 ranks,

@@ -77,7 +77,7 @@ pid=$(rank_pid 0) || fail "rank 0 not found"
 stop_by TERM "$pid" "SIGTERM to rank 0"
 
 # 3b. SIGTERM to a worker rank alone: rank 0 goes on serving, the worker gives up after its
-# 10 s grace and aborts the job (master/service/frame_commands.h): ended within 20 s, with a message.
+# 10 s grace and aborts the job (service/frame_commands.h): ended within 20 s, with a message.
 start_server 3 -q
 pid=$(rank_pid 2) || fail "rank 2 not found"
 ranks=$(rank_pids)

@@ -8,7 +8,7 @@ source "$(dirname "$0")/../service/service_lib.sh" "$1"
 requests=${2:-2000} warmup=${3:-200} bound=${4:-2}
 here=$(cd "$(dirname "$0")" && pwd)
 # The step pinned: with render.sample_spacing `auto` a request with a new transfer function
-# renders three probe frames too (master/session/auto_spacing.h), and the slope per request
+# renders three probe frames too (session/auto_spacing.h), and the slope per request
 # doubled (rank 0: 1.58 against 0.82 KiB per request; per frame rendered it is lower, 0.4), which
 # put rank 1 over the bound in one of five runs. The bound is per request of one frame.
 start_server 2 --set "volume.dims=[32,32,32]" --set bricks.per_axis=2 --set render.sample_spacing=0.5

@@ -1,7 +1,7 @@
-// Adaptive sampling (common/adaptive_blocks.h): the block grid, lossless at tolerance 0, less data
+// Adaptive sampling (adaptive/adaptive_blocks.h): the block grid, lossless at tolerance 0, less data
 // as the tolerance rises, no cracks between blocks at different levels, the GPU contract (atlas +
 // table), and rejection of bad input.
-#include "common/adaptive_blocks.h"
+#include "adaptive/adaptive_blocks.h"
 
 #include <gtest/gtest.h>
 
@@ -15,9 +15,9 @@
 
 #include "common/brick.h"
 #include "common/error.h"
-#include "common/scene.h"
+#include "scene/scene.h"
 #include "tests/unit/input_error_of.h"
-#include "common/volume_source.h"
+#include "io/volume_source.h"
 
 namespace sortlast {
 namespace {

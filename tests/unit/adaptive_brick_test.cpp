@@ -1,8 +1,8 @@
-// The blocks a brick draws (common/adaptive_brick.h): its cells tile the brick along the block
+// The blocks a brick draws (adaptive/adaptive_brick.h): its cells tile the brick along the block
 // planes, and the shader's lookup on the brick's own atlas (sampleCell) is the whole volume's
 // adaptive field (sampleIndex) in every cell, for bricks whose faces fall on block planes and
 // bricks that cut blocks.
-#include "common/adaptive_brick.h"
+#include "adaptive/adaptive_brick.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
-// The smoothed anisotropic kernels (common/anisotropic_kernels.h), the surface roughness figure
-// (common/surface_roughness.h) and the reference's anisotropic field: shapes on known
+// The smoothed anisotropic kernels (io/anisotropic_kernels.h), the surface roughness figure
+// (reference/surface_roughness.h) and the reference's anisotropic field: shapes on known
 // arrangements, the mass normalisation, subset invariance, degenerate inputs, invalid keys.
 #include <gtest/gtest.h>
 
@@ -7,11 +7,11 @@
 #include <cstring>
 #include <vector>
 
-#include "common/anisotropic_kernels.h"
-#include "common/scene.h"
-#include "common/surface_roughness.h"
+#include "io/anisotropic_kernels.h"
+#include "scene/scene.h"
+#include "reference/surface_roughness.h"
 #include "input_error_of.h"
-#include "master/reference/metaball_reference.h"
+#include "reference/metaball_reference.h"
 
 namespace sortlast {
 namespace {

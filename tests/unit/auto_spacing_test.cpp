@@ -1,10 +1,10 @@
-// render.sample_spacing: auto's choice from probe frames (master/session/auto_spacing.h), on
+// render.sample_spacing: auto's choice from probe frames (session/auto_spacing.h), on
 // synthetic probes whose differences are known.
 #include <cmath>
 
 #include <gtest/gtest.h>
 
-#include "master/session/auto_spacing.h"
+#include "session/auto_spacing.h"
 
 namespace sortlast {
 namespace {

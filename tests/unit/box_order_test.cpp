@@ -7,7 +7,7 @@
 #include <random>
 
 #include "compositing/box_order.h"
-#include "compositing/visibility.h"
+#include "common/visibility.h"
 
 namespace sortlast {
 namespace {

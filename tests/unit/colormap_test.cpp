@@ -1,7 +1,7 @@
-// Colour maps (common/colour_space.h, colormap.h, colormap_presets.h) and transfer.colormap in
+// Colour maps (transfer/colour_space.h, colormap.h, colormap_presets.h) and transfer.colormap in
 // scenes and frame requests: the built-ins, the colour spaces against independent values, a
 // preset file's round trip, and every malformed file.
-#include "common/colormap.h"
+#include "transfer/colormap.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "common/colormap_presets.h"
-#include "common/scene.h"
-#include "master/service/request_translation.h"
+#include "transfer/colormap_presets.h"
+#include "scene/scene.h"
+#include "service/request_translation.h"
 #include "tests/unit/input_error_of.h"
 
 namespace sortlast {

@@ -1,11 +1,11 @@
-// `sortlast compare --float` (master/cli/compare.h): tolerances, non-finite values, shape checks.
+// `sortlast compare --float` (app/compare.h): tolerances, non-finite values, shape checks.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 
 #include "common/error.h"
-#include "master/cli/compare.h"
+#include "app/compare.h"
 
 using namespace sortlast;
 

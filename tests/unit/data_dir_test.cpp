@@ -1,4 +1,4 @@
-// Names resolved inside a directory (master/service/data_dir.h): nothing outside it is reachable.
+// Names resolved inside a directory (service/data_dir.h): nothing outside it is reachable.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -7,7 +7,7 @@
 #include <string>
 #include <unistd.h>
 
-#include "master/service/data_dir.h"
+#include "service/data_dir.h"
 #include "tests/unit/input_error_of.h"
 
 namespace sortlast {

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "common/image.h"
-#include "common/particle_readers.h"
-#include "common/scene.h"
+#include "io/image.h"
+#include "io/particle_readers.h"
+#include "scene/scene.h"
 #include "compositing/blend.h"
 #include "compositing/brick_image.h"
 #include "compositing/rect_image.h"

@@ -1,5 +1,5 @@
 // Programs from .glsl files on the GL driver (OSMesa: llvmpipe): a compile error names the .glsl
-// file and line it is in (worker/gl/shader_source.h's #line directives, located back), a link
+// file and line it is in (render/gl/shader_source.h's #line directives, located back), a link
 // error names the files, and a good program links. Its own executable: it makes a GL context,
 // which the unit tests never do.
 #include <gtest/gtest.h>
@@ -10,9 +10,9 @@
 #include <string>
 
 #include "tests/unit/glsl/glsl_files.h"  // generated from tests/unit/glsl/*.glsl
-#include "worker/gl/gl_context.h"
-#include "worker/gl/gl_program.h"
-#include "worker/gl/glsl_files.h"
+#include "render/gl/gl_context.h"
+#include "render/gl/gl_program.h"
+#include "render/gl/glsl_files.h"
 
 namespace sortlast {
 namespace {
@@ -72,7 +72,7 @@ TEST(GlProgram, LinkErrorNamesTheFiles) {
     linkProgram(ctx->gl(), ShaderSource().add(glsl::fullscreen_vert),
                 ShaderSource().add(glsl::unlinked_test_frag));
   });
-  EXPECT_EQ(message.rfind("GLSL link error (worker/gl/fullscreen.vert.glsl; "
+  EXPECT_EQ(message.rfind("GLSL link error (render/gl/fullscreen.vert.glsl; "
                           "tests/unit/glsl/unlinked_test.frag.glsl): ",
                           0),
             0u)

@@ -1,5 +1,5 @@
-// The GLSL of the glow integral (worker/glow/glow_segment.glsl) run on the GL driver (OSMesa:
-// llvmpipe), one ray per pixel, against the double closed form (common/glow_integral.h) on the same
+// The GLSL of the glow integral (render/glow/glow_segment.glsl) run on the GL driver (OSMesa:
+// llvmpipe), one ray per pixel, against the double closed form (glow/glow_integral.h) on the same
 // float inputs: the float bound the C++ float instantiation meets (tests/unit/glow_test.cpp, 2e-5)
 // must hold for the shader too. Its own executable: it needs a GL context, which the unit tests
 // never make.
@@ -10,12 +10,12 @@
 #include <random>
 #include <vector>
 
-#include "common/glow_integral.h"
-#include "worker/gl/gl_context.h"
-#include "worker/gl/gl_program.h"
-#include "worker/gl/glsl_files.h"  // generated from worker/gl/*.glsl (cmake/embed_shaders.cmake)
-#include "worker/glow/glow_gl.h"
-#include "worker/glow/glsl_files.h"
+#include "glow/glow_integral.h"
+#include "render/gl/gl_context.h"
+#include "render/gl/gl_program.h"
+#include "render/gl/glsl_files.h"  // generated from render/gl/*.glsl (cmake/embed_shaders.cmake)
+#include "render/glow/glow_gl.h"
+#include "render/glow/glsl_files.h"
 #include "tests/unit/glsl/glsl_files.h"
 
 namespace sortlast {

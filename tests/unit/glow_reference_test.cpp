@@ -1,7 +1,7 @@
-// Glow in scenes: the glow.* keys' validation (common/glow_scene.h), and the reference path
-// (master/reference/glow_reference.h, master/reference/reference.h): per pixel against quadrature, split over bricks,
+// Glow in scenes: the glow.* keys' validation (scene/glow_scene.h), and the reference path
+// (reference/glow_reference.h, reference/reference.h): per pixel against quadrature, split over bricks,
 // and dimmed by a volume against the exact transmittance-weighted integral.
-#include "master/reference/glow_reference.h"
+#include "reference/glow_reference.h"
 
 #include <gtest/gtest.h>
 
@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "common/glow_quadrature.h"
-#include "common/scene.h"
-#include "master/reference/frame_reference.h"
-#include "master/reference/reference.h"
+#include "reference/glow_quadrature.h"
+#include "scene/scene.h"
+#include "reference/frame_reference.h"
+#include "reference/reference.h"
 #include "tests/unit/input_error_of.h"
 
 namespace sortlast {

@@ -1,5 +1,5 @@
-// The glow emitters' closed-form line integrals (common/glow_integral.h) against adaptive
-// Gauss-Kronrod quadrature of the point field (common/glow_quadrature.h), in double over random
+// The glow emitters' closed-form line integrals (glow/glow_integral.h) against adaptive
+// Gauss-Kronrod quadrature of the point field (reference/glow_quadrature.h), in double over random
 // rays and over the families where the textbook formula fails; and the float formulas (the GLSL's
 // expressions, instantiated in C++ float) against the double closed form on the same inputs.
 #include <gtest/gtest.h>
@@ -11,8 +11,8 @@
 #include <random>
 #include <string>
 
-#include "common/glow_integral.h"
-#include "common/glow_quadrature.h"
+#include "glow/glow_integral.h"
+#include "reference/glow_quadrature.h"
 
 namespace sortlast {
 namespace {

@@ -1,4 +1,4 @@
-// The service's HTTP/WebSocket front end (master/service/http_server.h) on loopback, against a fake frame
+// The service's HTTP/WebSocket front end (service/http_server.h) on loopback, against a fake frame
 // loop that echoes each request's body in its stats. Every client operation runs with a time
 // limit (awaitFor), so a server bug fails a test instead of hanging it.
 #include <gtest/gtest.h>
@@ -19,9 +19,9 @@
 #include <boost/beast.hpp>
 #include <nlohmann/json.hpp>
 
-#include "common/image_encode.h"
-#include "master/service/http_server.h"
-#include "master/service/request_queue.h"
+#include "io/image_encode.h"
+#include "service/http_server.h"
+#include "service/request_queue.h"
 
 namespace sortlast {
 namespace {

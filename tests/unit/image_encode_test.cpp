@@ -1,4 +1,4 @@
-// Frames encoded in memory for the service (common/image_encode.h) look like the files
+// Frames encoded in memory for the service (io/image_encode.h) look like the files
 // `sortlast render` writes.
 #include <gtest/gtest.h>
 
@@ -12,8 +12,8 @@
 #include <unistd.h>
 
 #include "common/error.h"
-#include "common/image.h"
-#include "common/image_encode.h"
+#include "io/image.h"
+#include "io/image_encode.h"
 #include "tests/unit/input_error_of.h"
 
 namespace sortlast {

@@ -1,4 +1,4 @@
-// The codecs (common/image_files.h): PNG, JPEG and EXR round trips, conversions on reading, and
+// The codecs (io/image_files.h): PNG, JPEG and EXR round trips, conversions on reading, and
 // bad files named in the error.
 #include <gtest/gtest.h>
 
@@ -7,8 +7,8 @@
 #include <limits>
 
 #include "common/error.h"
-#include "common/image.h"
-#include "common/image_files.h"
+#include "io/image.h"
+#include "io/image_files.h"
 #include "tests/unit/input_error_of.h"
 
 namespace sortlast {

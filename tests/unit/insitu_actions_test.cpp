@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "common/scene.h"
+#include "scene/scene.h"
 #include "insitu/actions.h"
 #include "insitu/cinema.h"
 #include "insitu/output_names.h"

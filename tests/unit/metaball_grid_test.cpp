@@ -1,4 +1,4 @@
-// The particle grid of the metaball grid ray caster (worker/particles/metaball_grid.h): every cell lists
+// The particle grid of the metaball grid ray caster (render/particles/metaball_grid.h): every cell lists
 // exactly the particles whose padded sphere of influence reaches it, in ascending order, so the
 // field summed over a point's cell equals the field summed over all particles, in global order.
 #include <gtest/gtest.h>
@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "common/particles.h"
-#include "worker/particles/metaball_grid.h"
+#include "io/particles.h"
+#include "render/particles/metaball_grid.h"
 
 namespace sortlast {
 namespace {

@@ -1,7 +1,7 @@
-// The metaball reference (master/reference/metaball_reference.h) against closed forms, the surface image
-// file (common/surface_image.h), surface comparison (master/cli/compare_surface.h), shading
-// (common/metaball_shading.h) and the volume reference stopped by a surface (master/reference/reference.h).
-#include "master/reference/metaball_reference.h"
+// The metaball reference (reference/metaball_reference.h) against closed forms, the surface image
+// file (io/surface_image.h), surface comparison (app/compare_surface.h), shading
+// (transfer/metaball_shading.h) and the volume reference stopped by a surface (reference/reference.h).
+#include "reference/metaball_reference.h"
 
 #include <gtest/gtest.h>
 
@@ -12,11 +12,11 @@
 #include <vector>
 
 #include "common/error.h"
-#include "common/metaball_shading.h"
-#include "common/surface_image.h"
-#include "master/cli/compare_surface.h"
-#include "master/reference/reference.h"
-#include "master/cli/reference_job.h"
+#include "transfer/metaball_shading.h"
+#include "io/surface_image.h"
+#include "app/compare_surface.h"
+#include "reference/reference.h"
+#include "app/reference_job.h"
 
 namespace sortlast {
 namespace {

@@ -1,4 +1,4 @@
-// The lattice of the slices method (worker/particles/metaball_slices.h): the voxels are global (the same
+// The lattice of the slices method (render/particles/metaball_slices.h): the voxels are global (the same
 // indices in every brick), a voxel has a slot exactly when some particle reaches its box (up to
 // the 1% pad), and each slot lists every particle that reaches it, ascending, so a lattice point
 // sums the same particles in the same order in every brick that holds it.
@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "worker/particles/metaball_slices.h"
+#include "render/particles/metaball_slices.h"
 
 namespace sortlast {
 namespace {

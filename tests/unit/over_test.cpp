@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "common/image.h"
+#include "io/image.h"
 #include "compositing/blend.h"
 #include "compositing/brick_image.h"
 #include "compositing/over.h"

@@ -1,4 +1,4 @@
-// Particles (common/particles.h): the file readers, the procedural sets, particlesNear, and the
+// Particles (io/particles.h): the file readers, the procedural sets, particlesNear, and the
 // particles.* scene keys (with the volume made optional).
 #include <gtest/gtest.h>
 
@@ -17,8 +17,8 @@
 
 #include "tests/unit/input_error_of.h"
 #include "common/error.h"
-#include "common/particles.h"
-#include "common/scene.h"
+#include "io/particles.h"
+#include "scene/scene.h"
 
 namespace sortlast {
 namespace {

@@ -1,4 +1,4 @@
-// Pre-integrated transfer-function tables (common/preintegration.h) against an independent direct
+// Pre-integrated transfer-function tables (transfer/preintegration.h) against an independent direct
 // integration of the emission-absorption model along linear segments, in double.
 #include <gtest/gtest.h>
 
@@ -8,8 +8,8 @@
 #include <cstdio>
 #include <random>
 
-#include "common/preintegration.h"
-#include "common/transfer_function.h"
+#include "transfer/preintegration.h"
+#include "transfer/transfer_function.h"
 
 namespace sortlast {
 namespace {

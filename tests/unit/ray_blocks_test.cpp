@@ -1,4 +1,4 @@
-// The ray caster's block classification (worker/volume/ray_blocks.h, worker/volume/step_rule.h): the distance a
+// The ray caster's block classification (render/volume/ray_blocks.h, render/volume/step_rule.h): the distance a
 // ray may jump from an empty block, and the step multiple a block's range allows.
 #include <gtest/gtest.h>
 
@@ -8,9 +8,9 @@
 #include <cstdlib>
 #include <vector>
 
-#include "common/transfer_function.h"
-#include "worker/volume/ray_blocks.h"
-#include "worker/volume/step_rule.h"
+#include "transfer/transfer_function.h"
+#include "render/volume/ray_blocks.h"
+#include "render/volume/step_rule.h"
 
 namespace sortlast {
 namespace {

@@ -1,4 +1,4 @@
-// The service's request queue (master/service/request_queue.h): latest wins per client, clients in turn,
+// The service's request queue (service/request_queue.h): latest wins per client, clients in turn,
 // forget, close.
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <thread>
 #include <vector>
 
-#include "master/service/request_queue.h"
+#include "service/request_queue.h"
 
 namespace sortlast {
 namespace {

@@ -11,10 +11,10 @@
 
 #include <glm/glm.hpp>
 
-#include "common/anisotropic_kernels.h"
-#include "common/scene.h"
-#include "master/session/memory_budget.h"
-#include "master/session/session_layout.h"
+#include "io/anisotropic_kernels.h"
+#include "scene/scene.h"
+#include "session/memory_budget.h"
+#include "session/session_layout.h"
 #include "tests/unit/input_error_of.h"
 
 namespace sortlast {

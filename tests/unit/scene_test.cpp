@@ -1,4 +1,4 @@
-// Scene loading (common/scene.h): defaults, --set overrides, and rejection of bad input.
+// Scene loading (scene/scene.h): defaults, --set overrides, and rejection of bad input.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -14,7 +14,7 @@
 
 #include "tests/unit/input_error_of.h"
 #include "common/error.h"
-#include "common/scene.h"
+#include "scene/scene.h"
 
 namespace sortlast {
 namespace {
@@ -249,7 +249,7 @@ TEST(Scene, KeysMarkdownListsEveryKey) {
   }
 }
 
-// --- The key table (common/scene_keys.h) ---
+// --- The key table (scene/scene_keys.h) ---
 
 // A key's field in `s`, through its row (none for a Structured key).
 template <class F>

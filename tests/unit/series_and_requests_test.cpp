@@ -9,8 +9,8 @@
 #include <unistd.h>
 
 #include "common/error.h"
-#include "common/scene.h"
-#include "master/service/request_translation.h"
+#include "scene/scene.h"
+#include "service/request_translation.h"
 #include "tests/unit/input_error_of.h"
 
 namespace sortlast {

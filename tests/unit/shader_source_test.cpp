@@ -1,6 +1,6 @@
-// The GLSL builder (worker/gl/shader_source.h) without a driver: the text it composes, the driver
+// The GLSL builder (render/gl/shader_source.h) without a driver: the text it composes, the driver
 // logs it locates back to the .glsl files, and the files as cmake/embed_shaders.cmake embeds them.
-#include "worker/gl/shader_source.h"
+#include "render/gl/shader_source.h"
 
 #include <gtest/gtest.h>
 
@@ -10,11 +10,11 @@
 #include <string>
 
 #include "tests/unit/glsl/glsl_files.h"  // generated from tests/unit/glsl/*.glsl
-#include "worker/gl/glsl_files.h"
-#include "worker/glow/glsl_files.h"
-#include "worker/particles/glsl_files.h"
-#include "worker/surfaces/glsl_files.h"
-#include "worker/volume/glsl_files.h"
+#include "render/gl/glsl_files.h"
+#include "render/glow/glsl_files.h"
+#include "render/particles/glsl_files.h"
+#include "render/surfaces/glsl_files.h"
+#include "render/volume/glsl_files.h"
 
 namespace sortlast {
 namespace {

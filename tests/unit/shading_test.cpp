@@ -1,13 +1,13 @@
-// Gradient shading (common/shading.h): the model, the reference's gradient, and the scene keys.
-#include "common/shading.h"
+// Gradient shading (transfer/shading.h): the model, the reference's gradient, and the scene keys.
+#include "transfer/shading.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
 
-#include "common/scene.h"
-#include "master/reference/reference.h"
+#include "scene/scene.h"
+#include "reference/reference.h"
 #include "tests/unit/input_error_of.h"
 
 namespace sortlast {

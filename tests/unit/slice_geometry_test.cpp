@@ -1,4 +1,4 @@
-// View-aligned slice polygons through a brick (worker/volume/slice_geometry.h): vertices on their planes
+// View-aligned slice polygons through a brick (render/volume/slice_geometry.h): vertices on their planes
 // and inside the box, far-to-near order, exact cross-section areas, and bit-identical vertices on
 // a face shared by two bricks.
 #include <gtest/gtest.h>
@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "common/box.h"
-#include "worker/volume/slice_geometry.h"
+#include "render/volume/slice_geometry.h"
 
 namespace sortlast {
 namespace {

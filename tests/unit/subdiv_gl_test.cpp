@@ -1,4 +1,4 @@
-// The per-fragment subdivision renderer (worker/surfaces/subdiv_renderer.h) on an OSMesa context: every
+// The per-fragment subdivision renderer (render/surfaces/subdiv_renderer.h) on an OSMesa context: every
 // covered pixel's limit point and normal against the exact double evaluation at the pixel's own
 // (face, u, v), and that point on the pixel's ray away from silhouettes; images of coarse levels
 // 1, 2, 3 against each other away from silhouettes; bricks composited by depth against the
@@ -11,9 +11,9 @@
 #include <cstdio>
 #include <numbers>
 
-#include "common/image.h"
-#include "common/subdiv/subdiv_input.h"
-#include "worker/surfaces/subdiv_renderer.h"
+#include "io/image.h"
+#include "subdiv/subdiv_input.h"
+#include "render/surfaces/subdiv_renderer.h"
 
 namespace sortlast {
 namespace {

@@ -13,7 +13,7 @@
 #include <memory>
 #include <vector>
 
-#include "common/subdiv/subdiv_eval.h"
+#include "subdiv/subdiv_eval.h"
 
 namespace sortlast {
 

@@ -13,10 +13,10 @@
 #include <numbers>
 #include <string>
 
-#include "common/subdiv/subdiv_eval.h"
-#include "common/subdiv/subdiv_coarse.h"
-#include "common/subdiv/subdiv_input.h"
-#include "common/subdiv/subdiv_tables.h"
+#include "subdiv/subdiv_eval.h"
+#include "subdiv/subdiv_coarse.h"
+#include "subdiv/subdiv_input.h"
+#include "subdiv/subdiv_tables.h"
 #include "input_error_of.h"
 #include "subdiv_reference.h"
 

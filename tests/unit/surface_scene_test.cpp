@@ -1,14 +1,14 @@
-// The `surfaces` scene key (common/surface_scene.h): transforms, the mirroring case, defaults and
-// the domain the layout frames; the CPU reference's own accuracy (master/reference/surface_reference.h).
+// The `surfaces` scene key (scene/surface_scene.h): transforms, the mirroring case, defaults and
+// the domain the layout frames; the CPU reference's own accuracy (reference/surface_reference.h).
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
 
 #include "common/error.h"
-#include "common/subdiv/subdiv_eval.h"
-#include "common/surface_scene.h"
-#include "master/reference/surface_reference.h"
+#include "subdiv/subdiv_eval.h"
+#include "scene/surface_scene.h"
+#include "reference/surface_reference.h"
 
 namespace sortlast {
 namespace {

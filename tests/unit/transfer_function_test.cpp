@@ -1,4 +1,4 @@
-// Transfer functions (common/transfer_function.h): interpolation, extinction, maxOpacity,
+// Transfer functions (transfer/transfer_function.h): interpolation, extinction, maxOpacity,
 // the baked lookup table.
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "common/error.h"
-#include "common/transfer_function.h"
+#include "transfer/transfer_function.h"
 
 namespace sortlast {
 namespace {

@@ -1,4 +1,4 @@
-// Back-to-front brick order (compositing/visibility.h), checked against ray casting: along every
+// Back-to-front brick order (common/visibility.h), checked against ray casting: along every
 // ray from the eye, a brick the ray enters later must come earlier in the order.
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 #include "common/box.h"
 #include "common/brick_planes.h"
 #include "common/decomposition.h"
-#include "compositing/visibility.h"
+#include "common/visibility.h"
 
 namespace sortlast {
 namespace {

@@ -1,4 +1,4 @@
-// unpackBox (common/volume_source.h): the HDF5 and NetCDF readers' arrays in C order, zyx or xyz,
+// unpackBox (io/volume_source.h): the HDF5 and NetCDF readers' arrays in C order, zyx or xyz,
 // into a box's samples x fastest; NaN refused by voxel, fill values made NaN. And formatOf's extensions.
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "common/volume_source.h"
+#include "io/volume_source.h"
 #include "tests/unit/input_error_of.h"
 
 namespace sortlast {

@@ -1,5 +1,5 @@
 // tests/unit/glow_glsl_test.cpp's pass: one case per pixel (x), its inputs in a 5-texel row of
-// u_cases, glowSegment (worker/glow/glow_segment.glsl, the chunk before this one) evaluated as the
+// u_cases, glowSegment (render/glow/glow_segment.glsl, the chunk before this one) evaluated as the
 // ray caster and the glow pass evaluate it.
 uniform sampler2D u_cases;
 out vec4 frag;

@@ -1,0 +1,127 @@
+#include "io/image.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "common/error.h"
+#include "io/image_files.h"
+
+namespace sortlast {
+
+void toRGBA8(const float* in, uint8_t* out) {
+  auto q = [](float v) { return uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); };
+  out[3] = q(in[3]);
+  for (int c = 0; c < 3; ++c) out[c] = std::min(q(in[c]), out[3]);
+}
+
+ImageRGBA8 toRGBA8(const ImageF& img) {
+  ImageRGBA8 out(img.width, img.height);
+  for (size_t i = 0; i < size_t(img.width) * img.height; ++i) toRGBA8(&img.px[4 * i], &out.px[4 * i]);
+  return out;
+}
+
+ImageF toFloat(const ImageRGBA8& img) {
+  ImageF out(img.width, img.height);
+  for (size_t i = 0; i < out.px.size(); ++i) out.px[i] = img.px[i] / 255.0f;
+  return out;
+}
+
+std::vector<float> overBackground(const ImageF& img, const glm::dvec3& bg) {
+  std::vector<float> rgb(size_t(img.width) * img.height * 3);
+  for (size_t i = 0; i < size_t(img.width) * img.height; ++i) {
+    float a = img.px[4 * i + 3];
+    for (int c = 0; c < 3; ++c) rgb[3 * i + c] = img.px[4 * i + c] + (1.0f - a) * float(bg[c]);
+  }
+  return rgb;
+}
+
+std::vector<uint8_t> toRGB8(const std::vector<float>& rgb) {
+  std::vector<uint8_t> out(rgb.size());
+  for (size_t i = 0; i < rgb.size(); ++i)
+    out[i] = std::isnan(rgb[i]) ? 0 : uint8_t(std::clamp(std::roundf(rgb[i] * 255.0f), 0.0f, 255.0f));
+  return out;
+}
+
+void writeImage(const std::string& path, const ImageF& img, const glm::dvec3& bg) {
+  try {
+    switch (files::formatOf(path)) {
+      case files::Format::exr:
+        files::writeExr(path, img.width, img.height, {"R", "G", "B"}, overBackground(img, bg));
+        return;
+      case files::Format::png:
+        files::writeFile(path, files::encodePng({img.width, img.height, 3, toRGB8(overBackground(img, bg))}),
+                         "output");
+        return;
+      default:
+        throw InputError("output " + path + ": no image writer for this file extension (.png or .exr)");
+    }
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    if (what.rfind("output ", 0) == 0) throw;
+    throw InputError("output " + path + ": " + what);
+  }
+}
+
+void writeImage(const std::string& path, const ImageRGBA8& img, const glm::dvec3& bg) {
+  writeImage(path, toFloat(img), bg);
+}
+
+std::string frameFileName(const std::string& out, int frame, int frames) {
+  if (frames <= 1) return out;
+  std::filesystem::path p(out);
+  char num[16];
+  std::snprintf(num, sizeof num, "_%04d", frame);
+  return (p.parent_path() / (p.stem().string() + num + p.extension().string())).string();
+}
+
+namespace {
+
+// Reads a PNG, JPEG or EXR file (told apart by their first bytes) as float channels: 8-bit files
+// as value / 255, named R, G, B, A.
+ImageChannels readAnyImage(const std::string& path) {
+  try {
+    const std::string bytes = files::readFile(path, "image");
+    if (bytes.compare(0, 4, std::string("\x76\x2f\x31\x01", 4)) == 0) return files::readExr(path);  // EXR's magic
+    files::Pixels8 p = files::decodeRGBA8(bytes, "");
+    ImageChannels img;
+    img.width = p.width;
+    img.height = p.height;
+    img.channels = 4;
+    img.names = {"R", "G", "B", "A"};
+    img.px.resize(p.px.size());
+    for (size_t i = 0; i < p.px.size(); ++i) img.px[i] = p.px[i] / 255.0f;
+    return img;
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    if (what.rfind("image ", 0) == 0) throw;
+    throw InputError("image " + path + ": " + what);
+  }
+}
+
+}  // namespace
+
+ImageRGBA8 readImageRGBA8(const std::string& path) {
+  const ImageChannels f = readAnyImage(path);
+  const int w = f.width, h = f.height, nc = f.channels;
+  // A NaN or Inf in a float file (an .exr frame) would become a plausible 0 or 255 in the 8-bit
+  // conversion, and comparisons would pass over it.
+  size_t bad = 0, first = 0;
+  for (size_t i = 0; i < f.px.size(); ++i)
+    if (!std::isfinite(f.px[i]) && bad++ == 0) first = i / size_t(nc);
+  if (bad)
+    throw InputError("image " + path + ": " + std::to_string(bad) + " non-finite values (NaN or Inf), the first at pixel (" +
+                     std::to_string(first % size_t(w)) + ", " + std::to_string(first / size_t(w)) + ")");
+  // 8-bit values come back exactly (k / 255 * 255 rounds to k); float ones are rounded as toRGB8.
+  const std::vector<uint8_t> raw = toRGB8(f.px);
+  ImageRGBA8 img(w, h);
+  for (size_t i = 0; i < size_t(w) * h; ++i)
+    for (int c = 0; c < 4; ++c)
+      img.px[4 * i + c] = c < nc ? raw[i * nc + c] : (c == 3 ? 255 : raw[i * nc]);
+  return img;
+}
+
+ImageChannels readImageChannels(const std::string& path) { return readAnyImage(path); }
+
+}  // namespace sortlast

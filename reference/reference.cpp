@@ -1,0 +1,126 @@
+#include "reference/reference.h"
+
+#include "common/trilinear.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <thread>
+
+#include "common/error.h"
+
+namespace sortlast {
+
+double WholeVolume::at(const glm::dvec3& u) const {
+  if (adaptive) return sampleIndex(*adaptive, u);
+  const glm::ivec3 n = grid.dims;
+  int i[3];
+  double f[3];
+  for (int a = 0; a < 3; ++a) {
+    double c = std::clamp(u[a], 0.0, double(n[a] - 1));
+    i[a] = std::min(int(c), n[a] - 2);
+    f[a] = c - i[a];
+  }
+  auto s = [&](int dx, int dy, int dz) {
+    return double(samples[size_t(i[0] + dx) + size_t(n.x) * (size_t(i[1] + dy) + size_t(n.y) * size_t(i[2] + dz))]);
+  };
+  return trilinear(s, f);
+}
+
+glm::dvec3 WholeVolume::gradient(const glm::dvec3& u) const {
+  glm::dvec3 g;
+  for (int a = 0; a < 3; ++a) {
+    glm::dvec3 e(0.0);
+    e[a] = 1.0;
+    g[a] = (at(u + e) - at(u - e)) / (2.0 * grid.spacing[a]);
+  }
+  return g;
+}
+
+namespace {
+
+// One implementation for both overloads: with no stop (nullptr) every step below reduces to the
+// volume-only arithmetic exactly (min(t1, inf) = t1; adding a zero surface changes no bit).
+ImageF integrate(const WholeVolume& vol, const TransferFunction& tf, const Camera& cam, double step,
+                 int threads, const SurfaceImage* stop, const ImageF* stop_colour,
+                 const Shading& shading, const GlowRays* glow) {
+  ImageF img(cam.width, cam.height);
+  const double flat = flatGradient(tf.rangeLo(), tf.rangeHi(), vol.grid.spacing);
+  Box3 box = vol.grid.worldBox();
+  std::atomic<int> next_row{0};
+  auto worker = [&] {
+    for (int y; (y = next_row++) < cam.height;) {
+      for (int x = 0; x < cam.width; ++x) {
+        size_t pixel = size_t(y) * cam.width + x;
+        glm::dvec3 o = cam.position, d = cam.rayDirection(x, y);
+        double t0, t1;
+        double rgb[3] = {0, 0, 0}, transmit = 1.0;
+        const double t_stop = stop && stop->hit(pixel) ? double(stop->t[pixel]) : HUGE_VAL;
+        // Glow (emission without opacity) over [ta, tb] seen through transmittance tr.
+        auto addGlow = [&](double ta, double tb, double tr) {
+          if (!glow || !(tb > ta) || tr <= 0.0) return;
+          const glm::dvec3 g = glow->radiance(o, d, ta, tb);
+          for (int k = 0; k < 3; ++k) rgb[k] += tr * g[k];
+        };
+        double t_after = 0.0;  // where the volume's part of the ray ends (glow beyond it: `transmit`)
+        if (intersectRayBox(o, d, box, t0, t1)) {
+          t0 = std::max(t0, 0.0);
+          if (stop && stop->hit(pixel)) t1 = std::min(t1, double(stop->t[pixel]));
+          addGlow(0.0, std::min(t0, t_stop), 1.0);  // in front of the volume
+          long long n = t1 > t0 ? std::max(1LL, (long long)std::ceil((t1 - t0) / step)) : 0;
+          double h = n > 0 ? (t1 - t0) / double(n) : 0.0;
+          long long i = 0;
+          for (; i < n && transmit > 1e-15; ++i) {
+            const glm::dvec3 u = vol.grid.indexOfWorld(o + (t0 + (i + 0.5) * h) * d);
+            double v = vol.at(u);  // NaN where the stencil touches a missing sample: transparent
+            double a = std::isnan(v) ? 0.0 : 1.0 - std::exp(-tf.extinction(v) * h);
+            // The step's glow: its exact integral times the transmittance at the step's middle
+            // (the midpoint rule in transmittance, exact in the emitters' field).
+            addGlow(t0 + i * h, t0 + (i + 1) * h, transmit * std::sqrt(std::max(0.0, 1.0 - a)));
+            if (a <= 0.0) continue;
+            auto c = tf.colour(v);
+            if (shading.enabled) c = shadeSample(c, vol.gradient(u), d, shading, flat);
+            for (int k = 0; k < 3; ++k) rgb[k] += transmit * a * c[k];
+            transmit *= 1.0 - a;
+          }
+          t_after = i < n ? HUGE_VAL : std::max(t1, t0);  // stopped early: nothing behind counts
+        }
+        addGlow(t_after, t_stop, transmit);  // behind the volume, or the whole ray without one
+        double alpha = 1.0 - transmit;
+        if (stop && stop->hit(pixel)) {
+          const float* s = &stop_colour->px[4 * pixel];
+          for (int k = 0; k < 3; ++k) rgb[k] += transmit * s[k];
+          alpha = 1.0 - transmit * (1.0 - s[3]);
+        }
+        float* p = &img.px[pixel * 4];
+        for (int k = 0; k < 3; ++k) p[k] = float(rgb[k]);
+        p[3] = float(alpha);
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 0; t < std::max(1, threads); ++t) pool.emplace_back(worker);
+  for (auto& t : pool) t.join();
+  return img;
+}
+
+}  // namespace
+
+ImageF renderReference(const WholeVolume& vol, const TransferFunction& tf, const Camera& cam,
+                       double step, int threads, const Shading& shading, const GlowRays* glow) {
+  return integrate(vol, tf, cam, step, threads, nullptr, nullptr, shading, glow);
+}
+
+ImageF renderReference(const WholeVolume& vol, const TransferFunction& tf, const Camera& cam,
+                       double step, int threads, const SurfaceImage& stop,
+                       const ImageF& stop_colour, const Shading& shading, const GlowRays* glow) {
+  if (stop.width != cam.width || stop.height != cam.height || stop_colour.width != cam.width ||
+      stop_colour.height != cam.height)
+    throw InputError("reference: the surface images (" + std::to_string(stop.width) + "x" +
+                     std::to_string(stop.height) + ", colour " + std::to_string(stop_colour.width) +
+                     "x" + std::to_string(stop_colour.height) + ") are not the camera's size (" +
+                     std::to_string(cam.width) + "x" + std::to_string(cam.height) + ")");
+  return integrate(vol, tf, cam, step, threads, &stop, &stop_colour, shading, glow);
+}
+
+}  // namespace sortlast

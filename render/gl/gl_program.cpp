@@ -1,0 +1,92 @@
+#include "render/gl/gl_program.h"
+
+#include <algorithm>
+#include <initializer_list>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace sortlast {
+
+namespace {
+
+// The whole info log of shader or program `object`: get_iv is GetShaderiv or GetProgramiv,
+// get_log GetShaderInfoLog or GetProgramInfoLog.
+template <class GetIv, class GetLog>
+std::string infoLog(unsigned object, GetIv get_iv, GetLog get_log) {
+  int length = 0;
+  get_iv(object, GL_INFO_LOG_LENGTH, &length);
+  std::string log(size_t(std::max(length, 1)), '\0');
+  get_log(object, GLsizei(log.size()), nullptr, log.data());
+  return log.substr(0, log.find('\0'));
+}
+
+unsigned compile(const GlApi& gl, GLenum type, const ShaderSource& source) {
+  const std::string text = source.text();
+  const char* src = text.c_str();
+  unsigned s = gl.CreateShader(type);
+  gl.ShaderSource(s, 1, &src, nullptr);
+  gl.CompileShader(s);
+  int ok = 0;
+  gl.GetShaderiv(s, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    const std::string log = infoLog(s, gl.GetShaderiv, gl.GetShaderInfoLog);
+    gl.DeleteShader(s);
+    throw std::runtime_error("GLSL compile error: " + source.locate(log));
+  }
+  return s;
+}
+
+// Links p (its shaders attached), deletes the shaders; throws with the log on failure.
+unsigned link(const GlApi& gl, unsigned p, std::initializer_list<unsigned> shaders,
+              const std::string& files) {
+  gl.LinkProgram(p);
+  for (unsigned s : shaders) gl.DeleteShader(s);
+  int ok = 0;
+  gl.GetProgramiv(p, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    const std::string log = infoLog(p, gl.GetProgramiv, gl.GetProgramInfoLog);
+    gl.DeleteProgram(p);
+    throw std::runtime_error("GLSL link error (" + files + "): " + log);
+  }
+  return p;
+}
+
+}  // namespace
+
+unsigned linkProgram(const GlApi& gl, const ShaderSource& vs, const ShaderSource& fs) {
+  const unsigned v = compile(gl, GL_VERTEX_SHADER, vs);
+  unsigned f = 0;
+  try {
+    f = compile(gl, GL_FRAGMENT_SHADER, fs);
+  } catch (...) {
+    gl.DeleteShader(v);
+    throw;
+  }
+  const unsigned p = gl.CreateProgram();
+  gl.AttachShader(p, v);
+  gl.AttachShader(p, f);
+  return link(gl, p, {v, f}, vs.paths() + "; " + fs.paths());
+}
+
+unsigned linkComputeProgram(const GlApi& gl, const ShaderSource& cs) {
+  const unsigned c = compile(gl, GL_COMPUTE_SHADER, cs);
+  const unsigned p = gl.CreateProgram();
+  gl.AttachShader(p, c);
+  return link(gl, p, {c}, cs.paths());
+}
+
+GlProgram& GlProgram::operator=(GlProgram&& o) noexcept {
+  if (this != &o) {
+    if (id_) gl_->DeleteProgram(id_);
+    gl_ = o.gl_;
+    id_ = std::exchange(o.id_, 0);
+  }
+  return *this;
+}
+
+GlProgram::~GlProgram() {
+  if (id_) gl_->DeleteProgram(id_);
+}
+
+}  // namespace sortlast

@@ -1,0 +1,60 @@
+#include "render/glow/glow_gl.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace sortlast {
+
+unsigned makeFloatTexture(const GlApi& gl, int w, int h, const float* texels) {
+  unsigned tex = 0;
+  gl.GenTextures(1, &tex);
+  gl.ActiveTexture(GL_TEXTURE0);
+  gl.BindTexture(GL_TEXTURE_2D, tex);
+  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, w, h, 0, GL_RGBA, GL_FLOAT, texels);
+  return tex;
+}
+
+unsigned makeFramebuffer(const GlApi& gl, unsigned texture) {
+  unsigned fbo = 0;
+  gl.GenFramebuffers(1, &fbo);
+  gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+  gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture, 0);
+  if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw std::runtime_error("OpenGL: float framebuffer is not complete");
+  return fbo;
+}
+
+std::vector<float> glowEmitterTexels(const std::vector<GlowEmitter>& emitters) {
+  std::vector<float> t;
+  t.reserve(emitters.size() * 12);
+  for (const GlowEmitter& e : emitters)
+    for (double v : {e.centre.x, e.centre.y, e.centre.z, e.a, e.direction.x, e.direction.y,
+                     e.direction.z, e.b, e.colour.r, e.colour.g, e.colour.b, 0.0})
+      t.push_back(float(v));
+  return t;
+}
+
+void bindGlowEmitters(const GlApi& gl, unsigned program, const GlowPass& pass, int unit) {
+  gl.Uniform1f(gl.GetUniformLocation(program, "u_glow_eps"), pass.eps);
+  gl.Uniform1i(gl.GetUniformLocation(program, "u_glow_count"), pass.count);
+  gl.Uniform1i(gl.GetUniformLocation(program, "u_glow_emitters"), unit);
+  gl.ActiveTexture(GL_TEXTURE0 + unsigned(unit));
+  gl.BindTexture(GL_TEXTURE_2D, pass.emitters);
+}
+
+void setPixelRayUniforms(const GlApi& gl, unsigned program, const Camera& cam) {
+  auto u3 = [&](const char* name, const glm::dvec3& v) {
+    gl.Uniform3f(gl.GetUniformLocation(program, name), float(v.x), float(v.y), float(v.z));
+  };
+  const double th = std::tan(0.5 * cam.fov_deg * 3.14159265358979323846 / 180.0);
+  u3("u_eye", cam.position);
+  u3("u_forward", cam.forward());
+  u3("u_right", cam.right() * (th * double(cam.width) / cam.height));
+  u3("u_up", cam.trueUp() * th);
+  gl.Uniform2f(gl.GetUniformLocation(program, "u_pixel_scale"), float(2.0 / cam.width),
+               float(2.0 / cam.height));
+}
+
+}  // namespace sortlast

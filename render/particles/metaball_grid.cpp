@@ -1,0 +1,69 @@
+#include "render/particles/metaball_grid.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sortlast {
+
+namespace {
+
+// Calls f(cell number) for every cell of g that the ball (p, r) overlaps (the closed cell box
+// within distance r of p).
+template <class F>
+void forCellsOf(const ParticleGrid& g, const glm::vec3& p, float r, F&& f) {
+  glm::vec3 a = (p - r - g.lo) / g.cell, b = (p + r - g.lo) / g.cell;
+  glm::ivec3 lo = glm::max(glm::ivec3(glm::floor(a)), glm::ivec3(0));
+  glm::ivec3 hi = glm::min(glm::ivec3(glm::floor(b)), g.dims - 1);
+  if (glm::any(glm::greaterThan(lo, hi))) return;
+  const float r2 = r * r;
+  for (int z = lo.z; z <= hi.z; ++z) {
+    float cz = g.lo.z + float(z) * g.cell;
+    float dz = std::max({cz - p.z, 0.0f, p.z - (cz + g.cell)});
+    for (int y = lo.y; y <= hi.y; ++y) {
+      float cy = g.lo.y + float(y) * g.cell;
+      float dy = std::max({cy - p.y, 0.0f, p.y - (cy + g.cell)});
+      float dzy = dz * dz + dy * dy;
+      if (dzy > r2) continue;
+      size_t row = (size_t(z) * g.dims.y + y) * g.dims.x;
+      for (int x = lo.x; x <= hi.x; ++x) {
+        float cx = g.lo.x + float(x) * g.cell;
+        float dx = std::max({cx - p.x, 0.0f, p.x - (cx + g.cell)});
+        if (dzy + dx * dx <= r2) f(row + size_t(x));
+      }
+    }
+  }
+}
+
+}  // namespace
+
+ParticleGrid buildParticleGrid(const std::vector<glm::vec3>& particles, const Box3& bound, double h,
+                               double cell, size_t max_cells, const std::vector<float>* reach) {
+  ParticleGrid g;
+  // A margin of kGridPad h around the bound: the shader computes where a ray enters and leaves
+  // the grid in float, and a brick face that the bound shares must lie strictly inside, or the
+  // sample at the box exit (or entry) could fall outside and be skipped.
+  const double margin = kGridPad * h;
+  g.lo = glm::vec3(bound.lo - margin);
+  glm::dvec3 extent = glm::max(bound.hi - bound.lo, glm::dvec3(0.0)) + 2.0 * margin;
+  for (;;) {
+    g.cell = float(cell);
+    g.dims = glm::max(glm::ivec3(glm::ceil(extent / cell)), glm::ivec3(1));
+    if (g.cellCount() <= max_cells) break;
+    cell *= 1.25;
+  }
+  const float r = float(h * (1.0 + kGridPad));
+  auto radius = [&](size_t i) { return reach ? float((*reach)[i] + h * kGridPad) : r; };
+  // Counting sort: count, prefix sums, fill. Particles are visited in order, so every cell's
+  // list comes out ascending.
+  g.offsets.assign(g.cellCount() + 1, 0);
+  for (size_t i = 0; i < particles.size(); ++i)
+    forCellsOf(g, particles[i], radius(i), [&](size_t c) { ++g.offsets[c + 1]; });
+  for (size_t c = 0; c < g.cellCount(); ++c) g.offsets[c + 1] += g.offsets[c];
+  g.items.resize(g.offsets.back());
+  std::vector<uint32_t> cursor(g.offsets.begin(), g.offsets.end() - 1);
+  for (size_t i = 0; i < particles.size(); ++i)
+    forCellsOf(g, particles[i], radius(i), [&](size_t c) { g.items[cursor[c]++] = uint32_t(i); });
+  return g;
+}
+
+}  // namespace sortlast

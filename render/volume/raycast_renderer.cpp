@@ -1,0 +1,335 @@
+#include "render/volume/raycast_renderer.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "render/gl/glsl_files.h"  // generated from render/gl/*.glsl (cmake/embed_shaders.cmake)
+#include "render/glow/glow_gl.h"
+#include "render/glow/glsl_files.h"
+#include "render/volume/adaptive_gpu_brick.h"
+#include "render/volume/glsl_files.h"
+#include "render/volume/volume_shading.h"
+
+namespace sortlast {
+
+namespace {
+// The program's variants: which flags a brick's draw needs (combinations the scene refuses are
+// refused again in render()).
+enum RaycastVariant : unsigned {
+  kAdaptive = 1,       // ADAPTIVE: the brick's adaptive blocks (addAdaptiveBrick)
+  kPreintegrated = 2,  // PREINTEGRATED: transfer.preintegrated
+  kShading = 4,        // SHADING: render.shading
+  kGlow = 8,           // GLOW: glow emitters inside the volume
+  kFloatFilter = 16,    // FLOAT_FILTER: the volume filtered in float (volume_shading.h floatFilter)
+};
+
+// The fragment shader of a variant: render/volume/raycast_march.frag.glsl describes the chunks.
+ProgramSources raycastSources(unsigned v) {
+  const bool glow = v & kGlow, shading = v & kShading, preint = v & kPreintegrated;
+  ShaderSource fragment;
+  fragment.defineIf(v & kAdaptive, "ADAPTIVE")
+      .defineIf(preint, "PREINTEGRATED")
+      .defineIf(shading, "SHADING")
+      .defineIf(v & kFloatFilter, "FLOAT_FILTER")
+      .defineIf(glow, "GLOW")
+      .addIf(glow, glsl::glow_segment)
+      .addIf(glow, glsl::glow_emitters)
+      .add(glsl::volume_filter)
+      .addIf(shading, glsl::volume_shading)
+      .add(glsl::raycast_sample_frag)
+      .addIf(preint, glsl::preintegrated_segment)
+      .addIf(glow, glsl::raycast_glow_frag)
+      .add(glsl::raycast_march_frag);
+  return {ShaderSource().add(glsl::fullscreen_vert), fragment};
+}
+}  // namespace
+
+RaycastRenderer::RaycastRenderer(const GlContext& ctx, int width, int height, int block_cells,
+                                 const RaycastSettings& settings, VolumeTexturePool* pool)
+    : pool_(pool),
+      gl_(ctx.gl()),
+      float_filter_(floatFilter(ctx.info())),
+      block_cells_(std::max(1, block_cells)),
+      settings_(settings),
+      target_(gl_, width, height),
+      table_(gl_),
+      programs_(gl_, raycastSources) {
+  programs_.get(float_filter_ ? kFloatFilter : 0);  // the plain program now: a driver that cannot build it fails here
+  // A core-profile draw needs a vertex array, though the triangle has no attributes.
+  gl_.GenVertexArrays(1, &vao_);
+  gl_.check("ray caster setup");
+}
+
+RaycastRenderer::~RaycastRenderer() {
+  for (auto& b : bricks_) {
+    if (pool_ && !b.adaptive)
+      pool_->give(b.volume.texture, b.volume.brick.stored.size());
+    else
+      gl_.DeleteTextures(1, &b.volume.texture);
+    gl_.DeleteTextures(1, &b.planes);
+    gl_.DeleteTextures(1, &b.skip);
+    if (b.adaptive) gl_.DeleteTextures(1, &b.lookup.table);
+  }
+  gl_.DeleteVertexArrays(1, &vao_);
+}
+
+void RaycastRenderer::setTransferFunction(const TransferFunction& tf, int table_size,
+                                          bool preintegrated) {
+  table_.set(tf, table_size, preintegrated);
+}
+
+namespace {
+// Integer and single-row textures are read with texelFetch only: no filtering, no mipmaps (a
+// texture without them must not ask for mipmap filtering, or it is incomplete and reads zero).
+void nearest(const GlApi& gl, GLenum target) {
+  gl.TexParameteri(target, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  gl.TexParameteri(target, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+}
+}  // namespace
+
+int RaycastRenderer::addBrick(const Brick& brick, const GridGeometry& grid,
+                              const std::vector<float>& samples) {
+  if (samples.size() != size_t(brick.stored.count()))
+    throw std::logic_error("addBrick: sample count does not match the brick");
+  return addBrick(brick, grid, FloatBrickSamples(samples, brick.stored));
+}
+
+int RaycastRenderer::addBrick(const Brick& brick, const GridGeometry& grid, const BrickSamples& samples) {
+  GpuBrick g;
+  // The texture only: the ray caster's blocks are its own (none here).
+  g.volume = uploadVolumeBrick(gl_, brick, grid, samples, 0, pool_);
+  g.blocks = cutBrickBlocks(brick, grid, samples, rayBlockGrid(grid, block_cells_));
+  min_spacing_ = grid.minSpacing();
+  global_count_ = rayBlockGrid(grid, block_cells_).count;
+  return addGpuBrick(std::move(g));
+}
+
+int RaycastRenderer::addAdaptiveBrick(const Brick& brick, const GridGeometry& grid,
+                                      const AdaptiveBrickBlocks& blocks) {
+  programs_.get(kAdaptive);
+  AdaptiveGpuBrick a = uploadAdaptiveBrick(gl_, brick, grid, blocks);
+  GpuBrick g;
+  g.volume = std::move(a.volume);
+  g.adaptive = true;
+  g.lookup = {a.table, a.index_scale, a.index_offset, a.block_cells, a.atlas_inv};
+  // The adaptive blocks are the DDA's: their planes and ranges, no global grid (m is their level).
+  const VolumeBrick& v = g.volume;
+  g.blocks.count = v.block_count;
+  g.blocks.global = false;
+  g.blocks.planes = v.block_planes;
+  for (const VolumeBlock& blk : v.blocks) {
+    g.blocks.vmin.push_back(blk.vmin);
+    g.blocks.vmax.push_back(blk.vmax);
+  }
+  return addGpuBrick(std::move(g));
+}
+
+int RaycastRenderer::addGpuBrick(GpuBrick g) {
+  const glm::ivec3 nb = g.blocks.count;
+  const int width = std::max({nb.x, nb.y, nb.z}) + 1;
+  // The planes as floats: a face shared with a neighbouring brick is the same double there, so
+  // the same float, and both bricks compute the same ray distance for it.
+  std::vector<float> planes(size_t(width) * 3, 0.0f);
+  for (int a = 0; a < 3; ++a)
+    for (int i = 0; i <= nb[a]; ++i) planes[size_t(a) * width + i] = float(g.blocks.planes[a][size_t(i)]);
+  gl_.GenTextures(1, &g.planes);
+  gl_.ActiveTexture(GL_TEXTURE3);
+  gl_.BindTexture(GL_TEXTURE_2D, g.planes);
+  gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_R32F, width, 3, 0, GL_RED, GL_FLOAT, planes.data());
+  nearest(gl_, GL_TEXTURE_2D);
+  gl_.GenTextures(1, &g.skip);
+  gl_.ActiveTexture(GL_TEXTURE4);
+  gl_.BindTexture(GL_TEXTURE_3D, g.skip);
+  gl_.TexImage3D(GL_TEXTURE_3D, 0, GL_RG8UI, nb.x, nb.y, nb.z, 0, GL_RG_INTEGER, GL_UNSIGNED_BYTE,
+                 nullptr);
+  nearest(gl_, GL_TEXTURE_3D);
+  gl_.ActiveTexture(GL_TEXTURE0);
+  gl_.check("ray caster brick upload");
+  bricks_.push_back(std::move(g));
+  return int(bricks_.size()) - 1;
+}
+
+std::pair<std::vector<float>, std::vector<float>> RaycastRenderer::globalRangesPart(
+    const GridGeometry& grid) const {
+  const RayBlockGrid rg = rayBlockGrid(grid, block_cells_);
+  std::pair<std::vector<float>, std::vector<float>> part{std::vector<float>(rg.size(), FLT_MAX),
+                                                          std::vector<float>(rg.size(), -FLT_MAX)};
+  for (const GpuBrick& g : bricks_)
+    if (g.blocks.global) mergeGrownRanges(g.blocks, rg, part.first, part.second);
+  return part;
+}
+
+void RaycastRenderer::setGlobalRanges(std::vector<float> vmin, std::vector<float> vmax) {
+  global_min_ = std::move(vmin);
+  global_max_ = std::move(vmax);
+  ++ranges_version_;
+}
+
+void RaycastRenderer::classify(GpuBrick& g, float delta) {
+  const ClassKey key{table_.version(), ranges_version_, delta, settings_.adaptive_step,
+                     settings_.adaptive_tolerance};
+  if (key == g.classified) return;
+  const BrickBlocks& b = g.blocks;
+  const size_t n = b.vmin.size();
+  std::vector<unsigned char> visible(n);
+  g.any = false;
+  g.bound = {glm::dvec3(1e300), glm::dvec3(-1e300)};
+  for (int z = 0; z < b.count.z; ++z)
+    for (int y = 0; y < b.count.y; ++y)
+      for (int x = 0; x < b.count.x; ++x) {
+        const size_t i = b.index({x, y, z});
+        // Pre-integrated segments reach up to delta/2 <= one voxel beyond the block
+        // (render/volume/raycast_march.frag.glsl): the whole block's range grown by one sample
+        // holds their ends.
+        visible[i] = (table_.preintegrated() && b.global ? table_.visible(b.grown_min[i], b.grown_max[i])
+                                                         : table_.visible(b.vmin[i], b.vmax[i]))
+                         ? 1 : 0;
+        if (!visible[i]) continue;
+        g.any = true;
+        const glm::ivec3 c(x, y, z);
+        for (int a = 0; a < 3; ++a) {
+          g.bound.lo[a] = std::min(g.bound.lo[a], b.planes[a][size_t(c[a])]);
+          g.bound.hi[a] = std::max(g.bound.hi[a], b.planes[a][size_t(c[a]) + 1]);
+        }
+      }
+  // Adaptive steps need the whole blocks' ranges (the same m in every brick sharing a block).
+  const StepRule* rule = nullptr;
+  if (settings_.adaptive_step && b.global && !global_min_.empty()) {
+    ClassKey rk{table_.version(), 0, delta, true, settings_.adaptive_tolerance};
+    if (!rule_ || !(rk == rule_key_)) {
+      rule_ = std::make_unique<StepRule>(table_.entries(), table_.rangeLo(), table_.rangeHi(), delta,
+                                         settings_.adaptive_tolerance,
+                                         StepRule::maxMultiple(delta, min_spacing_));
+      rule_key_ = rk;
+    }
+    rule = rule_.get();
+  }
+  auto globalIndex = [&](const glm::ivec3& c) {
+    return size_t(c.x) + size_t(global_count_.x) * (size_t(c.y) + size_t(global_count_.y) * c.z);
+  };
+  // Class: 0 empty, else 1 + log2 m.
+  std::vector<unsigned char> cls(n);
+  for (int z = 0; z < b.count.z; ++z)
+    for (int y = 0; y < b.count.y; ++y)
+      for (int x = 0; x < b.count.x; ++x) {
+        const size_t i = b.index({x, y, z});
+        if (!visible[i]) continue;
+        const size_t gi = rule ? globalIndex(b.first + glm::ivec3(x, y, z)) : 0;
+        cls[i] = (unsigned char)(1 + (rule ? rule->level(global_min_[gi], global_max_[gi]) : 0));
+      }
+  const std::vector<unsigned char> reach = classReach(b.count, cls);
+  std::vector<unsigned char> texels(2 * n);
+  for (size_t i = 0; i < n; ++i) {
+    // The ADAPTIVE variant reads each block's own samples: its rays sample one block at a time.
+    texels[2 * i] = !b.global && cls[i] ? 1 : reach[i];
+    texels[2 * i + 1] = cls[i];
+  }
+  gl_.ActiveTexture(GL_TEXTURE4);
+  gl_.BindTexture(GL_TEXTURE_3D, g.skip);
+  gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  gl_.TexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, b.count.x, b.count.y, b.count.z, GL_RG_INTEGER,
+                    GL_UNSIGNED_BYTE, texels.data());
+  gl_.ActiveTexture(GL_TEXTURE0);
+  gl_.check("ray caster block classification");
+  g.classified = key;
+}
+
+RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spacing,
+                                      double /*near_plane*/, double /*far_plane*/,
+                                      const SurfaceLayer* surface, const GlowPass* glow) {
+  GpuBrick& g = bricks_.at(size_t(handle));
+  const VolumeBrick& b = g.volume;
+  RenderedBrick out;
+  const bool preint = table_.preintegrated();
+  if (preint && g.adaptive)  // the scene refuses this (transfer.preintegrated with adaptive.tolerance)
+    throw std::logic_error("ray caster: pre-integration of adaptive bricks is not supported");
+  classify(g, float(spacing));
+  Rect r = g.any ? screenRectOf(cam, g.bound) : Rect{};
+  // Glow: the whole of the brick's part of the glow box, empty blocks and all.
+  const bool glowing = glow && glow->count > 0 && hasVolume(glow->box);
+  if (glowing) {
+    if (g.adaptive) throw std::logic_error("ray caster: glow in an adaptive brick");
+    const Rect gr = screenRectOf(cam, glow->box);
+    if (!gr.empty()) r = r.empty() ? gr : unite(r, gr);
+  }
+  const bool has_surface = surface && !surface->rect.empty();
+  if (has_surface) r = r.empty() ? surface->rect : unite(r, surface->rect);
+  if (r.empty()) return out;
+
+  target_.begin(r, has_surface ? surface : nullptr);
+  if (g.any || glowing) {
+    gl_.Enable(GL_BLEND);
+    gl_.BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // the ray's colour over the surface's
+    // Adaptive blocks cannot be shaded (raycast_sample.frag.glsl sampleAt); the scene refuses it.
+    if (g.adaptive && shading_.enabled)
+      throw std::logic_error("ray caster: gradient shading of an adaptive brick");
+    const unsigned program =
+        programs_.get((g.adaptive ? kAdaptive : 0) | (preint ? kPreintegrated : 0) |
+                      (shading_.enabled ? kShading : 0) | (float_filter_ ? kFloatFilter : 0) |
+                      (glowing ? kGlow : 0));
+    gl_.UseProgram(program);
+    auto u3 = [&](const char* name, const glm::dvec3& v) {
+      gl_.Uniform3f(gl_.GetUniformLocation(program, name), float(v.x), float(v.y), float(v.z));
+    };
+    setPixelRayUniforms(gl_, program, cam);
+    if (g.adaptive) {
+      u3("u_index_scale", glm::dvec3(g.lookup.index_scale));
+      u3("u_index_offset", glm::dvec3(g.lookup.index_offset));
+      u3("u_block_cells", glm::dvec3(g.lookup.block_cells));
+      u3("u_atlas_inv", glm::dvec3(g.lookup.atlas_inv));
+      gl_.Uniform1i(gl_.GetUniformLocation(program, "u_blocks"), 5);
+      gl_.Uniform1i(gl_.GetUniformLocation(program, "u_own_steps"),
+                    settings_.own_resolution_steps ? 1 : 0);
+      gl_.ActiveTexture(GL_TEXTURE5);
+      gl_.BindTexture(GL_TEXTURE_3D, g.lookup.table);
+    } else {
+      u3("u_tex_scale", glm::dvec3(b.tex_scale));
+      u3("u_tex_offset", glm::dvec3(b.tex_offset));
+    }
+    gl_.Uniform1f(gl_.GetUniformLocation(program, "u_delta"), float(spacing));
+    gl_.Uniform1f(gl_.GetUniformLocation(program, "u_ert"),
+                  settings_.ert_threshold < 1.0 ? float(settings_.ert_threshold) : 2.0f);
+    gl_.Uniform1i(gl_.GetUniformLocation(program, "u_volume"), 0);
+    gl_.Uniform1i(gl_.GetUniformLocation(program, "u_surface"), 2);
+    gl_.Uniform1i(gl_.GetUniformLocation(program, "u_planes"), 3);
+    gl_.Uniform1i(gl_.GetUniformLocation(program, "u_skip"), 4);
+    gl_.Uniform1i(gl_.GetUniformLocation(program, "u_has_surface"), has_surface ? 1 : 0);
+    table_.use(program);
+    if (preint) table_.usePreintegrated(program, spacing);  // segments delta long
+    if (shading_.enabled) setShadingUniforms(gl_, program, shading_, b, table_.function());
+    if (has_surface) {
+      const Rect& sr = surface->rect;
+      gl_.Uniform4i(gl_.GetUniformLocation(program, "u_surface_rect"), sr.x, sr.y, sr.w, sr.h);
+      gl_.ActiveTexture(GL_TEXTURE2);
+      gl_.BindTexture(GL_TEXTURE_2D, surface->surface_texture);
+    }
+    if (glowing) {
+      u3("u_glow_lo", glow->box.lo);
+      u3("u_glow_hi", glow->box.hi);
+      u3("u_glow_hi_open", glm::dvec3(glm::lessThan(glow->box.hi, glow->whole.hi)));
+      gl_.Uniform1f(gl_.GetUniformLocation(program, "u_glow_intensity"), glow->intensity);
+      bindGlowEmitters(gl_, program, *glow, 7);  // 6: the pre-integration table
+    }
+    gl_.ActiveTexture(GL_TEXTURE3);
+    gl_.BindTexture(GL_TEXTURE_2D, g.planes);
+    gl_.ActiveTexture(GL_TEXTURE4);
+    gl_.BindTexture(GL_TEXTURE_3D, g.skip);
+    gl_.ActiveTexture(GL_TEXTURE0);
+    gl_.BindTexture(GL_TEXTURE_3D, b.texture);
+    gl_.BindVertexArray(vao_);
+    gl_.DrawArrays(GL_TRIANGLES, 0, 3);
+    gl_.Disable(GL_BLEND);
+  }
+  out.rect = r;
+  if (glow)
+    out.pixels_f = target_.finishFloat(r);
+  else
+    out.pixels = target_.finish(r);
+  return out;
+}
+
+}  // namespace sortlast

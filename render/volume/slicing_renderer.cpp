@@ -1,0 +1,141 @@
+#include "render/volume/slicing_renderer.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "common/visibility.h"
+#include "render/volume/glsl_files.h"  // generated from render/volume/*.glsl
+#include "render/volume/slice_geometry.h"
+#include "render/volume/volume_shading.h"
+
+namespace sortlast {
+
+namespace {
+enum SlicingVariant : unsigned {
+  kPreintegrated = 1,  // PREINTEGRATED: transfer.preintegrated
+  kShading = 2,        // SHADING: render.shading
+  kFloatFilter = 4,     // FLOAT_FILTER: the volume filtered in float (volume_shading.h floatFilter)
+};
+
+// A variant's sources: render/volume/slicing.frag.glsl describes the chunks.
+ProgramSources slicingSources(unsigned v) {
+  const bool preint = v & kPreintegrated, shading = v & kShading;
+  ShaderSource fragment;
+  fragment.defineIf(preint, "PREINTEGRATED")
+      .defineIf(shading, "SHADING")
+      .defineIf(v & kFloatFilter, "FLOAT_FILTER")
+      .add(glsl::volume_filter)
+      .addIf(shading, glsl::volume_shading)
+      .add(glsl::slicing_inputs_frag)
+      .addIf(preint, glsl::preintegrated_segment)
+      .add(glsl::slicing_frag);
+  return {ShaderSource().add(glsl::slicing_vert), fragment};
+}
+}  // namespace
+
+SlicingRenderer::SlicingRenderer(const GlContext& ctx, int width, int height, int block_cells)
+    : gl_(ctx.gl()),
+      float_filter_(floatFilter(ctx.info())),
+      block_cells_(std::max(1, block_cells)),
+      target_(gl_, width, height),
+      table_(gl_),
+      programs_(gl_, slicingSources) {
+  programs_.get(float_filter_ ? kFloatFilter : 0);  // the plain program now: a driver that cannot build it fails here
+  gl_.GenVertexArrays(1, &vao_);
+  gl_.BindVertexArray(vao_);
+  gl_.GenBuffers(1, &vbo_);
+  gl_.BindBuffer(GL_ARRAY_BUFFER, vbo_);
+  gl_.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+  gl_.EnableVertexAttribArray(0);
+  gl_.check("renderer setup");
+}
+
+SlicingRenderer::~SlicingRenderer() {
+  for (auto& b : bricks_) gl_.DeleteTextures(1, &b.texture);
+  gl_.DeleteBuffers(1, &vbo_);
+  gl_.DeleteVertexArrays(1, &vao_);
+}
+
+void SlicingRenderer::setTransferFunction(const TransferFunction& tf, int table_size,
+                                          bool preintegrated) {
+  table_.set(tf, table_size, preintegrated);
+}
+
+int SlicingRenderer::addBrick(const Brick& brick, const GridGeometry& grid,
+                              const std::vector<float>& samples) {
+  bricks_.push_back(uploadVolumeBrick(gl_, brick, grid, samples, block_cells_));
+  return int(bricks_.size()) - 1;
+}
+
+int SlicingRenderer::addBrick(const Brick& brick, const GridGeometry& grid, const BrickSamples& samples) {
+  bricks_.push_back(uploadVolumeBrick(gl_, brick, grid, samples, block_cells_));
+  return int(bricks_.size()) - 1;
+}
+
+RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spacing,
+                                      double near_plane, double far_plane,
+                                      const SurfaceLayer* surface) {
+  const VolumeBrick& b = bricks_.at(size_t(handle));
+  RenderedBrick out;
+  const bool preint = table_.preintegrated();
+  glm::dvec3 eye = cam.position, fwd = cam.forward();
+  // Visible blocks, back to front, and the box around them (which sets the output rectangle).
+  std::vector<float> tris;
+  Box3 bound{glm::dvec3(1e300), glm::dvec3(-1e300)};
+  for (int id : backToFrontOrder(b.block_planes, eye)) {
+    const VolumeBlock& blk = b.blocks[size_t(id)];
+    // Pre-integrated segments reach ds/2 beyond the block: its range grown by one voxel.
+    if (preint ? !table_.visible(blk.gmin, blk.gmax) : !table_.visible(blk.vmin, blk.vmax)) continue;
+    bound.lo = glm::min(bound.lo, blk.world.lo);
+    bound.hi = glm::max(bound.hi, blk.world.hi);
+    // Slices start just beyond the near plane so no polygon is clipped by it.
+    std::vector<float> t = sliceTriangles(blk.world, eye, fwd, spacing, near_plane * 1.001);
+    tris.insert(tris.end(), t.begin(), t.end());
+  }
+  Rect r = tris.empty() ? Rect{} : screenRectOf(cam, bound);
+  const bool has_surface = surface && !surface->rect.empty();
+  if (has_surface) r = r.empty() ? surface->rect : unite(r, surface->rect);
+  if (r.empty()) return out;
+
+  target_.begin(r, has_surface ? surface : nullptr);
+  if (!tris.empty()) {
+    gl_.Enable(GL_BLEND);
+    gl_.BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // premultiplied "over", back to front
+    const unsigned program =
+        programs_.get((preint ? kPreintegrated : 0) |
+                      (shading_.enabled ? kShading : 0) | (float_filter_ ? kFloatFilter : 0));
+    gl_.UseProgram(program);
+    glm::mat4 vp = cam.viewProjection(near_plane, far_plane);
+    gl_.UniformMatrix4fv(gl_.GetUniformLocation(program, "u_view_proj"), 1, GL_FALSE, &vp[0][0]);
+    gl_.Uniform1i(gl_.GetUniformLocation(program, "u_volume"), 0);
+    gl_.Uniform3f(gl_.GetUniformLocation(program, "u_tex_scale"), b.tex_scale.x, b.tex_scale.y, b.tex_scale.z);
+    gl_.Uniform3f(gl_.GetUniformLocation(program, "u_tex_offset"), b.tex_offset.x, b.tex_offset.y, b.tex_offset.z);
+    gl_.Uniform3f(gl_.GetUniformLocation(program, "u_eye"), float(eye.x), float(eye.y), float(eye.z));
+    gl_.Uniform3f(gl_.GetUniformLocation(program, "u_forward"), float(fwd.x), float(fwd.y), float(fwd.z));
+    gl_.Uniform1f(gl_.GetUniformLocation(program, "u_spacing"), float(spacing));
+    table_.use(program);
+    if (preint) table_.usePreintegrated(program, spacing);  // L0: the slice spacing
+    if (shading_.enabled) setShadingUniforms(gl_, program, shading_, b, table_.function());
+    gl_.Uniform1i(gl_.GetUniformLocation(program, "u_surface"), 2);
+    gl_.Uniform1i(gl_.GetUniformLocation(program, "u_has_surface"), has_surface ? 1 : 0);
+    if (has_surface) {
+      const Rect& sr = surface->rect;
+      gl_.Uniform4i(gl_.GetUniformLocation(program, "u_surface_rect"), sr.x, sr.y, sr.w, sr.h);
+      gl_.ActiveTexture(GL_TEXTURE2);
+      gl_.BindTexture(GL_TEXTURE_2D, surface->surface_texture);
+    }
+    gl_.ActiveTexture(GL_TEXTURE0);
+    gl_.BindTexture(GL_TEXTURE_3D, b.texture);
+    gl_.BindVertexArray(vao_);
+    gl_.BindBuffer(GL_ARRAY_BUFFER, vbo_);
+    gl_.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(tris.size() * sizeof(float)), tris.data(), GL_STREAM_DRAW);
+    gl_.DrawArrays(GL_TRIANGLES, 0, GLsizei(tris.size() / 3));
+    gl_.Disable(GL_BLEND);
+  }
+  out.rect = r;
+  out.pixels = target_.finish(r);
+  return out;
+}
+
+}  // namespace sortlast

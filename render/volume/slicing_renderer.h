@@ -1,0 +1,66 @@
+#pragma once
+// 3D-texture slicing of bricks (the paper's renderer), in OpenGL 4.5 core. Each brick is a 3D
+// texture of its stored samples (ghosts included); it is drawn as view-aligned slice polygons
+// blended back to front with premultiplied alpha into a float framebuffer, and read back as RGBA8
+// over the screen rectangle its projection covers.
+//
+// Empty-space skipping: each brick is cut into blocks of up to `block_cells` cells per axis; a
+// block whose samples all map to zero opacity is not drawn, and the brick's rectangle covers only
+// the blocks that are. Visible blocks are drawn in back-to-front block order, each with its part
+// of the shared slice planes; "over" is associative, so this equals slicing the whole brick (up to
+// float rounding) while rasterising no fragment in empty blocks.
+#include <vector>
+
+#include "common/brick.h"
+#include "common/camera.h"
+#include "io/image.h"
+#include "transfer/shading.h"
+#include "transfer/transfer_function.h"
+#include "render/gl/brick_output.h"
+#include "render/gl/float_target.h"
+#include "render/gl/program_cache.h"
+#include "render/gl/gl_context.h"
+#include "render/volume/transfer_table.h"
+#include "render/volume/volume_brick.h"
+
+namespace sortlast {
+
+class SlicingRenderer {
+ public:
+  SlicingRenderer(const GlContext& ctx, int width, int height, int block_cells = 64);
+  ~SlicingRenderer();
+  SlicingRenderer(const SlicingRenderer&) = delete;
+  SlicingRenderer& operator=(const SlicingRenderer&) = delete;
+
+  // With `preintegrated`, fragments draw pre-integrated segments (render/volume/slicing.frag.glsl).
+  void setTransferFunction(const TransferFunction& tf, int table_size, bool preintegrated = false);
+  // A new image size for the next frames (the bricks' textures stay).
+  void resize(int width, int height) { target_.resize(width, height); }
+  // Gradient shading (transfer/shading.h) for the next frames.
+  void setShading(const Shading& shading) { shading_ = shading; }
+  // Uploads a brick's stored samples (x fastest); returns a handle for render(). The samples'
+  // min and max are kept so invisible bricks can be skipped.
+  int addBrick(const Brick& brick, const GridGeometry& grid, const std::vector<float>& samples);
+  int addBrick(const Brick& brick, const GridGeometry& grid, const BrickSamples& samples);
+
+  // Renders one brick for `cam`; `spacing` is the world distance between slice planes and
+  // [near_plane, far_plane] must enclose the whole volume (the same for all bricks of a frame).
+  // Slice fragments at or behind `surface` are not drawn.
+  RenderedBrick render(int handle, const Camera& cam, double spacing, double near_plane,
+                       double far_plane, const SurfaceLayer* surface = nullptr);
+
+ private:
+  const GlApi& gl_;
+  bool float_filter_;  // volume_shading.h: floatFilter
+  int block_cells_;
+  FloatTarget target_;
+  TransferTable table_;
+  Shading shading_;
+  // The program's variants (slicing_renderer.cpp's recipe: kPreintegrated, kShading): the plain
+  // one linked with the renderer, the others when first drawn.
+  ProgramCache programs_;
+  unsigned vao_ = 0, vbo_ = 0;
+  std::vector<VolumeBrick> bricks_;
+};
+
+}  // namespace sortlast

@@ -1,0 +1,263 @@
+// `sortlast serve` (serve_job.h): the frame loop of the service. Rank 0 pops requests from the
+// front end's queue, checks each against the session (a bad one is answered 400 without bothering
+// the other ranks), broadcasts the good ones, renders with everyone, encodes and answers.
+#include "service/serve_job.h"
+
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <mutex>
+#include <optional>
+
+#include <dlfcn.h>
+#include <unistd.h>
+
+#include "common/error.h"
+#include "session/collective.h"
+#include "service/data_dir.h"
+#include "service/frame_commands.h"
+#include "service/frame_service.h"
+#include "service/http_server.h"
+#include "common/listen_address.h"
+#include "session/render_session.h"
+#include "service/request_queue.h"
+
+#ifndef SORTLAST_VIEWER_SOURCE_DIR
+#define SORTLAST_VIEWER_SOURCE_DIR ""
+#endif
+
+namespace sortlast {
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+
+extern "C" void onStopSignal(int) { g_stop.store(true); }
+
+void installStopHandlers() {
+  struct sigaction sa {};
+  sa.sa_handler = onStopSignal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGTERM, &sa, nullptr);
+  sigaction(SIGINT, &sa, nullptr);
+  // A client that vanishes mid-write must not kill the service.
+  signal(SIGPIPE, SIG_IGN);
+}
+
+ServiceReply errorReply(int status, const std::string& message) {
+  ServiceReply r;
+  r.status = status;
+  r.error = message;
+  return r;
+}
+
+SessionOptions sessionOptions(const ServeOptions& opts, const std::string& scene_path,
+                              const std::vector<std::string>& overrides) {
+  SessionOptions so;
+  so.scene = readSceneText(scene_path);
+  so.overrides = overrides;
+  so.resident = true;
+  so.max_image_side = opts.max_image_side;
+  so.quiet = opts.quiet;
+  return so;
+}
+
+// POST /api/load on every rank: the session is replaced by one of `path`. The old one goes first
+// (a session owns the rank's GL context, and two must not overlap); if the new scene fails, the
+// old scene is loaded again. The --set keys belong to the scene the service started with (`initial`)
+// and apply to it alone. Returns the error message, or "" on success. Collective.
+std::string replaceSession(std::unique_ptr<RenderSession>& session, const ServeOptions& opts,
+                           const std::string& path, const std::string& initial, std::string& current,
+                           MPI_Comm comm) {
+  auto open = [&](const std::string& scene) {
+    SessionOptions so;
+    collectively(comm, [&] {
+      so = sessionOptions(opts, scene, scene == initial ? opts.overrides : std::vector<std::string>());
+    });
+    session = std::make_unique<RenderSession>(std::move(so), comm);
+  };
+  session.reset();
+  try {
+    open(path);
+    current = path;
+    return "";
+  } catch (const JobFailed& e) {
+    open(current);  // the scene that loaded before loads again (or the service ends)
+    return e.message;
+  }
+}
+
+// Rank 0's part: the front end and the loop that feeds the other ranks.
+class Frontend {
+ public:
+  Frontend(const ServeOptions& opts, std::unique_ptr<RenderSession>& session, std::string scene)
+      : opts_(opts), session_(session), initial_(scene), scene_(scene) {}
+
+  // Collective with the other ranks' follow(): returns when the service stops.
+  void lead(MPI_Comm comm) {
+    auto [address, port] = parseListen(opts_.listen);
+    ServerOptions so;
+    so.address = address;
+    so.port = port;
+    so.token = opts_.token;
+    so.static_dir = findViewerDir(opts_.viewer_dir);
+    so.data_dir = opts_.data_dir;
+    so.max_body_bytes = opts_.max_body_bytes;
+    info_.set(describe());
+    server_ = std::make_unique<HttpServer>(so, queue_, [this] { return info_.get(); });
+    bool started = true;
+    try {
+      server_->start();
+      std::fprintf(stderr, "sortlast serve: http://%s:%d/ (%d rank(s)); viewer files from %s\n",
+                   address.find(':') != std::string::npos ? ("[" + address + "]").c_str() : address.c_str(),
+                   server_->port(), size(comm), so.static_dir.c_str());
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "sortlast: error: %s\n", e.what());
+      started = false;
+    }
+    while (started && !g_stop.load()) {
+      std::optional<ServiceRequest> req = queue_.pop(std::chrono::milliseconds(100));
+      if (!req) continue;
+      if (req->kind == "load")
+        load(*req, comm);
+      else
+        frame(*req, comm);
+    }
+    queue_.close();
+    server_->stop();
+    sendCommand({Command::kShutdown, ""}, comm);
+    if (!started) throw JobFailed{"the service could not start"};
+  }
+
+ private:
+  static int size(MPI_Comm comm) {
+    int n = 1;
+    MPI_Comm_size(comm, &n);
+    return n;
+  }
+
+  nlohmann::json describe() const {
+    nlohmann::json j = session_->describe();
+    j["data_dir"] = !opts_.data_dir.empty();
+    return j;
+  }
+
+  void frame(ServiceRequest& req, MPI_Comm comm) {
+    leadFrame(req, *session_, queue_, comm);
+    const int step = session_->currentStep();
+    if (step != info_step_) {
+      info_step_ = step;
+      info_.set(describe());  // the histogram and range of the step now shown
+    }
+  }
+
+  void load(ServiceRequest& req, MPI_Comm comm) {
+    std::string path = req.body.value("scene", "");
+    // Answer with the name relative to the data directory, as the client gave it.
+    std::error_code ec;
+    std::string name = std::filesystem::relative(
+        path, std::filesystem::weakly_canonical(opts_.data_dir, ec), ec).string();
+    sendCommand({Command::kLoad, path}, comm);
+    std::string error = replaceSession(session_, opts_, path, initial_, scene_, comm);
+    info_step_ = -1;
+    info_.set(describe());
+    if (!error.empty()) {
+      req.reply(errorReply(400, "cannot load " + name + ": " + error));
+      return;
+    }
+    ServiceReply r;
+    r.stats = {{"ok", true}, {"scene", name}};
+    req.reply(std::move(r));
+  }
+
+  const ServeOptions& opts_;
+  std::unique_ptr<RenderSession>& session_;
+  const std::string initial_;  // the scene file the service started with
+  std::string scene_;          // the scene file the session has now
+  RequestQueue queue_;
+  SceneInfo info_;
+  std::unique_ptr<HttpServer> server_;
+  int info_step_ = -1;
+};
+
+// The other ranks: do what rank 0 says until it says stop.
+void follow(std::unique_ptr<RenderSession>& session, const ServeOptions& opts, const std::string& initial,
+            MPI_Comm comm) {
+  std::string scene = initial;
+  for (;;) {
+    CommandMessage m = receiveCommand(comm, g_stop, 10.0);
+    if (m.gave_up) {
+      std::fprintf(stderr, "sortlast: error: stopped by a signal, and rank 0 did not end the service\n");
+      MPI_Abort(comm, 1);
+    }
+    switch (m.command) {
+      case Command::kShutdown:
+        return;
+      case Command::kFrame:
+        followFrame(m, *session);
+        break;
+      case Command::kLoad:
+        replaceSession(session, opts, m.payload, initial, scene, comm);
+        break;
+    }
+  }
+}
+
+}  // namespace
+
+std::string findViewerDir(const std::string& given) {
+  if (!given.empty()) return given;
+  std::vector<std::filesystem::path> binaries;
+  std::error_code ec;
+  std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) binaries.push_back(exe);
+  // A simulation linking libsortlast.so: the library's own folder (PREFIX/lib).
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<void*>(&findViewerDir), &info) && info.dli_fname)
+    binaries.push_back(std::filesystem::absolute(info.dli_fname));
+  for (const auto& b : binaries) {
+    auto installed = b.parent_path().parent_path() / "share" / "sortlast" / "viewer";
+    if (std::filesystem::exists(installed / "index.html")) return installed.string();
+  }
+  return SORTLAST_VIEWER_SOURCE_DIR;
+}
+
+int runServeJob(const ServeOptions& opts, MPI_Comm comm) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  installStopHandlers();
+  try {
+    std::string scene_path = opts.scene;
+    collectively(comm, [&] {
+      auto [address, port] = parseListen(opts.listen);
+      if (!isDefaultLoopback(address) && opts.token.empty())
+        throw InputError("--listen " + opts.listen + " is not the loopback address (127.0.0.1, ::1, "
+                         "localhost): others may reach it, so give --token TOKEN");
+      if (!opts.data_dir.empty()) {
+        if (!std::filesystem::is_directory(opts.data_dir))
+          throw InputError("--data-dir " + opts.data_dir + ": not a directory");
+        // The scene, given relative to the data directory, must lie inside it.
+        if (!scene_path.empty()) scene_path = resolveUnder(opts.data_dir, scene_path).string();
+      }
+    });
+    std::unique_ptr<RenderSession> session;
+    {
+      SessionOptions so;
+      collectively(comm, [&] { so = sessionOptions(opts, scene_path, opts.overrides); });
+      session = std::make_unique<RenderSession>(std::move(so), comm);
+    }
+    if (rank == 0) {
+      Frontend frontend(opts, session, scene_path);
+      frontend.lead(comm);
+    } else {
+      follow(session, opts, scene_path, comm);
+    }
+    if (rank == 0 && !opts.quiet) std::fprintf(stderr, "sortlast serve: stopped\n");
+  } catch (const JobFailed&) {
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace sortlast

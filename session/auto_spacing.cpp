@@ -1,0 +1,59 @@
+// render.sample_spacing: auto: the step from probe frames (session/auto_spacing.h).
+#include "session/auto_spacing.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace sortlast {
+
+namespace {
+
+// RMS over pixels and the three colour channels of the two frames composited over background.
+double rmsDifference(const ImageF& a, const ImageF& b, const glm::dvec3& bg) {
+  double sum = 0.0;
+  const size_t n = size_t(a.width) * a.height;
+  for (size_t i = 0; i < n; ++i) {
+    const float* p = &a.px[4 * i];
+    const float* q = &b.px[4 * i];
+    for (int c = 0; c < 3; ++c) {
+      double u = double(p[c]) + (1.0 - double(p[3])) * bg[c];
+      double v = double(q[c]) + (1.0 - double(q[3])) * bg[c];
+      sum += (u - v) * (u - v);
+    }
+  }
+  return n ? std::sqrt(sum / double(3 * n)) : 0.0;
+}
+
+}  // namespace
+
+SpacingChoice chooseSpacing(const std::vector<ImageF>& probes, const glm::dvec3& background) {
+  const std::vector<double>& steps = probeSpacings();
+  if (probes.size() != steps.size()) throw std::logic_error("chooseSpacing: one probe per step");
+  for (const ImageF& p : probes)
+    if (p.width != probes[0].width || p.height != probes[0].height ||
+        p.px.size() != size_t(p.width) * p.height * 4)
+      throw std::logic_error("chooseSpacing: probes differ in size");
+  SpacingChoice out;
+  out.spacing = steps[0];
+  const double bound = std::pow(10.0, -kTargetDb / 20.0);
+  bool finer_ok = true;  // a step is taken only if every finer one passed too
+  for (size_t i = 1; i < steps.size(); ++i) {
+    const double e = rmsDifference(probes[i], probes[i - 1], background);
+    out.estimated_db.push_back({steps[i], e > 0.0 ? -20.0 * std::log10(e)
+                                                  : std::numeric_limits<double>::infinity()});
+    finer_ok = finer_ok && e <= bound;
+    if (finer_ok) out.spacing = steps[i];
+  }
+  return out;
+}
+
+std::pair<int, int> probeSize(int width, int height) {
+  const int longer = std::max(width, height);
+  const int side = std::max(8, std::min(kProbeSide, longer / kProbeFraction));
+  const double s = double(side) / double(longer);
+  return {std::max(8, int(std::lround(width * s))), std::max(8, int(std::lround(height * s)))};
+}
+
+}  // namespace sortlast

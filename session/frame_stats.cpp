@@ -1,0 +1,68 @@
+#include "session/frame_stats.h"
+
+#include <sys/resource.h>
+
+#include <cstdio>
+
+namespace sortlast {
+
+static_assert(sizeof(RankFrameStats) % sizeof(double) == 0, "RankFrameStats must be all doubles");
+
+std::vector<RankFrameStats> gatherStats(const RankFrameStats& mine, MPI_Comm comm) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  const int n = sizeof(RankFrameStats) / sizeof(double);
+  std::vector<RankFrameStats> all(rank == 0 ? size_t(size) : 0);
+  MPI_Gather(&mine, n, MPI_DOUBLE, all.data(), n, MPI_DOUBLE, 0, comm);
+  return all;
+}
+
+double peakRssMiB() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss / 1024.0;  // Linux reports KiB
+}
+
+double currentRssMiB() {
+  std::FILE* f = std::fopen("/proc/self/status", "r");
+  if (!f) return 0.0;
+  char line[256];
+  long long kib = 0;
+  while (std::fgets(line, sizeof line, f))
+    if (std::sscanf(line, "VmRSS: %lld kB", &kib) == 1) break;
+  std::fclose(f);
+  return kib / 1024.0;
+}
+
+nlohmann::json frameJson(int frame, const std::vector<RankFrameStats>& ranks, double composite_s,
+                         double total_s) {
+  nlohmann::json j;
+  j["frame"] = frame;
+  double raw = 0, rle = 0;
+  for (const char* key : {"render_s", "encode_s", "transfer_s", "peak_rss_mb", "rss_mb", "bricks_rendered",
+                          "bricks_skipped", "particles_held", "particle_rounds", "bytes_sent"})
+    j[key] = nlohmann::json::array();
+  for (const RankFrameStats& r : ranks) {
+    j["render_s"].push_back(r.render_s);
+    j["encode_s"].push_back(r.encode_s);
+    j["transfer_s"].push_back(r.transfer_s);
+    j["peak_rss_mb"].push_back(r.peak_rss_mb);
+    j["rss_mb"].push_back(r.rss_mb);
+    j["bricks_rendered"].push_back(int(r.bricks_rendered));
+    j["bricks_skipped"].push_back(int(r.bricks_skipped));
+    j["particles_held"].push_back((long long)r.particles_held);
+    j["particle_rounds"].push_back(int(r.particle_rounds));
+    j["bytes_sent"].push_back((long long)r.bytes_sent);
+    raw += r.bytes_raw;
+    rle += r.bytes_rle;
+  }
+  j["bytes_raw"] = raw;
+  j["bytes_rle"] = rle;
+  j["rle_ratio"] = raw > 0 ? rle / raw : 1.0;  // encoded size as a fraction of the raw size
+  j["composite_s"] = composite_s;
+  j["total_s"] = total_s;
+  return j;
+}
+
+}  // namespace sortlast

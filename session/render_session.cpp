@@ -1,0 +1,796 @@
+// The resident session (render_session.h). Construction reads the scene, lays out the bricks and
+// loads the first step; render() resolves a request against the base scene, brings the GPU to it
+// (only what changed), and runs one frame: render each brick, encode, composite in visibility
+// order.
+#include "session/render_session.h"
+
+#include "session/auto_spacing.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+
+#include "common/error.h"
+#include "compositing/compositor.h"
+#include "compositing/rect_image.h"
+#include "compositing/rle.h"
+#include "common/visibility.h"
+#include "session/adaptive_loading.h"
+#include "render/brick_renderer.h"
+#include "session/collective.h"
+#include "session/frame_footprint.h"
+#include "session/frame_stats.h"
+#include "session/device_report.h"
+#include "session/memory_budget.h"
+#include "session/particle_loading.h"
+#include "session/session_layout.h"
+#include "session/step_data.h"
+#include "session/surface_gather.h"
+
+namespace sortlast {
+
+namespace {
+
+// Ray casting: the block value ranges adaptive steps choose from are the whole grid's, which no
+// rank holds alone: each rank's part, reduced over ranks (every rank calls it; slicing has none,
+// alike on every rank).
+void shareBlockRanges(BrickRenderer& renderer, const GridGeometry& grid, MPI_Comm comm) {
+  auto part = renderer.blockRangesPart(grid);
+  if (!part) return;
+  auto& [vmin, vmax] = *part;
+  MPI_Allreduce(MPI_IN_PLACE, vmin.data(), int(vmin.size()), MPI_FLOAT, MPI_MIN, comm);
+  MPI_Allreduce(MPI_IN_PLACE, vmax.data(), int(vmax.size()), MPI_FLOAT, MPI_MAX, comm);
+  renderer.setBlockRanges(std::move(*part));
+}
+
+// Fault injection for the tests: a rank that throws (the others must stop cleanly), dies (mpirun
+// must end the job) or meets an MPI error (session/mpi_errors.h must name it), before its first
+// brick, or after its first brick's image has gone to the compositor (direct send has then
+// started sending it). Inert unless the variables are set.
+bool isTestFaultRank(const char* var, int rank) {
+  const char* v = std::getenv(var);
+  return v && std::atoi(v) == rank;
+}
+
+void injectTestFault(int rank) {
+  if (isTestFaultRank("SORTLAST_TEST_FAIL_RANK", rank))
+    throw std::runtime_error("injected failure (SORTLAST_TEST_FAIL_RANK)");
+  if (isTestFaultRank("SORTLAST_TEST_CRASH_RANK", rank)) std::abort();
+  // A send to a rank that does not exist: an MPI error.
+  if (isTestFaultRank("SORTLAST_TEST_MPI_ERROR_RANK", rank)) {
+    int size = 1, unused = 0;
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    MPI_Send(&unused, 1, MPI_INT, size + 7, 0, MPI_COMM_WORLD);
+  }
+}
+
+void injectLateTestFault(int rank) {
+  if (isTestFaultRank("SORTLAST_TEST_FAIL_RANK_AFTER_BRICK", rank))
+    throw std::runtime_error("injected failure after a brick (SORTLAST_TEST_FAIL_RANK_AFTER_BRICK)");
+}
+
+// bench_compositing --layers input: the frame size and brick order (order.txt) and each brick's
+// packed image (brick_ID.bin).
+void dumpOrder(const std::string& dir, const Camera& cam, const VisibilityOrder& order) {
+  std::filesystem::create_directories(dir);
+  std::ofstream out(dir + "/order.txt");
+  out << cam.width << " " << cam.height << "\n";
+  for (int id : order.bricks) out << id << "\n";
+  if (!out) throw InputError("cannot write " + dir + "/order.txt");
+}
+
+void dumpLayer(const std::string& dir, const BrickImage& img) {
+  std::vector<uint8_t> bytes = packBrickImage(img);
+  std::ofstream out(dir + "/brick_" + std::to_string(img.brick_id) + ".bin", std::ios::binary);
+  out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+  if (!out) throw InputError("cannot write brick image into " + dir);
+}
+
+// What the GL path draws with glow emitters (docs/glow.md), checked at start and per request.
+// In situ (external) none: the simulation's bricks have no glow boxes, so glow is refused rather
+// than drawn without them.
+void checkGlowScene(const Scene& sc, bool external) {
+  if (!sc.glow.enabled()) return;
+  if (external)
+    throw InputError("scene key 'glow.emitters': in situ sessions do not draw glow emitters; "
+                     "remove them (`sortlast render` and `serve` draw them)");
+  if (sc.precision == "rgba8")
+    throw InputError("scene keys 'glow.emitters' and 'compositing.precision: rgba8' cannot go "
+                     "together: glow is light above 1 until the final tone map, which 8-bit "
+                     "partial images would clamp; use compositing.precision: float");
+  if (sc.hasVolume() && sc.volume_method == "slicing")
+    throw InputError("scene keys 'glow.emitters' and 'render.method: slicing' cannot go together: "
+                     "the glow inside a volume is integrated per ray step (render.method: raycast)");
+  if (sc.hasVolume() && sc.adaptive_tolerance > 0.0)
+    throw InputError("scene keys 'glow.emitters' and 'adaptive.tolerance' above 0 cannot go "
+                     "together: the ray caster's adaptive blocks do not integrate glow");
+}
+
+// The composited glow frame (rank 0, float, premultiplied): the tone map once, then an opaque
+// RGBA8 frame over the background, since premultiplied RGBA8 cannot hold colour above alpha. One
+// pass over the frame, in float: 1 - expf(-e x) is within 1e-7 of the double toneMap (4.5e-8 for
+// expf and the subtraction, 2.2e-8 for e x rounded to float, whose relative error moves the result
+// by at most that times y e^-y <= 1/e), far under 1/255; expm1f would keep relative precision near
+// 0, which 8 bits do not need, at three times the cost. The 8-bit rounding is x * 255 + 0.5
+// truncated (toRGBA8's lround without the call; they differ only within a float ulp below
+// k + 1/2), so a level can differ from the double path only where a value lies within about 1e-7
+// of a rounding boundary. `f` keeps the tone-mapped colour (the float frame, an .exr).
+void finishGlowFrame(const GlowSpec& g, const glm::dvec3& background, ImageF& f, ImageRGBA8& out) {
+  const bool exponential = g.tone_map == "exponential";
+  const float exposure = float(g.exposure);
+  const float bg[3] = {float(background.x), float(background.y), float(background.z)};
+  if (out.width != f.width || out.height != f.height) out = ImageRGBA8(f.width, f.height);  // every pixel written
+  float* px = f.px.data();
+  uint8_t* o = out.px.data();
+  const size_t n = size_t(f.width) * f.height;
+  for (size_t p = 0; p < n; ++p, px += 4, o += 4) {
+    const float k = 1.0f - px[3];
+    for (int c = 0; c < 3; ++c) {
+      const float t = exponential ? 1.0f - std::exp(-exposure * px[c]) : px[c];
+      px[c] = t;
+      o[c] = uint8_t(std::clamp(t + k * bg[c], 0.0f, 1.0f) * 255.0f + 0.5f);
+    }
+    o[3] = 255;
+  }
+}
+
+nlohmann::json vec3Json(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+
+nlohmann::json cameraJson(const Camera& c) {
+  return {{"position", vec3Json(c.position)}, {"look_at", vec3Json(c.look_at)}, {"up", vec3Json(c.up)},
+          {"fov", c.fov_deg}, {"width", c.width}, {"height", c.height}};
+}
+
+// The compositor's settings: a new compositor only when they change.
+struct CompositorKey {
+  std::string strategy;
+  int radix = 0;
+  std::string precision;
+  bool overlap = true, rle = true, float_frame = false, emission = false;
+  double latency_us = 0, gbps = 0;  // auto's network
+  bool operator==(const CompositorKey&) const = default;
+};
+
+// What the GPU holds: the bricks of one step, for one volume renderer and one influence radius.
+struct GpuKey {
+  int step = -1;
+  std::string method;
+  double h = -1;  // the particles' ghost margin (ParticleDesc::ghostMargin)
+  // Kernels are per brick: new smoothing settings need the bricks again.
+  std::string smoothing;
+  AnisotropicParams anisotropic;
+  bool operator==(const GpuKey&) const = default;
+};
+
+}  // namespace
+
+std::vector<std::string> frameKeys() {
+  std::vector<std::string> keys;
+  for (const SceneKey& k : sceneKeys())
+    if (isFrameKey(k.path)) keys.push_back(k.path);
+  return keys;
+}
+
+struct RenderSession::State {
+  SessionOptions opts;
+  MPI_Comm comm = MPI_COMM_NULL;
+  int rank = 0, size = 1;
+  Scene base;
+  bool adaptive = false;
+  SessionLayout layout;
+  std::unique_ptr<StepCache> cache;
+  StepData* current = nullptr;  // the step on the GPU (owned by the cache)
+  std::unique_ptr<BrickRenderer> renderer;
+  GpuKey gpu;
+  std::vector<int> handles;
+  double particles_held = 0;
+  std::unique_ptr<Compositor> compositor;
+  CompositorKey compositor_key;
+  double ranks_per_core = 1;  // on the busiest node (auto's cost model)
+  // Rank 0's float frame of a glow scene whose caller wants no float frame, kept from frame to
+  // frame: the compositor copies into its memory instead of a fresh 16 bytes a pixel.
+  ImageF glow_frame;
+  int frames_rendered = 0;
+  // render.sample_spacing: auto: the last probe's inputs and choice (auto_spacing.h).
+  struct {
+    std::vector<double> key;
+    SpacingChoice choice;
+    bool valid = false;
+  } spacing;
+  MemoryBudget budget;            // what this rank may use (memory_budget.h)
+  MemoryBudget gpu_budget;        // what it may put in its GPU's memory (infinite: not reported)
+  std::vector<GlDeviceInfo> devices;  // rank 0: every rank's GL identity (device_report.h)
+  long long particles_total = 0;  // of the first step, for the memory estimates of requests
+  // In situ: the step's bricks come from the caller.
+  bool external = false;
+  std::optional<ExternalStep> ext;
+
+  std::pair<double, double> dataRange() const {
+    if (ext) return {ext->data_min, ext->data_max};
+    return current ? std::make_pair(current->data_min, current->data_max) : std::make_pair(0.0, 1.0);
+  }
+  VisibilityOrder orderFor(const glm::dvec3& eye) const {
+    if (ext && ext->order) return ext->order(eye);
+    return visibilityOrder(layout.assignment, layout.planes, eye);
+  }
+  Scene resolve(const FrameRequest& request) const;
+  // After the renderer is made on every rank: the GPU budget and every rank's identity on rank 0.
+  void meetDevices();
+  void bringGpuTo(const Scene& scene);
+  void uploadBricks(const Scene& scene, StepData& d);
+  std::vector<double> spacingKey(const Scene& sc, std::pair<int, int> probe) const;
+};
+
+RenderSession::RenderSession(SessionOptions options, MPI_Comm comm) : s_(std::make_unique<State>()) {
+  State& S = *s_;
+  S.opts = std::move(options);
+  S.comm = comm;
+  MPI_Comm_rank(comm, &S.rank);
+  MPI_Comm_size(comm, &S.size);
+  // Scene and volume geometry: every rank parses the same input, so they agree.
+  collectively(comm, [&] {
+    S.base = parseScene(S.opts.scene, S.opts.overrides);
+    S.adaptive = usesAdaptiveBlocks(S.base);
+    if (S.base.hasVolume()) validateVolume(S.base.volume);
+    checkGlowScene(S.base, false);
+  });
+  const Scene& scene = S.base;
+  S.budget = memoryBudget(scene, comm);
+  const DeviceRequest device{scene.device, nodeLocalRank(comm), S.rank};
+  // Rank 0 reads the whole particle set first (or every rank its share): bounded before it is read.
+  collectively(comm, [&] {
+    if (S.rank == 0 || readsInShares(scene.particles))
+      checkMemory(particleSetNeed(scene, S.size), S.budget, S.rank, "the scene's particle set");
+  });
+  // Particles: rank 0 loads the current step; the brick grid and the camera frame the centres of
+  // every step of a series (read once here, then dropped).
+  LoadedParticles first;
+  Box3 centres = noBox();
+  if (scene.particles.enabled()) {
+    first = loadParticleSet(scene.particles, comm);
+    if (first.total > 0) centres = first.bounds;
+    for (int step = 0; step < int(scene.particle_files.size()); ++step) {
+      if (step == scene.time_step) continue;
+      ParticleDesc other = scene.particles;
+      other.file = scene.particle_files[size_t(step)];
+      LoadedParticles r = loadParticleSet(other, comm);
+      if (r.total > 0) centres = isEmpty(centres) ? r.bounds : unite(centres, r.bounds);
+    }
+  }
+  S.particles_total = first.total;
+  collectively(comm, [&] {
+    PhaseScope phase("laying out the bricks");
+    S.layout = makeLayout(scene, centres, S.rank, S.size);
+    // Before the first large allocation (image targets, samples, particles): on every rank.
+    checkMemory(sessionNeed(scene, S.layout, S.particles_total, S.rank, S.opts.resident), S.budget,
+                S.rank, "the scene");
+    std::vector<Camera> cams = scene.frameCameras(S.layout.bounds);
+    for (size_t i = 0; i < cams.size(); ++i)
+      checkCameraOutside(cams[i], S.layout.bounds,
+                         cams.size() > 1 ? " of orbit frame " + std::to_string(i) : "");
+    S.renderer = std::make_unique<BrickRenderer>(scene.backend, scene.camera.width, scene.camera.height, device);
+  });
+  S.meetDevices();
+  collectively(comm, [&] {
+    checkMemory(sessionNeed(scene, S.layout, S.particles_total, S.rank, S.opts.resident).onGpu(),
+                S.gpu_budget, S.rank, "the scene's GPU textures and render targets");
+  });
+  // A batch session never changes step: its cache holds the one step, and only until upload.
+  S.cache = std::make_unique<StepCache>(S.opts.resident ? scene.time_cache_mib : 0.0);
+  if (scene.particles.enabled()) {
+    // The first step's particle set is loaded already: hand it to the cache's loader.
+    S.cache->preload(std::move(first));
+  }
+  S.bringGpuTo(scene);
+  if (S.rank == 0 && !S.opts.quiet)
+    std::fprintf(stderr, "sortlast: %d rank(s), %d^3 bricks, %dx%d%s%s, %s\n", S.size,
+                 scene.bricks_per_axis, scene.camera.width, scene.camera.height,
+                 scene.particles.enabled() ? (", " + std::to_string(particleCount()) + " particles").c_str() : "",
+                 scene.time_steps > 1 ? (", " + std::to_string(scene.time_steps) + " time steps").c_str() : "",
+                 S.renderer->description().c_str());
+}
+
+RenderSession::RenderSession(std::unique_ptr<State> state) : s_(std::move(state)) {}
+
+std::unique_ptr<RenderSession> RenderSession::external(SessionOptions options, MPI_Comm comm) {
+  auto S = std::make_unique<State>();
+  S->opts = std::move(options);
+  S->comm = comm;
+  S->external = true;
+  MPI_Comm_rank(comm, &S->rank);
+  MPI_Comm_size(comm, &S->size);
+  const int local_rank = nodeLocalRank(comm);
+  collectively(comm, [&] {
+    S->base = parseScene(S->opts.scene, S->opts.overrides);
+    // The simulation's layout frames and bricks its own data only: a surface outside it would be
+    // cut off or lie beyond the depth range, so surfaces are refused rather than drawn in part.
+    if (!S->base.surfaces.empty())
+      throw InputError("scene key 'surfaces': subdivision surfaces are not drawn in situ (the "
+                       "simulation's bricks need not hold them); use `sortlast render` or `serve`");
+    checkGlowScene(S->base, true);
+    S->renderer = std::make_unique<BrickRenderer>(S->base.backend, S->base.camera.width, S->base.camera.height,
+                                                  DeviceRequest{S->base.device, local_rank, S->rank});
+  });
+  S->meetDevices();
+  S->budget = memoryBudget(S->base, comm);  // requests' image sizes are checked against it
+  S->cache = std::make_unique<StepCache>(0.0);
+  return std::unique_ptr<RenderSession>(new RenderSession(std::move(S)));
+}
+
+void RenderSession::setExternalStep(ExternalStep step) {
+  State& S = *s_;
+  S.layout = step.layout;
+  S.ext = std::move(step);
+  S.gpu = GpuKey{};  // upload on the next render
+}
+
+RenderSession::~RenderSession() = default;
+
+const Scene& RenderSession::baseScene() const { return s_->base; }
+MPI_Comm RenderSession::comm() const { return s_->comm; }
+std::string RenderSession::rendererDescription() const { return s_->renderer->description(); }
+const GlDeviceInfo& RenderSession::deviceInfo() const { return s_->renderer->deviceInfo(); }
+
+void RenderSession::State::meetDevices() {
+  const GlDeviceInfo& mine = renderer->deviceInfo();
+  gpu_budget = gpuMemoryBudget(mine, ranksSharingDevice(mine, comm));
+  ranks_per_core = ranksPerCore(comm);
+  devices = gatherDeviceInfo(mine, comm);
+}
+long long RenderSession::particleCount() const { return s_->current ? s_->current->loaded.total : 0; }
+int RenderSession::currentStep() const {
+  if (s_->ext) return s_->ext->step;
+  return s_->current ? s_->current->step : s_->base.time_step;
+}
+int RenderSession::orbitFrames() const { return int(s_->base.frameCameras(s_->layout.bounds).size()); }
+
+Scene RenderSession::State::resolve(const FrameRequest& request) const {
+  for (const std::string& o : request.overrides) {
+    auto eq = o.find('=');
+    std::string key = o.substr(0, eq);
+    bool known = false;
+    for (const SceneKey& k : sceneKeys()) known = known || key == k.path;
+    if (eq == std::string::npos || eq == 0 || !known)
+      throw InputError("unknown key '" + key + "' (the keys a request may set: " +
+                       [] { std::string s; for (auto& k : frameKeys()) s += (s.empty() ? "" : ", ") + k; return s; }() + ")");
+    if (!isFrameKey(key))
+      throw InputError("scene key '" + key + "' fixes the data layout and cannot change in a running "
+                       "session; start the session with it instead");
+  }
+  std::vector<std::string> all = opts.overrides;
+  all.insert(all.end(), request.overrides.begin(), request.overrides.end());
+  Scene sc = parseScene(opts.scene, all);
+  if (external) {
+    if (!ext) throw std::logic_error("RenderSession: no step published yet");
+    // The data is the simulation's: the scene's own volume and particle sources do not apply.
+    sc.volume.file.clear();
+    sc.volume.procedural = ext->has_volume ? "external" : "none";
+    sc.particles.file.clear();
+    sc.particles.procedural = ext->has_particles ? "external" : "none";
+    sc.volume_files.clear();
+    sc.particle_files.clear();
+    sc.time_step = ext->step;
+    sc.adaptive_tolerance = 0.0;
+  }
+  usesAdaptiveBlocks(sc);  // adaptive blocks need the ray caster: refuse slicing
+  checkGlowScene(sc, external);
+  // The layout and the renderers were made with or without glow (the bricks reach out to
+  // glow.box, the images travel in float): a request may change the emitters, not their presence.
+  if (sc.glow.enabled() != base.glow.enabled())
+    throw InputError(base.glow.enabled()
+                         ? "scene key 'glow.emitters': this session draws glow and a request cannot remove "
+                           "every emitter; set glow.intensity: 0 to hide the glow"
+                         : "scene key 'glow.emitters': this session was started without glow emitters, so "
+                           "its bricks do not cover a glow box; start it with glow.emitters");
+  sc.volume.grid = layout.grid;  // a VTK file's grid, read at start
+  if (sc.camera.width > opts.max_image_side || sc.camera.height > opts.max_image_side)
+    throw InputError("image size " + std::to_string(sc.camera.width) + " x " + std::to_string(sc.camera.height) +
+                     " is larger than this session allows (" + std::to_string(opts.max_image_side) +
+                     " pixels per side)");
+  if (sc.particles.enabled() && sc.particles.reach() > layout.particle_h * (1 + 1e-12))
+    throw InputError("the particles' reach " + std::to_string(sc.particles.reach()) +
+                     " (h = particles.radius / (1 - particles.threshold), or particles.influence, times "
+                     "the anisotropic reach bound with particles.smoothing: anisotropic) is larger "
+                     "than the session's " + std::to_string(layout.particle_h) +
+                     ", which its brick grid was made for; start the session with the larger radius");
+  std::vector<Camera> cams = sc.frameCameras(layout.bounds);
+  if (request.orbit_frame >= int(cams.size()))
+    throw InputError("orbit frame " + std::to_string(request.orbit_frame) + " of " + std::to_string(cams.size()));
+  checkCameraOutside(cams[size_t(std::max(0, request.orbit_frame))], layout.bounds);
+  // A request's image size must fit beside the data the session holds.
+  const int d = sc.bricks_per_axis;
+  checkMemory(external ? imageNeed(sc, sc.camera.width, sc.camera.height, rank,
+                                   int(layout.mine.size()), d * d * d)
+                       : sessionNeed(sc, layout, particles_total, rank, opts.resident),
+              budget, rank, "the request");
+  const MemoryNeed gpu_need = external ? imageNeed(sc, sc.camera.width, sc.camera.height, rank,
+                                                   int(layout.mine.size()), d * d * d).onGpu()
+                                       : sessionNeed(sc, layout, particles_total, rank, opts.resident).onGpu();
+  checkMemory(gpu_need, gpu_budget, rank, "the request's GPU textures and render targets");
+  return sc;
+}
+
+Scene RenderSession::check(const FrameRequest& request) const { return s_->resolve(request); }
+
+Camera RenderSession::camera(const FrameRequest& request) const {
+  Scene sc = s_->resolve(request);
+  return sc.frameCameras(s_->layout.bounds)[size_t(std::max(0, request.orbit_frame))];
+}
+
+void RenderSession::State::uploadBricks(const Scene& scene, StepData& d) {
+  const int d_axis = scene.bricks_per_axis;
+  auto cellOf = [&](int id) { return glm::ivec3(id % d_axis, (id / d_axis) % d_axis, id / (d_axis * d_axis)); };
+  const bool has_particles = scene.particles.enabled();
+  const double margin = has_particles ? scene.particles.ghostMargin() : 0.0;
+  handles.clear();
+  particles_held = 0;
+  renderer->reset();
+  if (scene.hasVolume())
+    renderer->enableVolume(scene.transfer.build(d.data_min, d.data_max, layout.grid.minSpacing()),
+                           scene.transfer.table_size, scene.block_cells, volumeMethod(scene));
+  if (has_particles) renderer->enableParticles(metaballSettings(scene.particles));
+  renderer->enableSurfaces(scene.surfaces);
+  if (scene.glow.enabled()) renderer->enableGlow();
+  for (size_t i = 0; i < layout.mine.size(); ++i) {
+    const int id = layout.mine[i];
+    Box3 clip = brickBox(layout.planes, cellOf(id));
+    std::vector<glm::vec3> near = has_particles ? particlesNear(d.particles, clip, margin) : std::vector<glm::vec3>();
+    particles_held += double(near.size());
+    const Brick* vb = scene.hasVolume() ? &layout.volume_bricks[size_t(id)] : nullptr;
+    handles.push_back(renderer->addBrick(vb, &layout.grid, vb && !adaptive ? &d.samples[i] : nullptr, clip,
+                                         has_particles ? &near : nullptr,
+                                         vb && adaptive ? &d.adaptive.bricks[i] : nullptr));
+    // The brick's share of the glow box: brick boxes tile it, so the shares add up to the whole.
+    if (scene.glow.enabled()) {
+      const Box3 g = intersect(clip, layout.glow_box);
+      if (hasVolume(g)) renderer->setBrickGlow(handles.back(), g, layout.glow_box);
+    }
+  }
+}
+
+void RenderSession::State::bringGpuTo(const Scene& scene) {
+  const bool has_particles = scene.particles.enabled();
+  GpuKey want{scene.time_step, scene.volume_method, has_particles ? scene.particles.ghostMargin() : 0.0,
+              scene.particles.smoothing, scene.particles.anisotropic};
+  if (want == gpu) return;
+  if (external) {
+    collectively(comm, [&] {
+      handles.clear();
+      particles_held = 0;
+      renderer->reset();
+      auto [lo, hi] = dataRange();
+      if (scene.hasVolume())
+        renderer->enableVolume(scene.transfer.build(lo, hi, layout.grid.minSpacing()), scene.transfer.table_size,
+                               scene.block_cells, volumeMethod(scene));
+      if (has_particles) renderer->enableParticles(metaballSettings(scene.particles));
+      renderer->enableSurfaces(scene.surfaces);
+      ext->add_bricks(*renderer, scene, handles, particles_held);
+      renderer->dropSpareTextures();
+    });
+    if (scene.hasVolume()) shareBlockRanges(*renderer, layout.grid, comm);
+    gpu = want;
+    return;
+  }
+  PhaseScope phase("loading time step " + std::to_string(scene.time_step));
+  StepData& d = cache->get(scene, layout, adaptive, comm);
+  current = &d;
+  collectively(comm, [&] {
+    if (d.dropped && want.step == gpu.step)
+      throw std::logic_error("a batch session cannot change its volume renderer or h");
+  });
+  const double margin = has_particles ? scene.particles.ghostMargin() : 0.0;
+  if (has_particles && d.scattered_h != margin) scatterStepParticles(d, layout, margin, comm);
+  collectively(comm, [&] {
+    PhaseScope upload("uploading the bricks to the GPU");
+    uploadBricks(scene, d);
+    renderer->dropSpareTextures();
+  });
+  // Adaptive steps choose per block from the whole block's range, which no rank holds alone.
+  if (scene.hasVolume()) shareBlockRanges(*renderer, layout.grid, comm);
+  gpu = want;
+  // The textures hold the data now; a batch session keeps no second copy.
+  if (!opts.resident) d.dropHostCopies();
+}
+
+// What a probe's choice depends on (auto_spacing.h): the transfer function as built, the renderer's
+// settings, the time step and the probe's size. Not the camera: the probes look from the scene's
+// automatic camera, so a frame's step (and image) follows from its request alone, whatever came
+// before, and an orbit probes once. The same on every rank (resolved from the same request).
+std::vector<double> RenderSession::State::spacingKey(const Scene& sc, std::pair<int, int> probe) const {
+  const auto [lo, hi] = dataRange();
+  std::vector<double> key{double(sc.time_step), lo, hi, sc.ert_threshold, double(sc.transfer.preintegrated),
+                          double(sc.shading.enabled), double(sc.adaptive_step), sc.adaptive_step_tolerance,
+                          sc.adaptive_tolerance, double(sc.volume_method == "slicing"),
+                          double(sc.transfer.table_size), sc.background.x, sc.background.y, sc.background.z};
+  const TransferFunction tf = sc.transfer.build(lo, hi, layout.grid.minSpacing());
+  key.insert(key.end(), {tf.rangeLo(), tf.rangeHi(), tf.unitLength()});
+  for (const TfPoint& p : tf.points()) key.insert(key.end(), {p.value, p.r, p.g, p.b, p.a});
+  key.insert(key.end(), {double(probe.first), double(probe.second)});
+  return key;
+}
+
+double RenderSession::autoSpacing(const Scene& sc, const FrameRequest& request, nlohmann::json& info) {
+  State& S = *s_;
+  const auto [w, h] = probeSize(sc.camera.width, sc.camera.height);
+  std::vector<double> key = S.spacingKey(sc, {w, h});
+  bool probed = false;
+  double t0 = MPI_Wtime();
+  if (!S.spacing.valid || key != S.spacing.key) {
+    std::vector<ImageF> probes;
+    for (double step : probeSpacings()) {
+      FrameRequest p;
+      p.overrides = request.overrides;
+      p.overrides.push_back("render.sample_spacing=" + std::to_string(step));
+      p.overrides.push_back("image.width=" + std::to_string(w));
+      p.overrides.push_back("image.height=" + std::to_string(h));
+      // The scene's automatic view (the default camera), whatever this frame's camera.
+      for (const char* k : {"camera.position=auto", "camera.look_at=auto", "camera.up=[0, 1, 0]",
+                            "camera.fov=35", "camera.orbit.frames=0"})
+        p.overrides.push_back(k);
+      p.orbit_frame = -1;
+      p.float_frame = true;
+      p.probe = true;
+      probes.push_back(std::move(render(p).image_f));
+    }
+    double chosen = 0.5;
+    if (S.rank == 0) {
+      S.spacing.choice = chooseSpacing(probes, sc.background);
+      chosen = S.spacing.choice.spacing;
+    }
+    // Rank 0 decides; every rank takes its step (so all ranks agree whatever the rounding).
+    MPI_Bcast(&chosen, 1, MPI_DOUBLE, 0, S.comm);
+    S.spacing.choice.spacing = chosen;
+    S.spacing.key = std::move(key);
+    S.spacing.valid = true;
+    probed = true;
+  }
+  if (S.rank == 0) {
+    nlohmann::json est = nlohmann::json::object();
+    for (auto [step, db] : S.spacing.choice.estimated_db)
+      est[std::to_string(step).substr(0, 3)] = std::isfinite(db) ? nlohmann::json(db) : nlohmann::json("inf");
+    info = {{"chosen", S.spacing.choice.spacing}, {"estimated_db", est}, {"target_db", kTargetDb},
+            {"probed", probed}, {"probe_s", probed ? MPI_Wtime() - t0 : 0.0}};
+  }
+  return S.spacing.choice.spacing;
+}
+
+FrameResult RenderSession::render(const FrameRequest& request) {
+  State& S = *s_;
+  const int rank = S.rank;
+  Scene sc;
+  PhaseScope phase("rendering a frame");
+  collectively(S.comm, [&] { sc = S.resolve(request); });
+  S.bringGpuTo(sc);
+  // render.sample_spacing: auto: the step from probe frames of the scene's automatic view
+  // (auto_spacing.h).
+  // Its probe frames count in this frame's total_s (they are what auto costs).
+  nlohmann::json spacing_info;
+  double probe_s = 0.0;
+  if (sc.sample_spacing_auto && sc.hasVolume() && !request.probe) {
+    const double t0 = MPI_Wtime();
+    sc.sample_spacing = autoSpacing(sc, request, spacing_info);
+    probe_s = MPI_Wtime() - t0;
+  }
+  const auto [data_min, data_max] = S.dataRange();
+  const Camera cam = sc.frameCameras(S.layout.bounds)[size_t(std::max(0, request.orbit_frame))];
+  const bool has_particles = sc.particles.enabled();
+  const bool want_surface = (has_particles || !sc.surfaces.empty()) && request.surface;
+  const bool glow = sc.glow.enabled();
+  // What changes in place: image size, transfer function, renderer settings, compositor.
+  collectively(S.comm, [&] {
+    S.renderer->setImageSize(cam.width, cam.height);
+    if (sc.hasVolume()) {
+      S.renderer->setTransferFunction(sc.transfer.build(data_min, data_max, S.layout.grid.minSpacing()),
+                                      sc.transfer.table_size, sc.transfer.preintegrated);
+      S.renderer->setVolumeMethodSettings(volumeMethod(sc));
+    }
+    if (has_particles) S.renderer->setMetaballSettings(metaballSettings(sc.particles));
+    // An orbit moves the emitters: this frame's (the renderer uploads them when they change).
+    if (glow)
+      S.renderer->setGlowEmitters(sc.glow.emittersAt(std::max(0, request.orbit_frame)),
+                                  sc.glow.core_radius, sc.glow.intensity);
+    // Glow: the frame comes back in float for the tone map.
+    const bool float_frame = request.float_frame || glow;
+    CompositorKey key{sc.strategy, sc.radix, sc.precision, sc.overlap, sc.rle, float_frame, glow,
+                      sc.network_latency_us, sc.network_gbps};
+    if (!S.compositor || !(key == S.compositor_key)) {
+      CompositeOptions copts;
+      copts.precision = sc.precision == "rgba8" ? Precision::RGBA8 : Precision::Float;
+      copts.overlap = sc.overlap;
+      copts.rle = sc.rle;
+      copts.float_frame = float_frame;
+      copts.emission = glow;
+      copts.network_latency_s = sc.network_latency_us * 1e-6;
+      copts.network_bandwidth_Bps = sc.network_gbps * 1e9 / 8;
+      copts.ranks_per_core = S.ranks_per_core;
+      S.compositor = makeCompositor(sc.strategy, sc.radix, copts);
+      S.compositor_key = key;
+    }
+  });
+
+  double t_frame = MPI_Wtime();
+  const double h = has_particles ? sc.particles.reach() : 0.0;
+  // Billboards reach sqrt(3) h beyond a particle: the depth range holds them too.
+  auto [near_plane, far_plane] = depthRange(cam, has_particles ? grow(S.layout.bounds, h) : S.layout.bounds);
+  RankFrameStats st;
+  st.particles_held = S.particles_held;
+  std::vector<SurfacePiece> surfaces;
+  const std::vector<int>& mine = S.layout.mine;
+  const VisibilityOrder order = S.orderFor(cam.position);
+  // Each brick image goes to the compositor as soon as it is encoded: direct send starts sending
+  // it while the next brick renders.
+  // auto chooses from every rank's bricks on the screen: the same numbers on every rank.
+  const FrameFootprint footprint =
+      sc.strategy == "auto" ? forecastFootprint(S.layout, cam, S.size) : FrameFootprint{};
+  S.compositor->begin(FrameSetup{&order, int(mine.size()), cam.width, cam.height, S.comm,
+                                 sc.strategy == "auto" ? &footprint : nullptr});
+  if (!request.dump_layers.empty())  // rank 0 makes the directory first
+    collectively(S.comm, [&] { if (rank == 0) dumpOrder(request.dump_layers, cam, order); });
+  try {
+    collectively(S.comm, [&] {
+      injectTestFault(rank);
+      for (size_t i = 0; i < mine.size(); ++i) {
+        double t0 = MPI_Wtime();
+        BrickFrame bf = S.renderer->render(S.handles[i], cam, sc.sampleSpacingWorld(), near_plane,
+                                           far_plane, want_surface);
+        double t1 = MPI_Wtime();
+        BrickImage img{mine[i], bf.rect, {}};
+        const int pixel_bytes = glow ? 8 : 4;  // glow: WireFormat::Emission
+        const bool local = glow && S.compositor->takesLocalEmission() && request.dump_layers.empty();
+        if (!bf.rect.empty() && local) {
+          img.emission = std::move(bf.pixels_f);  // blended on this rank: not encoded
+        } else if (!bf.rect.empty() && glow) {
+          encodeEmission(bf.pixels_f, img.rle, sc.rle ? kMaxRun : 1);
+        } else if (!bf.rect.empty()) {
+          rleEncode(bf.pixels.px, img.rle, 4, sc.rle ? kMaxRun : 1);
+        }
+        st.render_s += t1 - t0;
+        st.encode_s += MPI_Wtime() - t1;
+        st.bytes_raw += double(bf.rect.area()) * pixel_bytes;
+        st.bytes_rle += local ? double(bf.rect.area()) * pixel_bytes : double(img.rle.size());
+        st.particle_rounds = std::max(st.particle_rounds, double(bf.particle_rounds));
+        (bf.rect.empty() ? st.bricks_skipped : st.bricks_rendered) += 1;
+        if (!request.dump_layers.empty()) dumpLayer(request.dump_layers, img);
+        S.compositor->add(std::move(img));
+        if (want_surface) surfaces.push_back({bf.rect, std::move(bf.surface)});
+        injectLateTestFault(rank);
+      }
+    }, [&] { S.compositor->progress(); });
+  } catch (const JobFailed&) {
+    S.compositor->abandon();  // so no rank is left with a send nobody receives
+    throw;
+  }
+  FrameResult out;
+  CompositeStats cs;
+  collectively(S.comm, [&] {
+    ImageF* float_frame = request.float_frame ? &out.image_f : glow ? &S.glow_frame : nullptr;
+    out.image = S.compositor->finish(cs, float_frame);
+    if (glow && rank == 0) finishGlowFrame(sc.glow, sc.background, *float_frame, out.image);
+  });
+  if (want_surface) out.surface = gatherSurface(surfaces, cam.width, cam.height, S.comm);
+  st.transfer_s = cs.transfer_s;
+  st.bytes_sent = cs.bytes_sent;
+  const StrategyChoice* choice = S.compositor->choice();
+  if (choice) st.strategy_code = choice->radix ? choice->radix : 1;
+  st.peak_rss_mb = peakRssMiB();
+  st.rss_mb = currentRssMiB();
+  auto all = gatherStats(st, S.comm);
+  if (rank == 0) {
+    out.stats = frameJson(request.orbit_frame >= 0 ? request.orbit_frame : S.frames_rendered, all,
+                          cs.composite_s, MPI_Wtime() - t_frame + probe_s);
+    out.stats["camera"] = cameraJson(cam);
+    out.stats["width"] = cam.width;
+    out.stats["height"] = cam.height;
+    out.stats["step"] = sc.time_step;
+    out.stats["ranks"] = S.size;
+    if (sc.hasVolume()) out.stats["sample_spacing"] = sc.sample_spacing;
+    if (!spacing_info.is_null()) out.stats["sample_spacing_auto"] = spacing_info;
+    if (choice) {
+      // Every rank forecast the same footprint; a rank that chose otherwise is a bug to see.
+      bool same = true;
+      for (const RankFrameStats& r : all) same = same && r.strategy_code == all[0].strategy_code;
+      out.stats["compositing"] = {{"strategy", "auto"},
+                                  {"chose", choice->label},
+                                  {"forecast_s", choice->forecast_s},
+                                  {"why", choice->why},
+                                  {"same_on_every_rank", same}};
+    }
+  }
+  out.scene = std::move(sc);
+  if (!request.probe) ++S.frames_rendered;
+  return out;
+}
+
+nlohmann::json RenderSession::describe(const std::vector<std::string>& base) const {
+  const State& S = *s_;
+  Scene with_base;
+  if (!base.empty()) {
+    FrameRequest r;
+    r.overrides = base;
+    with_base = S.resolve(r);
+  }
+  const Scene& b = base.empty() ? S.base : with_base;
+  nlohmann::json j;
+  const Box3& box = S.layout.bounds;
+  j["bounds"] = {{"lo", vec3Json(box.lo)}, {"hi", vec3Json(box.hi)}};
+  Camera cam = b.frameCameras(box)[0];
+  j["camera"] = cameraJson(cam);
+  j["image"] = {{"width", b.camera.width}, {"height", b.camera.height}};
+  j["has_volume"] = b.hasVolume();
+  j["has_particles"] = b.particles.enabled();
+  j["particles"] = particleCount();
+  j["steps"] = b.time_steps;
+  j["step"] = S.current ? S.current->step : b.time_step;
+  j["ranks"] = S.size;
+  j["bricks_per_axis"] = b.bricks_per_axis;
+  j["renderer"] = S.renderer->description();
+  j["ranks_gl"] = deviceJson(S.devices);  // each rank's GL_VENDOR, GL_RENDERER, device, host
+  j["data_range"] = nullptr;
+  j["histogram"] = nullptr;
+  if (S.ext) {
+    j["has_volume"] = S.ext->has_volume;
+    j["has_particles"] = S.ext->has_particles;
+    if (S.ext->has_volume) j["data_range"] = {S.ext->data_min, S.ext->data_max};
+  } else if (b.hasVolume() && S.current) {
+    j["data_range"] = {S.current->data_min, S.current->data_max};
+    if (!S.current->histogram.empty())
+      j["histogram"] = {{"range", {S.current->data_min, S.current->data_max}}, {"counts", S.current->histogram}};
+  }
+  nlohmann::json points = nlohmann::json::array();
+  for (const TfPoint& p : b.transfer.points) points.push_back({p.value, p.r, p.g, p.b, p.a});
+  j["settings"] = {{"transfer.points", points},
+                   {"transfer.colormap", b.transfer.colormap},
+                   {"transfer.range", b.transfer.range ? nlohmann::json{b.transfer.range->first, b.transfer.range->second}
+                                                       : nlohmann::json("auto")},
+                   {"image.width", b.camera.width},
+                   {"image.height", b.camera.height},
+                   {"image.background", vec3Json(b.background)},
+                   {"render.method", b.volume_method},
+                   {"render.sample_spacing", b.sample_spacing_auto ? nlohmann::json("auto")
+                                                                   : nlohmann::json(b.sample_spacing)},
+                   {"render.ert_threshold", b.ert_threshold},
+                   {"render.shading", b.shading.enabled},
+                   {"transfer.preintegrated", b.transfer.preintegrated},  // as resolved (auto: on or off)
+                   {"render.adaptive_step", b.adaptive_step},
+                   {"render.adaptive_tolerance", b.adaptive_step_tolerance},
+                   {"compositing.strategy", b.strategy},
+                   {"compositing.radix", b.radix},
+                   {"compositing.precision", b.precision},
+                   {"camera.fov", b.camera.fov_deg},
+                   {"time.step", b.time_step}};
+  if (b.particles.enabled()) {
+    j["settings"]["particles.color"] = vec3Json(b.particles.colour);
+    j["settings"]["particles.threshold"] = b.particles.threshold;
+    j["settings"]["particles.step"] = b.particles.step;
+  }
+  j["request_keys"] = frameKeys();
+  j["limits"] = {{"max_width", S.opts.max_image_side}, {"max_height", S.opts.max_image_side}};
+  return j;
+}
+
+nlohmann::json RenderSession::jobStats() const {
+  const State& S = *s_;
+  nlohmann::json top = nlohmann::json::object();
+  top["ranks_gl"] = deviceJson(S.devices);  // each rank's GL_VENDOR, GL_RENDERER, device, host
+  if (S.current && !S.current->read_s.empty()) {
+    top["volume_read_s"] = S.current->read_s;  // per rank: its bricks, from the file
+    top["peak_rss_after_read_mb"] = S.current->read_peak_rss_mb;
+    if (!S.current->hdf5_transfers.empty()) top["hdf5_transfers"] = S.current->hdf5_transfers;
+  }
+  if (S.adaptive && S.current) {
+    // Once per step, before its first frame (not in any frame's total_s); slowest rank.
+    const AdaptiveRankData& a = S.current->adaptive;
+    top["adaptive_tolerance_percent"] = 100.0 * S.base.adaptive_tolerance;
+    top["adaptive_blocks"] = S.base.adaptive_blocks;
+    top["adaptive_data_left_percent"] = 100.0 * a.data_left;
+    top["adaptive_read_s"] = a.read_s;
+    top["adaptive_preprocess_s"] = a.preprocess_s;
+    top["adaptive_bricks_s"] = a.bricks_s;
+  }
+  return top;
+}
+
+}  // namespace sortlast
