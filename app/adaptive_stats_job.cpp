@@ -40,8 +40,8 @@ int runAdaptiveStatsJob(const AdaptiveStatsOptions& options) {
     const std::vector<float> samples = readWholeVolume(scene.volume);
 
     AdaptiveOptions ao;
-    ao.blocks_per_axis = scene.adaptive_blocks;
-    ao.tolerance = scene.adaptive_tolerance;
+    ao.blocks_per_axis = scene.adaptive.blocks;
+    ao.tolerance = scene.adaptive.tolerance;
     ao.threads = threads;
     // One builder for every run, as for the time steps of a series: the first run pays for fresh
     // memory, the later ones reuse it.

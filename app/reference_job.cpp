@@ -52,9 +52,9 @@ int runReferenceJob(const RenderOptions& opts, int threads, const std::string& s
       std::string out = frameFileName(opts.output, f, n);
       // Particles alone are rounded like the GL frame before they are written.
       if (reference.hasVolume() || reference.hasGlow())
-        writeImage(out, frame, scene.background);
+        writeImage(out, frame, scene.image.background);
       else
-        writeImage(out, toRGBA8(frame), scene.background);
+        writeImage(out, toRGBA8(frame), scene.image.background);
       progress.frameDone(f);
     }
   } catch (const InputError& e) {

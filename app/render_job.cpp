@@ -92,9 +92,9 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
         if (rank != 0) return;
         const std::string file = frameFileName(opts.output, f, frames);
         if (float_output)
-          writeImage(file, result.image_f, scene.background);
+          writeImage(file, result.image_f, scene.image.background);
         else
-          writeImage(file, result.image, scene.background);
+          writeImage(file, result.image, scene.image.background);
         if (request.surface && (scene.particles.enabled() || !scene.surfaces.empty()))
           writeSurfaceImage(frameFileName(opts.surface_out, f, frames), result.surface);
       });
@@ -102,7 +102,7 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
         // After the frame's time is taken: the reference is a measuring instrument.
         if (reference)
           addAccuracy(result.stats, result.image, *reference, cameraOf(result.stats, scene.camera),
-                      scene.background);
+                      scene.image.background);
         if (stats_out.is_open()) {
           stats_out << (first_frame_stats ? "" : ",\n") << result.stats.dump(1);
           first_frame_stats = false;
@@ -112,12 +112,12 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
     }
     if (stats_out.is_open()) {
       nlohmann::json top{{"ranks", size},
-                         {"bricks_per_axis", scene.bricks_per_axis},
+                         {"bricks_per_axis", scene.bricks.per_axis},
                          {"width", scene.camera.width},
                          {"height", scene.camera.height},
                          {"renderer", session.rendererDescription()},
-                         {"volume_method", scene.hasVolume() ? scene.volume_method : ""},
-                         {"compositing", scene.strategy},
+                         {"volume_method", scene.hasVolume() ? std::string(nameOf(scene.render.method)) : ""},
+                         {"compositing", std::string(nameOf(scene.compositing.strategy))},
                          {"particles", session.particleCount()}};
       top.update(session.jobStats());
       // The rest of the top-level object after the frames: top's members without its '{'.

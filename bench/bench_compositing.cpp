@@ -212,7 +212,7 @@ int main(int argc, char** argv) {
       }
       if (name == "binary-swap") radix = 2;
       CompositeOptions opts;
-      opts.precision = precision == "rgba8" ? Precision::RGBA8 : Precision::Float;
+      opts.precision = precision == "rgba8" ? Precision::kRgba8 : Precision::kFloat;
       opts.rle = rle != "off";
       auto compositor = makeCompositor(name, radix, opts);
       const std::string label = spec + "/" + precision + "/rle-" + rle;

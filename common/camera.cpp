@@ -38,7 +38,7 @@ std::optional<glm::dvec2> Camera::project(const glm::dvec3& p) const {
 }
 
 Camera orbitCamera(const Camera& base, const glm::dvec3& centre, double radius,
-                   double elevation_deg, int i, int n) {
+                   double elevation_deg, int i, int n, double start_deg) {
   // Orthonormal frame around the orbit axis (base.up); azimuth 0 is the base camera's direction.
   glm::dvec3 axis = glm::normalize(base.up);
   glm::dvec3 start = base.position - centre;
@@ -48,7 +48,7 @@ Camera orbitCamera(const Camera& base, const glm::dvec3& centre, double radius,
                                    : glm::cross(axis, glm::dvec3(1, 0, 0));
   }
   glm::dvec3 e1 = glm::normalize(start), e2 = glm::cross(axis, e1);
-  double az = 2.0 * kPi * i / n, el = elevation_deg * kPi / 180.0;
+  double az = 2.0 * kPi * i / n + start_deg * kPi / 180.0, el = elevation_deg * kPi / 180.0;
   Camera c = base;
   c.look_at = centre;
   c.position = centre + radius * (std::cos(el) * (std::cos(az) * e1 + std::sin(az) * e2) +

@@ -33,9 +33,10 @@ struct Camera {
 };
 
 // Frame i of an orbit of n frames: a circle of the given radius around `centre`, in the plane
-// perpendicular to base.up, tilted by `elevation_deg`, starting from the base camera's azimuth.
+// perpendicular to base.up, tilted by `elevation_deg`, starting `start_deg` on from the base
+// camera's azimuth.
 Camera orbitCamera(const Camera& base, const glm::dvec3& centre, double radius,
-                   double elevation_deg, int i, int n);
+                   double elevation_deg, int i, int n, double start_deg = 0.0);
 
 // Screen rectangle (in pixels, clamped to the image) that covers the projection of a box.
 struct Rect {

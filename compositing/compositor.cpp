@@ -17,12 +17,20 @@ ImageRGBA8 Compositor::composite(std::vector<BrickImage> mine, const VisibilityO
   return finish(stats);
 }
 
+std::unique_ptr<Compositor> makeCompositor(Strategy strategy, int radix, const CompositeOptions& options) {
+  switch (strategy) {
+    case Strategy::kDirect: return std::make_unique<DirectSend>(options);
+    case Strategy::kBinarySwap: return std::make_unique<RadixK>(2, options);
+    case Strategy::kRadixK: return std::make_unique<RadixK>(radix, options);
+    case Strategy::kAuto: return std::make_unique<AutoCompositor>(options);
+  }
+  throw std::logic_error("makeCompositor: no such strategy");
+}
+
 std::unique_ptr<Compositor> makeCompositor(const std::string& strategy, int radix,
                                            const CompositeOptions& options) {
-  if (strategy == "direct") return std::make_unique<DirectSend>(options);
-  if (strategy == "binary-swap") return std::make_unique<RadixK>(2, options);
-  if (strategy == "radix-k") return std::make_unique<RadixK>(radix, options);
-  if (strategy == "auto") return std::make_unique<AutoCompositor>(options);
+  for (const auto& [name, value] : EnumNames<Strategy>::list)
+    if (strategy == name) return makeCompositor(value, radix, options);
   throw std::invalid_argument("unknown compositing strategy '" + strategy + "'");
 }
 

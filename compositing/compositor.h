@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "io/image.h"
+#include "scene/sections/compositing.h"
 #include "compositing/brick_image.h"
 #include "common/visibility.h"
 
@@ -24,15 +25,10 @@ struct CompositeStats {
   double bytes_sent = 0.0;   // bytes this rank sent, message headers included
 };
 
-// How partial results are held. Float: blend in float, round to RGBA8 once per frame (partial
-// composites travel at 16 bits), so every strategy and rank count gives the same frame within
-// 1/255. RGBA8: the paper's intermediate images; direct send rounds after every blend, the swap
-// strategies send their partial composites as RGBA8 (fewer bytes, up to half a step of error
-// per round).
-enum class Precision { Float, RGBA8 };
-
+// How partial results are held: Precision, the scene's compositing.precision
+// (scene/sections/compositing.h says what each means).
 struct CompositeOptions {
-  Precision precision = Precision::Float;
+  Precision precision = Precision::kFloat;
   // Direct send: send each brick image as soon as it is rendered and let rank 0 blend images as
   // their visibility order allows. False: everything is sent after the last brick (for measuring
   // what overlap gains).
@@ -108,6 +104,9 @@ class Compositor {
 // `strategy`: direct | binary-swap | radix-k (with `radix` partners per round, >= 2) | auto (the
 // fastest by the cost model, each frame, from direct send and radix-k with k = 2 ... 32; `radix`
 // is then not used).
+std::unique_ptr<Compositor> makeCompositor(Strategy strategy, int radix, const CompositeOptions& options = {});
+// The same by the strategy's name (compositing.strategy's names); throws std::invalid_argument on
+// another name.
 std::unique_ptr<Compositor> makeCompositor(const std::string& strategy, int radix,
                                            const CompositeOptions& options = {});
 

@@ -36,7 +36,7 @@ void DirectSend::begin(const FrameSetup& setup) {
   const size_t n = setup.order->bricks.size();
   seen_.assign(n, false);
   expected_ = int(n) - setup.brick_count;
-  if (opt_.precision == Precision::Float) {
+  if (opt_.precision == Precision::kFloat) {
     // The float frame is kept from frame to frame and only what the last frame touched is
     // cleared: a fresh 2048^2 float frame costs more in page faults than all the blending.
     if (frame_f_.width != setup.width || frame_f_.height != setup.height)
@@ -130,7 +130,7 @@ void DirectSend::blendInOrder(const std::vector<int>& order) {
     // One image at a time in order: the same sequence of blends as blending all at the end.
     std::vector<const BrickImage*> one{&it->second};
     dirty_ = unionOf(dirty_, it->second.rect);
-    if (opt_.precision == Precision::Float)
+    if (opt_.precision == Precision::kFloat)
       blendBackToFront(one, frame_f_, opt_.emission ? WireFormat::Emission : WireFormat::RGBA8);
     else
       blendBackToFront(one, frame_8_);
@@ -180,7 +180,7 @@ ImageRGBA8 DirectSend::finish(CompositeStats& stats, ImageF* float_frame) {
   if (!error_.empty()) throw std::runtime_error(error_);
   ImageRGBA8 out;
   double t0 = MPI_Wtime();
-  if (opt_.precision == Precision::Float) {
+  if (opt_.precision == Precision::kFloat) {
     // Only the touched rectangle can hold anything but transparent pixels. Emission: the RGBA8
     // frame (colour clamped to alpha) means nothing and the caller makes its own from the float
     // frame, so it stays transparent rather than costing a rounding pass over the frame.

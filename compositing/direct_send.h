@@ -23,7 +23,7 @@ class DirectSend final : public Compositor {
   void begin(const FrameSetup& setup) override;
   void add(BrickImage image) override;
   bool takesLocalEmission() const override {
-    return rank_ == 0 && opt_.emission && opt_.precision == Precision::Float;
+    return rank_ == 0 && opt_.emission && opt_.precision == Precision::kFloat;
   }
   void progress() override;
   ImageRGBA8 finish(CompositeStats& stats, ImageF* float_frame) override;

@@ -109,7 +109,7 @@ ImageRGBA8 radixKComposite(std::vector<BrickImage> mine, const VisibilityOrder& 
                            const CompositeOptions& options, ImageF* float_frame) {
   // Partial composites travel at 16 bits unless the scene asks for the paper's RGBA8.
   const WireFormat partials = options.emission                      ? WireFormat::Emission
-                              : options.precision == Precision::RGBA8 ? WireFormat::RGBA8
+                              : options.precision == Precision::kRgba8 ? WireFormat::RGBA8
                                                                       : WireFormat::RGBA16;
   Stopwatch watch(stats);
   Exchange ex(transport, stats, watch);

@@ -38,7 +38,7 @@ StrategyForecast forecastDirect(const FrameFootprint& fp, int width, int height,
     }
   }
   StrategyForecast f{"direct", 0};
-  const bool float_frame = opt.precision == Precision::Float;
+  const bool float_frame = opt.precision == Precision::kFloat;
   const double clear = float_frame && !m.first_frame ? cost(PixelWork::Copy, double(dirty.area())) : 0;
   const double blend = cost(float_frame ? PixelWork::DecodeBlend8 : PixelWork::DecodeBlendInto8,
                             pixels, brick_bytes);
@@ -62,7 +62,7 @@ StrategyForecast forecastRadixK(const VisibilityOrder& order, const FrameFootpri
   const double lat = m.network.latency_s, bw = m.network.bandwidth_Bps;
   const int ranks = int(fp.rect.size());
   const int brick_bytes = opt.emission ? 8 : 4;
-  const int partial = opt.emission ? 8 : opt.precision == Precision::RGBA8 ? 4 : 8;
+  const int partial = opt.emission ? 8 : opt.precision == Precision::kRgba8 ? 4 : 8;
   const int finals = opt.emission || opt.float_frame ? 8 : 4;
   StrategyForecast f{k == 2 ? "binary-swap" : "radix-k", k};
   auto phase = [&](const char* name, double compute, double other) {

@@ -268,7 +268,7 @@ RenderAction parseRender(const YAML::Node& n, size_t index, const Where& top) {
   } catch (const InputError& e) {
     w.fail(n["scene"] ? n["scene"] : n, "scene", e.what());
   }
-  if (r.cinema && scene.orbit_frames > 0)
+  if (r.cinema && scene.orbit.frames > 0)
     w.fail(n["cinema"], "cinema",
            "cannot be combined with camera.orbit.frames: the cinema sweep sets the cameras");
   return r;

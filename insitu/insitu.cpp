@@ -215,7 +215,7 @@ void InSitu::Impl::prepareStep(const std::vector<size_t>& firing) {
     if (has_particles && scene.particles.anisotropicOn())
       throw InputError("particles.smoothing: anisotropic is not supported in situ (the ghost "
                        "exchange reaches h only); use particles.smoothing: none");
-    const int d = scene.bricks_per_axis;
+    const int d = scene.bricks.per_axis;
     for (int id : layout.mine) {
       Box3 clip = has_grid ? layout.volume_bricks[size_t(id)].world
                            : brickBox(layout.planes, glm::ivec3(id % d, (id / d) % d, id / (d * d)));
@@ -245,10 +245,10 @@ void InSitu::Impl::renderAction(const RenderAction& ra, size_t index, ExecuteRep
   // The images of this render: the output pattern's (one, or an orbit's), and the Cinema sweep's.
   std::vector<std::pair<FrameRequest, std::string>> views;
   if (!ra.output.empty()) {
-    const int frames = std::max(1, sc.orbit_frames);
+    const int frames = std::max(1, sc.orbit.frames);
     for (int f = 0; f < frames; ++f) {
       FrameRequest r = base;
-      r.orbit_frame = sc.orbit_frames > 0 ? f : -1;
+      r.orbit_frame = sc.orbit.frames > 0 ? f : -1;
       views.push_back({r, outputName(ra.output, step, f, frames)});
     }
   }
@@ -272,7 +272,7 @@ void InSitu::Impl::renderAction(const RenderAction& ra, size_t index, ExecuteRep
     collectively(comm, [&] {
       if (rank != 0) return;
       createParentDirectories(file);
-      writeImage(file, result.image, result.scene.background);
+      writeImage(file, result.image, result.scene.image.background);
     });
     if (rank == 0) report.images.push_back(file);
   }

@@ -68,18 +68,18 @@ FrameReference::FrameReference(Scene scene, int threads)
     validateVolume(scene.volume);
     VolumeInput in{{scene.volume.grid, {}}, {}, 0.0};
     in.vol.samples = readWholeVolume(scene.volume);
-    if (scene.reference_field == "adaptive") {
+    if (scene.reference.field == ReferenceField::kAdaptive) {
       AdaptiveOptions options;
-      options.blocks_per_axis = scene.adaptive_blocks;
-      options.tolerance = scene.adaptive_tolerance;
+      options.blocks_per_axis = scene.adaptive.blocks;
+      options.tolerance = scene.adaptive.tolerance;
       options.threads = threads_;
       in.vol.adaptive = std::make_shared<const AdaptiveVolume>(
           buildAdaptive(scene.volume.grid, in.vol.samples, options));
     }
     auto [lo, hi] = presentRange(in.vol.samples, scene.volume.file);
     in.tf = scene.transfer.build(lo, hi, scene.volume.grid.minSpacing());
-    in.step = scene.reference_step * scene.volume.grid.minSpacing();
-    in.shading = scene.shading;
+    in.step = scene.reference.step * scene.volume.grid.minSpacing();
+    in.shading = scene.render.shading;
     bounds_ = unite(bounds_, in.vol.grid.worldBox());
     volume_ = std::move(in);
   }

@@ -10,13 +10,13 @@ namespace sortlast {
 
 VolumeMethod volumeMethod(const Scene& scene) {
   VolumeMethod m;
-  m.raycast = scene.volume_method == "raycast";
-  m.raycast_settings.ert_threshold = scene.ert_threshold;
-  m.raycast_settings.own_resolution_steps = scene.adaptive_steps == "own";
-  m.shading = scene.shading;
-  m.raycast_settings.adaptive_step = scene.adaptive_step;
-  m.raycast_settings.adaptive_tolerance = scene.adaptive_step_tolerance;
-  m.ray_block_cells = scene.ray_block_cells;
+  m.raycast = scene.render.raycast();
+  m.raycast_settings.ert_threshold = scene.render.ert_threshold;
+  m.raycast_settings.own_resolution_steps = scene.adaptive.steps == AdaptiveSteps::kOwn;
+  m.shading = scene.render.shading;
+  m.raycast_settings.adaptive_step = scene.render.adaptive_step;
+  m.raycast_settings.adaptive_tolerance = scene.render.adaptive_step_tolerance;
+  m.ray_block_cells = scene.render.ray_block_cells;
   return m;
 }
 

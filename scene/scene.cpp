@@ -199,18 +199,11 @@ void read(const Text& t, const std::string& key, const Reader& r, const Origin& 
   t.field(s) = t.file ? o.resolve(key, v) : v;
 }
 
-template <class T>
-void read(const Choice<T>& c, const std::string& key, const Reader& r, const Origin&, Scene& s) {
+void read(const Choice& c, const std::string& key, const Reader& r, const Origin&, Scene& s) {
   const std::string name = r.as<std::string>(key);
-  std::vector<std::string> known;
-  for (const auto& [n, value] : c.names) {
-    if (name == n) {
-      c.field(s) = value;
-      return;
-    }
-    known.push_back(n);
-  }
-  throw InputError(choiceError(key, c.says, known, name));
+  for (size_t i = 0; i < c.names.size(); ++i)
+    if (name == c.names[i]) return c.set(s, i);
+  throw InputError(choiceError(key, c.says, c.names, name));
 }
 
 template <class T>
@@ -286,9 +279,9 @@ std::vector<std::string> readSeries(const Reader& r, const std::string& key, con
 // rates run per frame of an orbit and on through the steps of a series.
 void readGlow(const Reader& r, Scene& s) {
   GlowSpec& g = s.glow;
-  const int per_step = std::max(1, s.orbit_frames);
-  g.emitters = parseGlowEmitters(r.get("glow.emitters"), s.time_steps * per_step);
-  g.first_frame = s.time_step * per_step;
+  const int per_step = std::max(1, s.orbit.frames);
+  g.emitters = parseGlowEmitters(r.get("glow.emitters"), s.time.steps * per_step);
+  g.first_frame = s.time.step * per_step;
   if (!r.isAuto("glow.box")) {
     YAML::Node n = r.get("glow.box");
     if (!n.IsSequence() || n.size() != 2)
@@ -393,11 +386,11 @@ std::vector<Camera> Scene::frameCameras(const Box3& bounds) const {
     double dist = 1.02 * radius / std::sin(std::min(vhalf, hhalf));
     base.position = base.look_at + dist * glm::normalize(glm::dvec3(0.55, 0.35, 1.0));
   }
-  if (orbit_frames == 0) return {base};
+  if (orbit.frames == 0) return {base};
   std::vector<Camera> cams;
-  double radius = orbit_radius.value_or(2.0 * extent);
-  for (int i = 0; i < orbit_frames; ++i)
-    cams.push_back(orbitCamera(base, base.look_at, radius, orbit_elevation, i, orbit_frames));
+  double radius = orbit.radius.value_or(2.0 * extent);
+  for (int i = 0; i < orbit.frames; ++i)
+    cams.push_back(orbitCamera(base, base.look_at, radius, orbit.elevation, i, orbit.frames, orbit.start));
   return cams;
 }
 
@@ -482,58 +475,58 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
   for (int a = 0; a < 3; ++a)
     requireTable("volume.spacing", vol.grid.spacing[a] * (vol.grid.dims[a] - 1),
                  "volume.spacing (times volume.dims - 1: the volume's extent)");
-  s.volume_files = readSeries(r, "volume.files", origin);
-  if (!s.volume_files.empty() && !vol.file.empty())
+  s.time.volume_files = readSeries(r, "volume.files", origin);
+  if (!s.time.volume_files.empty() && !vol.file.empty())
     throw InputError("scene keys 'volume.file' and 'volume.files' are both set: use one");
   checkParticles(r, s.particles);
-  s.particle_files = readSeries(r, "particles.files", origin);
-  if (!s.particle_files.empty() && (!s.particles.file.empty() || s.particles.procedural != "none"))
+  s.time.particle_files = readSeries(r, "particles.files", origin);
+  if (!s.time.particle_files.empty() && (!s.particles.file.empty() || s.particles.procedural != "none"))
     throw InputError("scene key 'particles.files' is set with 'particles.file' or "
                      "'particles.procedural': use one");
-  if (!s.volume_files.empty() && !s.particle_files.empty() &&
-      s.volume_files.size() != s.particle_files.size())
+  if (!s.time.volume_files.empty() && !s.time.particle_files.empty() &&
+      s.time.volume_files.size() != s.time.particle_files.size())
     throw InputError("scene keys 'volume.files' and 'particles.files' name " +
-                     std::to_string(s.volume_files.size()) + " and " +
-                     std::to_string(s.particle_files.size()) + " steps: a series needs one of each per step");
+                     std::to_string(s.time.volume_files.size()) + " and " +
+                     std::to_string(s.time.particle_files.size()) + " steps: a series needs one of each per step");
   // Steps inside one file: the records of a 4-D NetCDF variable (the file's metadata is read here,
   // on every parse, so time.step is checked against it before any rank loads a step) ...
   size_t records = 0;
-  if (!vol.file.empty() && s.volume_files.empty() && vol.formatOf() == VolumeFormat::kNetcdf) {
+  if (!vol.file.empty() && s.time.volume_files.empty() && vol.formatOf() == VolumeFormat::kNetcdf) {
     VolumeDesc probe = vol;
     describeNetcdf(probe);
     if (probe.records > 1) records = size_t(probe.records);
-    if (records > 0 && !s.particle_files.empty() && s.particle_files.size() != records)
+    if (records > 0 && !s.time.particle_files.empty() && s.time.particle_files.size() != records)
       throw InputError("volume.file " + vol.file + " holds " + std::to_string(records) +
                        " time steps (records of " + probe.variable + ") and particles.files names " +
-                       std::to_string(s.particle_files.size()) + ": a series needs one of each per step");
+                       std::to_string(s.time.particle_files.size()) + ": a series needs one of each per step");
   }
   // ... or an HDF5 volume.dataset with {step} (one dataset per step).
   const bool hdf5_series = vol.dataset.find("{step}") != std::string::npos;
-  if (hdf5_series && !s.volume_files.empty())
+  if (hdf5_series && !s.time.volume_files.empty())
     throw InputError("volume.dataset " + vol.dataset + ": {step} makes one file a time series; with "
                      "volume.files (one file per step) name the dataset without {step}");
   if (hdf5_series && !vol.file.empty()) {
     if (vol.formatOf() != VolumeFormat::kHdf5)
       throw InputError("volume.dataset " + vol.dataset + ": {step} needs an HDF5 volume.file, not " + vol.file);
     records = size_t(countHdf5Steps(vol));
-    if (!s.particle_files.empty() && s.particle_files.size() != records)
+    if (!s.time.particle_files.empty() && s.time.particle_files.size() != records)
       throw InputError("volume.file " + vol.file + " holds " + std::to_string(records) + " time steps (datasets " +
-                       vol.dataset + ") and particles.files names " + std::to_string(s.particle_files.size()) +
+                       vol.dataset + ") and particles.files names " + std::to_string(s.time.particle_files.size()) +
                        ": a series needs one of each per step");
   }
-  s.time_steps = int(std::max({size_t(1), s.volume_files.size(), s.particle_files.size(), records}));
-  if (s.time_step < 0 || s.time_step >= s.time_steps)
-    throw InputError("scene key 'time.step': " + std::to_string(s.time_step) + " is out of range: the scene has " +
-                     std::to_string(s.time_steps) + " time step(s), 0 ... " + std::to_string(s.time_steps - 1));
-  if (!s.volume_files.empty()) vol.file = s.volume_files[size_t(s.time_step)];
-  if (records > 0) vol.step = s.time_step;
-  if (hdf5_series && !vol.file.empty()) vol.dataset = hdf5StepPath(vol.dataset, s.time_step);
-  if (!s.particle_files.empty()) s.particles.file = s.particle_files[size_t(s.time_step)];
+  s.time.steps = int(std::max({size_t(1), s.time.volume_files.size(), s.time.particle_files.size(), records}));
+  if (s.time.step < 0 || s.time.step >= s.time.steps)
+    throw InputError("scene key 'time.step': " + std::to_string(s.time.step) + " is out of range: the scene has " +
+                     std::to_string(s.time.steps) + " time step(s), 0 ... " + std::to_string(s.time.steps - 1));
+  if (!s.time.volume_files.empty()) vol.file = s.time.volume_files[size_t(s.time.step)];
+  if (records > 0) vol.step = s.time.step;
+  if (hdf5_series && !vol.file.empty()) vol.dataset = hdf5StepPath(vol.dataset, s.time.step);
+  if (!s.time.particle_files.empty()) s.particles.file = s.time.particle_files[size_t(s.time.step)];
   readGlow(r, s);
   s.surfaces = parseSurfaces(r.get("surfaces"), origin.base_dir);
-  if (s.device >= 0 && s.backend != "egl")
-    throw InputError("scene key 'render.device': device " + std::to_string(s.device) +
-                     " names an EGL device, but render.backend is " + s.backend +
+  if (s.render.device >= 0 && s.render.backend != GlBackend::kEgl)
+    throw InputError("scene key 'render.device': device " + std::to_string(s.render.device) +
+                     " names an EGL device, but render.backend is " + std::string(nameOf(s.render.backend)) +
                      " (set render.backend: egl, or render.device: auto)");
   if (!s.hasVolume() && !s.particles.enabled() && !s.glow.enabled() && s.surfaces.empty())
     throw InputError("the scene has nothing to render: volume.procedural is none with no "
@@ -550,7 +543,7 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
   if (!size.admits(cam.width) || !size.admits(cam.height))
     throw InputError("image size " + std::to_string(cam.width) + " x " + std::to_string(cam.height) +
                      ": image.width and image.height must be " + size.phrase());
-  if (!s.camera_auto && s.orbit_frames == 0) {
+  if (!s.camera_auto && s.orbit.frames == 0) {
     if (glm::length(cam.look_at - cam.position) == 0.0)
       throw InputError("camera.position equals camera.look_at: no view direction");
     if (glm::length(glm::cross(cam.forward(), cam.up)) < 1e-9)
@@ -560,25 +553,25 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
   // Glow emitters alone need no cut: every brick would evaluate every emitter again over its
   // part of each ray (d = 2 draws about 3x the pixels of d = 1 at 512^2, docs/glow.md).
   const bool glow_alone = s.glow.enabled() && !s.hasVolume() && !s.particles.enabled() && s.surfaces.empty();
-  if (r.isAuto("bricks.per_axis")) s.bricks_per_axis = glow_alone ? 1 : 2;
-  s.adaptive_tolerance /= 100.0;  // given in percent
+  if (r.isAuto("bricks.per_axis")) s.bricks.per_axis = glow_alone ? 1 : 2;
+  s.adaptive.tolerance /= 100.0;  // given in percent
   // transfer.preintegrated `auto`: on where the opacity is steep and pre-integration is supported.
   if (r.isAuto("transfer.preintegrated"))
-    s.transfer.preintegrated = s.adaptive_tolerance == 0.0 && s.sample_spacing <= 2.0 &&
+    s.transfer.preintegrated = s.adaptive.tolerance == 0.0 && s.render.sample_spacing <= 2.0 &&
                                hasSteepOpacity(s.transfer.points);
-  if (s.transfer.preintegrated && s.adaptive_tolerance > 0.0)
+  if (s.transfer.preintegrated && s.adaptive.tolerance > 0.0)
     throw InputError("scene keys 'transfer.preintegrated' and 'adaptive.tolerance': pre-integration "
                      "is not supported with adaptive sampling; set transfer.preintegrated: false or "
                      "adaptive.tolerance: 0");
   // A segment's ends lie up to half a step beyond the brick that owns it; the bricks' one-voxel
   // ghost layer holds them for steps up to 2 voxels (beyond, brick faces showed seams of 55-74/255).
-  if (s.transfer.preintegrated && s.sample_spacing > 2.0)
+  if (s.transfer.preintegrated && s.render.sample_spacing > 2.0)
     throw InputError("scene keys 'transfer.preintegrated' and 'render.sample_spacing': "
                      "pre-integration needs render.sample_spacing <= 2 voxels (got " +
-                     std::to_string(s.sample_spacing) + ")");
+                     std::to_string(s.render.sample_spacing) + ")");
   // The adaptive ray caster reads each block's own samples only (clamped to the block), so a
   // difference one voxel across a block face would read the wrong field: refused, not approximated.
-  if (s.shading.enabled && s.adaptive_tolerance > 0.0)
+  if (s.render.shading.enabled && s.adaptive.tolerance > 0.0)
     throw InputError("scene keys 'render.shading' and 'adaptive.tolerance': gradient shading is not "
                      "available with adaptive sampling; set render.shading: false or "
                      "adaptive.tolerance: 0");

@@ -6,6 +6,9 @@
 // series, glow emitters, surfaces, glow.box, ...) are `Structured`: parseScene's own code reads
 // them, with the row's default and, where the row has them, its checks.
 #include <glm/glm.hpp>
+#include <functional>
+#include <iterator>
+#include <type_traits>
 #include <limits>
 #include <optional>
 #include <string>
@@ -98,13 +101,44 @@ struct Text {
   // A file name: relative to the scene file (to the working directory when given with --set).
   bool file = false;
 };
+// The names of an enum a Choice key takes, and --stats prints: a section that adds an enum
+// specialises EnumNames<E> with `static constexpr std::pair<const char*, E> list[]`.
+template <class E>
+struct EnumNames;
+template <class E>
+concept NamedEnum = std::is_enum_v<E> && requires { EnumNames<E>::list; };
+// An enum value's name (as the scene key takes it).
+template <NamedEnum E>
+std::string_view nameOf(E value) {
+  for (const auto& [name, v] : EnumNames<E>::list)
+    if (v == value) return name;
+  return "?";
+}
+
 // One of a list of names, each standing for a value of the field.
-template <class T>
 struct Choice {
-  Field<T> field;
-  std::vector<std::pair<const char*, T>> names;
+  static constexpr const char* kSays = "expected {names}, got '{text}'";
+  std::vector<std::string> names;
+  std::function<void(Scene&, size_t)> set;  // the field takes the value names[i] stands for
   // {names}: "a, b or c"; {list}: "a, b, c"; {text}: the value given.
-  const char* says = "expected {names}, got '{text}'";
+  const char* says = kSays;
+
+  template <class T>
+  Choice(Field<T> field, std::vector<std::pair<const char*, T>> named, const char* says_ = kSays)
+      : says(says_) {
+    std::vector<T> values;
+    for (auto& [name, value] : named) {
+      names.emplace_back(name);
+      values.push_back(std::move(value));
+    }
+    set = [field, values = std::move(values)](Scene& s, size_t i) { field(s) = values[i]; };
+  }
+  // An enum's names (EnumNames).
+  template <NamedEnum E>
+  Choice(Field<E> field, const char* says_ = kSays)
+      : Choice(field, std::vector<std::pair<const char*, E>>(std::begin(EnumNames<E>::list),
+                                                             std::end(EnumNames<E>::list)),
+               says_) {}
 };
 // A list of 3 numbers (glm::ivec3: integers; say so with an "integers ..." check).
 template <class T>
@@ -120,7 +154,7 @@ struct Structured {
 
 using KeyType =
     std::variant<Number<double>, Number<std::optional<double>>, Number<int>, Number<long long>,
-                 Flag, Text, Choice<std::string>, Choice<bool>, Choice<SampleType>,
+                 Flag, Text, Choice,
                  Vector<glm::dvec3>, Vector<glm::ivec3>, Structured>;
 
 // `auto` (or null) is a value of the key: the field keeps its default (an optional stays unset,

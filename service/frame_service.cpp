@@ -56,7 +56,7 @@ void leadFrame(ServiceRequest& req, RenderSession& session, RequestQueue& queue,
   ServiceReply r;
   const double t_encode = MPI_Wtime();
   try {
-    r.body = encodeImage(result.image, result.scene.background, tr.format, tr.quality);
+    r.body = encodeImage(result.image, result.scene.image.background, tr.format, tr.quality);
   } catch (const InputError& e) {
     req.reply(errorReply(400, e.what()));
     return;

@@ -14,10 +14,10 @@
 namespace sortlast {
 
 bool usesAdaptiveBlocks(const Scene& scene) {
-  if (!scene.hasVolume() || scene.adaptive_tolerance <= 0.0) return false;
-  if (scene.volume_method != "raycast")
+  if (!scene.hasVolume() || scene.adaptive.tolerance <= 0.0) return false;
+  if (!scene.render.raycast())
     throw InputError("adaptive.tolerance > 0 needs render.method: raycast (3D-texture slicing "
-                     "does not draw adaptive blocks); got render.method: " + scene.volume_method);
+                     "does not draw adaptive blocks); got render.method: " + std::string(nameOf(scene.render.method)));
   return true;
 }
 
@@ -51,8 +51,8 @@ AdaptiveRankData loadAdaptiveBricks(const Scene& scene, const std::vector<Brick>
     out.data_min = *lo, out.data_max = *hi;
     double t1 = MPI_Wtime();
     AdaptiveOptions options;
-    options.blocks_per_axis = scene.adaptive_blocks;
-    options.tolerance = scene.adaptive_tolerance;
+    options.blocks_per_axis = scene.adaptive.blocks;
+    options.tolerance = scene.adaptive.tolerance;
     options.threads = threads;
     const AdaptiveVolume vol = buildAdaptive(desc.grid, whole, options);
     std::vector<float>().swap(whole);

@@ -94,8 +94,8 @@ MemoryBudget gpuMemoryBudget(const GlDeviceInfo& gpu, int sharing) {
 MemoryBudget memoryBudget(const Scene& scene, MPI_Comm comm) {
   const int on_node = nodePlace(comm).size;
   MemoryBudget b;
-  if (scene.memory_limit_mib) {
-    b.bytes = *scene.memory_limit_mib * kMiB;
+  if (scene.limits.memory_mib) {
+    b.bytes = *scene.limits.memory_mib * kMiB;
     b.source = mib(b.bytes) + " (limits.memory_mib)";
     return b;
   }
@@ -161,7 +161,7 @@ MemoryNeed imageNeed(const Scene& scene, int width, int height, int rank, int br
   // rectangle, and a ray crosses at most about 2 d of the d^3 bricks, so the images held sum to
   // at most about 2 d frames (RLE no larger): 4 bytes a pixel in RGBA8, 8 in the half-float
   // Emission format of glow scenes (docs/glow.md).
-  const int d = scene.bricks_per_axis;
+  const int d = scene.bricks.per_axis;
   const double image_px = scene.glow.enabled() ? 8.0 : 4.0;
   double comp = px * (image_px * std::min(bricks_here, 2 * d) + 16.0);
   if (rank == 0) comp += px * (image_px * std::min(bricks_all, 2 * d) + 16 + 16 + 4);
@@ -172,7 +172,7 @@ MemoryNeed imageNeed(const Scene& scene, int width, int height, int rank, int br
 MemoryNeed sessionNeed(const Scene& scene, const SessionLayout& layout, long long particles,
                        int rank, bool resident) {
   MemoryNeed n;
-  const int d = scene.bricks_per_axis, bricks_all = d * d * d;
+  const int d = scene.bricks.per_axis, bricks_all = d * d * d;
   double step_host = 0;
   if (scene.hasVolume()) {
     double samples = 0, largest = 0;
@@ -252,9 +252,9 @@ MemoryNeed sessionNeed(const Scene& scene, const SessionLayout& layout, long lon
                              int(layout.mine.size()), bricks_all);
   n.parts.insert(n.parts.end(), img.parts.begin(), img.parts.end());
   // A resident session keeps other steps' host copies too, up to time.cache_mib.
-  if (resident && scene.time_steps > 1)
+  if (resident && scene.time.steps > 1)
     n.add("the step cache (time.cache_mib)",
-          std::min(scene.time_cache_mib * kMiB, step_host * (scene.time_steps - 1)));
+          std::min(scene.time.cache_mib * kMiB, step_host * (scene.time.steps - 1)));
   return n;
 }
 

@@ -97,14 +97,14 @@ void checkGlowScene(const Scene& sc, bool external) {
   if (external)
     throw InputError("scene key 'glow.emitters': in situ sessions do not draw glow emitters; "
                      "remove them (`sortlast render` and `serve` draw them)");
-  if (sc.precision == "rgba8")
+  if (sc.compositing.precision == Precision::kRgba8)
     throw InputError("scene keys 'glow.emitters' and 'compositing.precision: rgba8' cannot go "
                      "together: glow is light above 1 until the final tone map, which 8-bit "
                      "partial images would clamp; use compositing.precision: float");
-  if (sc.hasVolume() && sc.volume_method == "slicing")
+  if (sc.hasVolume() && !sc.render.raycast())
     throw InputError("scene keys 'glow.emitters' and 'render.method: slicing' cannot go together: "
                      "the glow inside a volume is integrated per ray step (render.method: raycast)");
-  if (sc.hasVolume() && sc.adaptive_tolerance > 0.0)
+  if (sc.hasVolume() && sc.adaptive.tolerance > 0.0)
     throw InputError("scene keys 'glow.emitters' and 'adaptive.tolerance' above 0 cannot go "
                      "together: the ray caster's adaptive blocks do not integrate glow");
 }
@@ -146,9 +146,9 @@ nlohmann::json cameraJson(const Camera& c) {
 
 // The compositor's settings: a new compositor only when they change.
 struct CompositorKey {
-  std::string strategy;
+  Strategy strategy = Strategy::kDirect;
   int radix = 0;
-  std::string precision;
+  Precision precision = Precision::kFloat;
   bool overlap = true, rle = true, float_frame = false, emission = false;
   double latency_us = 0, gbps = 0;  // auto's network
   bool operator==(const CompositorKey&) const = default;
@@ -157,7 +157,7 @@ struct CompositorKey {
 // What the GPU holds: the bricks of one step, for one volume renderer and one influence radius.
 struct GpuKey {
   int step = -1;
-  std::string method;
+  RenderMethod method = RenderMethod::kRaycast;
   double h = -1;  // the particles' ghost margin (ParticleDesc::ghostMargin)
   // Kernels are per brick: new smoothing settings need the bricks again.
   std::string smoothing;
@@ -239,7 +239,7 @@ RenderSession::RenderSession(SessionOptions options, MPI_Comm comm) : s_(std::ma
   });
   const Scene& scene = S.base;
   S.budget = memoryBudget(scene, comm);
-  const DeviceRequest device{scene.device, nodeLocalRank(comm), S.rank};
+  const DeviceRequest device{scene.render.device, nodeLocalRank(comm), S.rank};
   // Rank 0 reads the whole particle set first (or every rank its share): bounded before it is read.
   collectively(comm, [&] {
     if (S.rank == 0 || readsInShares(scene.particles))
@@ -252,10 +252,10 @@ RenderSession::RenderSession(SessionOptions options, MPI_Comm comm) : s_(std::ma
   if (scene.particles.enabled()) {
     first = loadParticleSet(scene.particles, comm);
     if (first.total > 0) centres = first.bounds;
-    for (int step = 0; step < int(scene.particle_files.size()); ++step) {
-      if (step == scene.time_step) continue;
+    for (int step = 0; step < int(scene.time.particle_files.size()); ++step) {
+      if (step == scene.time.step) continue;
       ParticleDesc other = scene.particles;
-      other.file = scene.particle_files[size_t(step)];
+      other.file = scene.time.particle_files[size_t(step)];
       LoadedParticles r = loadParticleSet(other, comm);
       if (r.total > 0) centres = isEmpty(centres) ? r.bounds : unite(centres, r.bounds);
     }
@@ -271,7 +271,7 @@ RenderSession::RenderSession(SessionOptions options, MPI_Comm comm) : s_(std::ma
     for (size_t i = 0; i < cams.size(); ++i)
       checkCameraOutside(cams[i], S.layout.bounds,
                          cams.size() > 1 ? " of orbit frame " + std::to_string(i) : "");
-    S.renderer = std::make_unique<BrickRenderer>(scene.backend, scene.camera.width, scene.camera.height, device);
+    S.renderer = std::make_unique<BrickRenderer>(std::string(nameOf(scene.render.backend)), scene.camera.width, scene.camera.height, device);
   });
   S.meetDevices();
   collectively(comm, [&] {
@@ -279,7 +279,7 @@ RenderSession::RenderSession(SessionOptions options, MPI_Comm comm) : s_(std::ma
                 S.gpu_budget, S.rank, "the scene's GPU textures and render targets");
   });
   // A batch session never changes step: its cache holds the one step, and only until upload.
-  S.cache = std::make_unique<StepCache>(S.opts.resident ? scene.time_cache_mib : 0.0);
+  S.cache = std::make_unique<StepCache>(S.opts.resident ? scene.time.cache_mib : 0.0);
   if (scene.particles.enabled()) {
     // The first step's particle set is loaded already: hand it to the cache's loader.
     S.cache->preload(std::move(first));
@@ -287,9 +287,9 @@ RenderSession::RenderSession(SessionOptions options, MPI_Comm comm) : s_(std::ma
   S.bringGpuTo(scene);
   if (S.rank == 0 && !S.opts.quiet)
     std::fprintf(stderr, "sortlast: %d rank(s), %d^3 bricks, %dx%d%s%s, %s\n", S.size,
-                 scene.bricks_per_axis, scene.camera.width, scene.camera.height,
+                 scene.bricks.per_axis, scene.camera.width, scene.camera.height,
                  scene.particles.enabled() ? (", " + std::to_string(particleCount()) + " particles").c_str() : "",
-                 scene.time_steps > 1 ? (", " + std::to_string(scene.time_steps) + " time steps").c_str() : "",
+                 scene.time.steps > 1 ? (", " + std::to_string(scene.time.steps) + " time steps").c_str() : "",
                  S.renderer->description().c_str());
 }
 
@@ -311,8 +311,8 @@ std::unique_ptr<RenderSession> RenderSession::external(SessionOptions options, M
       throw InputError("scene key 'surfaces': subdivision surfaces are not drawn in situ (the "
                        "simulation's bricks need not hold them); use `sortlast render` or `serve`");
     checkGlowScene(S->base, true);
-    S->renderer = std::make_unique<BrickRenderer>(S->base.backend, S->base.camera.width, S->base.camera.height,
-                                                  DeviceRequest{S->base.device, local_rank, S->rank});
+    S->renderer = std::make_unique<BrickRenderer>(std::string(nameOf(S->base.render.backend)), S->base.camera.width, S->base.camera.height,
+                                                  DeviceRequest{S->base.render.device, local_rank, S->rank});
   });
   S->meetDevices();
   S->budget = memoryBudget(S->base, comm);  // requests' image sizes are checked against it
@@ -343,7 +343,7 @@ void RenderSession::State::meetDevices() {
 long long RenderSession::particleCount() const { return s_->current ? s_->current->loaded.total : 0; }
 int RenderSession::currentStep() const {
   if (s_->ext) return s_->ext->step;
-  return s_->current ? s_->current->step : s_->base.time_step;
+  return s_->current ? s_->current->step : s_->base.time.step;
 }
 int RenderSession::orbitFrames() const { return int(s_->base.frameCameras(s_->layout.bounds).size()); }
 
@@ -370,10 +370,10 @@ Scene RenderSession::State::resolve(const FrameRequest& request) const {
     sc.volume.procedural = ext->has_volume ? "external" : "none";
     sc.particles.file.clear();
     sc.particles.procedural = ext->has_particles ? "external" : "none";
-    sc.volume_files.clear();
-    sc.particle_files.clear();
-    sc.time_step = ext->step;
-    sc.adaptive_tolerance = 0.0;
+    sc.time.volume_files.clear();
+    sc.time.particle_files.clear();
+    sc.time.step = ext->step;
+    sc.adaptive.tolerance = 0.0;
   }
   usesAdaptiveBlocks(sc);  // adaptive blocks need the ray caster: refuse slicing
   checkGlowScene(sc, external);
@@ -401,7 +401,7 @@ Scene RenderSession::State::resolve(const FrameRequest& request) const {
     throw InputError("orbit frame " + std::to_string(request.orbit_frame) + " of " + std::to_string(cams.size()));
   checkCameraOutside(cams[size_t(std::max(0, request.orbit_frame))], layout.bounds);
   // A request's image size must fit beside the data the session holds.
-  const int d = sc.bricks_per_axis;
+  const int d = sc.bricks.per_axis;
   checkMemory(external ? imageNeed(sc, sc.camera.width, sc.camera.height, rank,
                                    int(layout.mine.size()), d * d * d)
                        : sessionNeed(sc, layout, particles_total, rank, opts.resident),
@@ -421,7 +421,7 @@ Camera RenderSession::camera(const FrameRequest& request) const {
 }
 
 void RenderSession::State::uploadBricks(const Scene& scene, StepData& d) {
-  const int d_axis = scene.bricks_per_axis;
+  const int d_axis = scene.bricks.per_axis;
   auto cellOf = [&](int id) { return glm::ivec3(id % d_axis, (id / d_axis) % d_axis, id / (d_axis * d_axis)); };
   const bool has_particles = scene.particles.enabled();
   const double margin = has_particles ? scene.particles.ghostMargin() : 0.0;
@@ -430,7 +430,7 @@ void RenderSession::State::uploadBricks(const Scene& scene, StepData& d) {
   renderer->reset();
   if (scene.hasVolume())
     renderer->enableVolume(scene.transfer.build(d.data_min, d.data_max, layout.grid.minSpacing()),
-                           scene.transfer.table_size, scene.block_cells, volumeMethod(scene));
+                           scene.transfer.table_size, scene.render.block_cells, volumeMethod(scene));
   if (has_particles) renderer->enableParticles(metaballSettings(scene.particles));
   renderer->enableSurfaces(scene.surfaces);
   if (scene.glow.enabled()) renderer->enableGlow();
@@ -453,7 +453,7 @@ void RenderSession::State::uploadBricks(const Scene& scene, StepData& d) {
 
 void RenderSession::State::bringGpuTo(const Scene& scene) {
   const bool has_particles = scene.particles.enabled();
-  GpuKey want{scene.time_step, scene.volume_method, has_particles ? scene.particles.ghostMargin() : 0.0,
+  GpuKey want{scene.time.step, scene.render.method, has_particles ? scene.particles.ghostMargin() : 0.0,
               scene.particles.smoothing, scene.particles.anisotropic};
   if (want == gpu) return;
   if (external) {
@@ -464,7 +464,7 @@ void RenderSession::State::bringGpuTo(const Scene& scene) {
       auto [lo, hi] = dataRange();
       if (scene.hasVolume())
         renderer->enableVolume(scene.transfer.build(lo, hi, layout.grid.minSpacing()), scene.transfer.table_size,
-                               scene.block_cells, volumeMethod(scene));
+                               scene.render.block_cells, volumeMethod(scene));
       if (has_particles) renderer->enableParticles(metaballSettings(scene.particles));
       renderer->enableSurfaces(scene.surfaces);
       ext->add_bricks(*renderer, scene, handles, particles_held);
@@ -474,7 +474,7 @@ void RenderSession::State::bringGpuTo(const Scene& scene) {
     gpu = want;
     return;
   }
-  PhaseScope phase("loading time step " + std::to_string(scene.time_step));
+  PhaseScope phase("loading time step " + std::to_string(scene.time.step));
   StepData& d = cache->get(scene, layout, adaptive, comm);
   current = &d;
   collectively(comm, [&] {
@@ -501,10 +501,10 @@ void RenderSession::State::bringGpuTo(const Scene& scene) {
 // before, and an orbit probes once. The same on every rank (resolved from the same request).
 std::vector<double> RenderSession::State::spacingKey(const Scene& sc, std::pair<int, int> probe) const {
   const auto [lo, hi] = dataRange();
-  std::vector<double> key{double(sc.time_step), lo, hi, sc.ert_threshold, double(sc.transfer.preintegrated),
-                          double(sc.shading.enabled), double(sc.adaptive_step), sc.adaptive_step_tolerance,
-                          sc.adaptive_tolerance, double(sc.volume_method == "slicing"),
-                          double(sc.transfer.table_size), sc.background.x, sc.background.y, sc.background.z};
+  std::vector<double> key{double(sc.time.step), lo, hi, sc.render.ert_threshold, double(sc.transfer.preintegrated),
+                          double(sc.render.shading.enabled), double(sc.render.adaptive_step), sc.render.adaptive_step_tolerance,
+                          sc.adaptive.tolerance, double(!sc.render.raycast()),
+                          double(sc.transfer.table_size), sc.image.background.x, sc.image.background.y, sc.image.background.z};
   const TransferFunction tf = sc.transfer.build(lo, hi, layout.grid.minSpacing());
   key.insert(key.end(), {tf.rangeLo(), tf.rangeHi(), tf.unitLength()});
   for (const TfPoint& p : tf.points()) key.insert(key.end(), {p.value, p.r, p.g, p.b, p.a});
@@ -537,7 +537,7 @@ double RenderSession::autoSpacing(const Scene& sc, const FrameRequest& request, 
     }
     double chosen = 0.5;
     if (S.rank == 0) {
-      S.spacing.choice = chooseSpacing(probes, sc.background);
+      S.spacing.choice = chooseSpacing(probes, sc.image.background);
       chosen = S.spacing.choice.spacing;
     }
     // Rank 0 decides; every rank takes its step (so all ranks agree whatever the rounding).
@@ -569,9 +569,9 @@ FrameResult RenderSession::render(const FrameRequest& request) {
   // Its probe frames count in this frame's total_s (they are what auto costs).
   nlohmann::json spacing_info;
   double probe_s = 0.0;
-  if (sc.sample_spacing_auto && sc.hasVolume() && !request.probe) {
+  if (sc.render.sample_spacing_auto && sc.hasVolume() && !request.probe) {
     const double t0 = MPI_Wtime();
-    sc.sample_spacing = autoSpacing(sc, request, spacing_info);
+    sc.render.sample_spacing = autoSpacing(sc, request, spacing_info);
     probe_s = MPI_Wtime() - t0;
   }
   const auto [data_min, data_max] = S.dataRange();
@@ -594,19 +594,19 @@ FrameResult RenderSession::render(const FrameRequest& request) {
                                   sc.glow.core_radius, sc.glow.intensity);
     // Glow: the frame comes back in float for the tone map.
     const bool float_frame = request.float_frame || glow;
-    CompositorKey key{sc.strategy, sc.radix, sc.precision, sc.overlap, sc.rle, float_frame, glow,
-                      sc.network_latency_us, sc.network_gbps};
+    CompositorKey key{sc.compositing.strategy, sc.compositing.radix, sc.compositing.precision, sc.compositing.overlap, sc.compositing.rle, float_frame, glow,
+                      sc.compositing.latency_us, sc.compositing.bandwidth_gbps};
     if (!S.compositor || !(key == S.compositor_key)) {
       CompositeOptions copts;
-      copts.precision = sc.precision == "rgba8" ? Precision::RGBA8 : Precision::Float;
-      copts.overlap = sc.overlap;
-      copts.rle = sc.rle;
+      copts.precision = sc.compositing.precision;
+      copts.overlap = sc.compositing.overlap;
+      copts.rle = sc.compositing.rle;
       copts.float_frame = float_frame;
       copts.emission = glow;
-      copts.network_latency_s = sc.network_latency_us * 1e-6;
-      copts.network_bandwidth_Bps = sc.network_gbps * 1e9 / 8;
+      copts.network_latency_s = sc.compositing.latency_us * 1e-6;
+      copts.network_bandwidth_Bps = sc.compositing.bandwidth_gbps * 1e9 / 8;
       copts.ranks_per_core = S.ranks_per_core;
-      S.compositor = makeCompositor(sc.strategy, sc.radix, copts);
+      S.compositor = makeCompositor(sc.compositing.strategy, sc.compositing.radix, copts);
       S.compositor_key = key;
     }
   });
@@ -624,9 +624,9 @@ FrameResult RenderSession::render(const FrameRequest& request) {
   // it while the next brick renders.
   // auto chooses from every rank's bricks on the screen: the same numbers on every rank.
   const FrameFootprint footprint =
-      sc.strategy == "auto" ? forecastFootprint(S.layout, cam, S.size) : FrameFootprint{};
+      sc.compositing.strategy == Strategy::kAuto ? forecastFootprint(S.layout, cam, S.size) : FrameFootprint{};
   S.compositor->begin(FrameSetup{&order, int(mine.size()), cam.width, cam.height, S.comm,
-                                 sc.strategy == "auto" ? &footprint : nullptr});
+                                 sc.compositing.strategy == Strategy::kAuto ? &footprint : nullptr});
   if (!request.dump_layers.empty())  // rank 0 makes the directory first
     collectively(S.comm, [&] { if (rank == 0) dumpOrder(request.dump_layers, cam, order); });
   try {
@@ -643,9 +643,9 @@ FrameResult RenderSession::render(const FrameRequest& request) {
         if (!bf.rect.empty() && local) {
           img.emission = std::move(bf.pixels_f);  // blended on this rank: not encoded
         } else if (!bf.rect.empty() && glow) {
-          encodeEmission(bf.pixels_f, img.rle, sc.rle ? kMaxRun : 1);
+          encodeEmission(bf.pixels_f, img.rle, sc.compositing.rle ? kMaxRun : 1);
         } else if (!bf.rect.empty()) {
-          rleEncode(bf.pixels.px, img.rle, 4, sc.rle ? kMaxRun : 1);
+          rleEncode(bf.pixels.px, img.rle, 4, sc.compositing.rle ? kMaxRun : 1);
         }
         st.render_s += t1 - t0;
         st.encode_s += MPI_Wtime() - t1;
@@ -668,7 +668,7 @@ FrameResult RenderSession::render(const FrameRequest& request) {
   collectively(S.comm, [&] {
     ImageF* float_frame = request.float_frame ? &out.image_f : glow ? &S.glow_frame : nullptr;
     out.image = S.compositor->finish(cs, float_frame);
-    if (glow && rank == 0) finishGlowFrame(sc.glow, sc.background, *float_frame, out.image);
+    if (glow && rank == 0) finishGlowFrame(sc.glow, sc.image.background, *float_frame, out.image);
   });
   if (want_surface) out.surface = gatherSurface(surfaces, cam.width, cam.height, S.comm);
   st.transfer_s = cs.transfer_s;
@@ -684,9 +684,9 @@ FrameResult RenderSession::render(const FrameRequest& request) {
     out.stats["camera"] = cameraJson(cam);
     out.stats["width"] = cam.width;
     out.stats["height"] = cam.height;
-    out.stats["step"] = sc.time_step;
+    out.stats["step"] = sc.time.step;
     out.stats["ranks"] = S.size;
-    if (sc.hasVolume()) out.stats["sample_spacing"] = sc.sample_spacing;
+    if (sc.hasVolume()) out.stats["sample_spacing"] = sc.render.sample_spacing;
     if (!spacing_info.is_null()) out.stats["sample_spacing_auto"] = spacing_info;
     if (choice) {
       // Every rank forecast the same footprint; a rank that chose otherwise is a bug to see.
@@ -722,10 +722,10 @@ nlohmann::json RenderSession::describe(const std::vector<std::string>& base) con
   j["has_volume"] = b.hasVolume();
   j["has_particles"] = b.particles.enabled();
   j["particles"] = particleCount();
-  j["steps"] = b.time_steps;
-  j["step"] = S.current ? S.current->step : b.time_step;
+  j["steps"] = b.time.steps;
+  j["step"] = S.current ? S.current->step : b.time.step;
   j["ranks"] = S.size;
-  j["bricks_per_axis"] = b.bricks_per_axis;
+  j["bricks_per_axis"] = b.bricks.per_axis;
   j["renderer"] = S.renderer->description();
   j["ranks_gl"] = deviceJson(S.devices);  // each rank's GL_VENDOR, GL_RENDERER, device, host
   j["data_range"] = nullptr;
@@ -747,20 +747,20 @@ nlohmann::json RenderSession::describe(const std::vector<std::string>& base) con
                                                        : nlohmann::json("auto")},
                    {"image.width", b.camera.width},
                    {"image.height", b.camera.height},
-                   {"image.background", vec3Json(b.background)},
-                   {"render.method", b.volume_method},
-                   {"render.sample_spacing", b.sample_spacing_auto ? nlohmann::json("auto")
-                                                                   : nlohmann::json(b.sample_spacing)},
-                   {"render.ert_threshold", b.ert_threshold},
-                   {"render.shading", b.shading.enabled},
+                   {"image.background", vec3Json(b.image.background)},
+                   {"render.method", b.render.method},
+                   {"render.sample_spacing", b.render.sample_spacing_auto ? nlohmann::json("auto")
+                                                                   : nlohmann::json(b.render.sample_spacing)},
+                   {"render.ert_threshold", b.render.ert_threshold},
+                   {"render.shading", b.render.shading.enabled},
                    {"transfer.preintegrated", b.transfer.preintegrated},  // as resolved (auto: on or off)
-                   {"render.adaptive_step", b.adaptive_step},
-                   {"render.adaptive_tolerance", b.adaptive_step_tolerance},
-                   {"compositing.strategy", b.strategy},
-                   {"compositing.radix", b.radix},
-                   {"compositing.precision", b.precision},
+                   {"render.adaptive_step", b.render.adaptive_step},
+                   {"render.adaptive_tolerance", b.render.adaptive_step_tolerance},
+                   {"compositing.strategy", b.compositing.strategy},
+                   {"compositing.radix", b.compositing.radix},
+                   {"compositing.precision", b.compositing.precision},
                    {"camera.fov", b.camera.fov_deg},
-                   {"time.step", b.time_step}};
+                   {"time.step", b.time.step}};
   if (b.particles.enabled()) {
     j["settings"]["particles.color"] = vec3Json(b.particles.colour);
     j["settings"]["particles.threshold"] = b.particles.threshold;
@@ -783,8 +783,8 @@ nlohmann::json RenderSession::jobStats() const {
   if (S.adaptive && S.current) {
     // Once per step, before its first frame (not in any frame's total_s); slowest rank.
     const AdaptiveRankData& a = S.current->adaptive;
-    top["adaptive_tolerance_percent"] = 100.0 * S.base.adaptive_tolerance;
-    top["adaptive_blocks"] = S.base.adaptive_blocks;
+    top["adaptive_tolerance_percent"] = 100.0 * S.base.adaptive.tolerance;
+    top["adaptive_blocks"] = S.base.adaptive.blocks;
     top["adaptive_data_left_percent"] = 100.0 * a.data_left;
     top["adaptive_read_s"] = a.read_s;
     top["adaptive_preprocess_s"] = a.preprocess_s;

@@ -10,7 +10,7 @@ Box3 grow(const Box3& b, double by) { return {b.lo - by, b.hi + by}; }
 
 SessionLayout makeLayout(const Scene& scene, const Box3& particle_centres, int rank, int size) {
   SessionLayout L;
-  const int d = scene.bricks_per_axis;
+  const int d = scene.bricks.per_axis;
   L.grid = scene.volume.grid;
   if (scene.hasVolume()) L.volume_bricks = makeBricks(scene.volume.grid, d);
   // The domain holds every particle's field: h, or the anisotropic ellipsoids' reach.

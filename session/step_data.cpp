@@ -56,7 +56,7 @@ StepData loadStep(const Scene& scene, const SessionLayout& layout, bool adaptive
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
   StepData d;
-  d.step = scene.time_step;
+  d.step = scene.time.step;
   d.has_volume = scene.hasVolume();
   if (scene.hasVolume()) {
     // Every step of a series must have the layout's grid (a VTK file brings its own).
@@ -118,7 +118,7 @@ void scatterStepParticles(StepData& d, const SessionLayout& layout, double h, MP
 }
 
 StepData& StepCache::get(const Scene& scene, const SessionLayout& layout, bool adaptive, MPI_Comm comm) {
-  auto it = std::find_if(steps_.begin(), steps_.end(), [&](const StepData& d) { return d.step == scene.time_step; });
+  auto it = std::find_if(steps_.begin(), steps_.end(), [&](const StepData& d) { return d.step == scene.time.step; });
   if (it != steps_.end()) {
     steps_.splice(steps_.begin(), steps_, it);  // newest first
     return steps_.front();

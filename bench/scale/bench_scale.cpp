@@ -253,7 +253,7 @@ int main(int argc, char** argv) {
       if (precision != "float" && precision != "rgba8") fail(rank, "bad precision " + precision);
       if (rle != "on" && rle != "off") fail(rank, "bad --rle value " + rle);
       CompositeOptions opts;
-      opts.precision = precision == "rgba8" ? Precision::RGBA8 : Precision::Float;
+      opts.precision = precision == "rgba8" ? Precision::kRgba8 : Precision::kFloat;
       opts.rle = rle == "on";
       opts.network_latency_s = latency_us * 1e-6;
       opts.network_bandwidth_Bps = gbps * 1e9 / 8;

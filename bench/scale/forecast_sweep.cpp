@@ -113,7 +113,7 @@ int main(int argc, char** argv) {
       fp.bricks.push_back(1);
     }
     CompositeOptions opt;
-    opt.precision = precision == "rgba8" ? Precision::RGBA8 : Precision::Float;
+    opt.precision = precision == "rgba8" ? Precision::kRgba8 : Precision::kFloat;
     opt.rle = rle == "on";
     const std::vector<StrategyForecast> fc =
         forecastStrategies(scale::sphereOrder(ranks), fp, w, h, opt, m, radices);

@@ -95,7 +95,7 @@ class Session {
     }
     if (failed) raiseInputError(*failed);
     if (rank_ != 0) return py::none();
-    const glm::dvec3 bg = result.scene.background;
+    const glm::dvec3 bg = result.scene.image.background;
     const int w = result.image.width, h = result.image.height;
     py::object image_f = py::none();
     if (float_frame) image_f = pixels(std::move(result.image_f.px), w, h);

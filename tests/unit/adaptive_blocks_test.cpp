@@ -139,11 +139,11 @@ TEST(AdaptiveBlocks, RejectsBadInput) {
 
 TEST(AdaptiveBlocks, SceneKeys) {
   Scene s = loadScene("", {});
-  EXPECT_EQ(s.adaptive_tolerance, 0.0);  // off by default
-  EXPECT_EQ(s.adaptive_blocks, 8);
+  EXPECT_EQ(s.adaptive.tolerance, 0.0);  // off by default
+  EXPECT_EQ(s.adaptive.blocks, 8);
   s = loadScene("", {"adaptive.tolerance=10", "adaptive.blocks=16"});
-  EXPECT_DOUBLE_EQ(s.adaptive_tolerance, 0.1);  // percent in the scene, a fraction in the code
-  EXPECT_EQ(s.adaptive_blocks, 16);
+  EXPECT_DOUBLE_EQ(s.adaptive.tolerance, 0.1);  // percent in the scene, a fraction in the code
+  EXPECT_EQ(s.adaptive.blocks, 16);
   for (const char* bad :
        {"adaptive.tolerance=-1", "adaptive.tolerance=101", "adaptive.tolerance=x"})
     EXPECT_NE(inputErrorOf([&] { loadScene("", {bad}); }).find("adaptive.tolerance"),

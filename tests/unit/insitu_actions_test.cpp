@@ -121,8 +121,8 @@ TEST(InsituActions, OverridesReadBackByTheSceneParser) {
   EXPECT_EQ(s.camera.height, 128);
   EXPECT_FALSE(s.camera_auto);
   EXPECT_EQ(s.camera.position, glm::dvec3(0, 0, 400));
-  EXPECT_EQ(s.orbit_frames, 4);
-  EXPECT_EQ(s.volume_method, "raycast");
+  EXPECT_EQ(s.orbit.frames, 4);
+  EXPECT_EQ(s.render.method, RenderMethod::kRaycast);
   ASSERT_EQ(s.transfer.points.size(), 2u);
   EXPECT_DOUBLE_EQ(s.transfer.points[1].b, 0.25);
   for (const std::string& o : a.renders[0].overrides)

@@ -274,7 +274,7 @@ TEST(RadixK, Rgba8PartialsStayWithinAFewStepsWithFewerBytes) {
   std::vector<Outcome> f, b8;
   forEveryCase(10, false, [](int, const std::string&, long long, long long) {}, {}, &f);
   CompositeOptions eight;
-  eight.precision = Precision::RGBA8;
+  eight.precision = Precision::kRgba8;
   int worst_all = 0;
   forEveryCase(10, false,
                [&](int worst, const std::string& where, long long, long long) {

@@ -144,8 +144,8 @@ TEST(RenderDevice, AutoSpreadsANodesRanksOverItsDevices) {
   EXPECT_EQ(autoDevice(5, 4), 1);
   EXPECT_EQ(autoDevice(2, 1), 0);
   EXPECT_EQ(autoDevice(0, 0), -1);
-  EXPECT_EQ(loadScene("", {}).device, -1);
-  EXPECT_EQ(loadScene("", {"render.backend=egl", "render.device=3"}).device, 3);
+  EXPECT_EQ(loadScene("", {}).render.device, -1);
+  EXPECT_EQ(loadScene("", {"render.backend=egl", "render.device=3"}).render.device, 3);
   std::string msg = inputErrorOf([] { loadScene("", {"render.device=1"}); });
   EXPECT_TRUE(has(msg, "render.device") && has(msg, "render.backend is osmesa")) << msg;
   msg = inputErrorOf([] { loadScene("", {"render.backend=egl", "render.device=-1"}); });

@@ -60,18 +60,18 @@ TEST(Scene, BuiltInDefaults) {
   EXPECT_EQ(s.volume.procedural, "blobs");
   EXPECT_EQ(s.camera.width, 512);
   EXPECT_EQ(s.camera.height, 512);
-  EXPECT_EQ(s.bricks_per_axis, 2);
-  EXPECT_EQ(s.backend, "osmesa");
-  EXPECT_EQ(s.strategy, "direct");
+  EXPECT_EQ(s.bricks.per_axis, 2);
+  EXPECT_EQ(nameOf(s.render.backend), "osmesa");
+  EXPECT_EQ(nameOf(s.compositing.strategy), "direct");
   EXPECT_TRUE(s.camera_auto);
-  EXPECT_EQ(s.orbit_frames, 0);
+  EXPECT_EQ(s.orbit.frames, 0);
   EXPECT_EQ(s.camera.up, glm::dvec3(0.0, 1.0, 0.0));
   // Tunable numbers: whatever the key table says (it is also the documentation).
   EXPECT_DOUBLE_EQ(s.camera.fov_deg, std::stod(tableDefault("camera.fov")));
   EXPECT_EQ(tableDefault("render.sample_spacing"), "auto");
-  EXPECT_TRUE(s.sample_spacing_auto);
-  EXPECT_DOUBLE_EQ(s.sample_spacing, 0.5);  // until the session's probe chooses
-  EXPECT_DOUBLE_EQ(s.reference_step, std::stod(tableDefault("reference.step")));
+  EXPECT_TRUE(s.render.sample_spacing_auto);
+  EXPECT_DOUBLE_EQ(s.render.sample_spacing, 0.5);  // until the session's probe chooses
+  EXPECT_DOUBLE_EQ(s.reference.step, std::stod(tableDefault("reference.step")));
   EXPECT_EQ(s.transfer.table_size, std::stoi(tableDefault("transfer.table_size")));
   EXPECT_FALSE(s.transfer.range.has_value());
   EXPECT_FALSE(s.transfer.unit_length.has_value());
@@ -84,12 +84,12 @@ TEST(Scene, SetOverrides) {
                            "render.backend=egl", "bricks.per_axis=3",
                            "transfer.points=[[0,0,0,0,0],[1,1,0.5,0.25,0.75]]"});
   EXPECT_EQ(s.volume.grid.dims, glm::ivec3(64, 32, 16));
-  EXPECT_EQ(s.orbit_frames, 8);
+  EXPECT_EQ(s.orbit.frames, 8);
   EXPECT_EQ(s.frameCameras(s.volume.grid.worldBox()).size(), 8u);
   EXPECT_EQ(s.camera.width, 100);
   EXPECT_EQ(s.camera.height, 512);  // untouched keys keep their defaults
-  EXPECT_EQ(s.backend, "egl");
-  EXPECT_EQ(s.bricks_per_axis, 3);
+  EXPECT_EQ(nameOf(s.render.backend), "egl");
+  EXPECT_EQ(s.bricks.per_axis, 3);
   ASSERT_EQ(s.transfer.points.size(), 2u);
   EXPECT_DOUBLE_EQ(s.transfer.points[1].g, 0.5);
   EXPECT_DOUBLE_EQ(s.transfer.points[1].a, 0.75);
@@ -108,14 +108,14 @@ TEST_F(SceneFiles, FileValuesAndOverridesOnTop) {
   EXPECT_EQ(s.camera.height, 48);
   EXPECT_FALSE(s.camera_auto);
   EXPECT_EQ(s.camera.position, glm::dvec3(0.0, 0.0, 100.0));
-  EXPECT_EQ(s.orbit_frames, 3);
-  EXPECT_EQ(s.bricks_per_axis, 4);
-  EXPECT_EQ(s.backend, "osmesa");
+  EXPECT_EQ(s.orbit.frames, 3);
+  EXPECT_EQ(s.bricks.per_axis, 4);
+  EXPECT_EQ(nameOf(s.render.backend), "osmesa");
 
   Scene o = loadScene(path, {"image.width=100", "camera.orbit.frames=0"});
   EXPECT_EQ(o.camera.width, 100);
   EXPECT_EQ(o.camera.height, 48);
-  EXPECT_EQ(o.orbit_frames, 0);
+  EXPECT_EQ(o.orbit.frames, 0);
   EXPECT_EQ(o.volume.grid.dims, glm::ivec3(10, 20, 30));
 }
 
@@ -163,12 +163,43 @@ TEST(Scene, InvalidValuesThrow) {
             "scene key 'camera.orbit.elevation': must be in [-90, 90] degrees");
 }
 
+// Every enum a key takes reads back the name it was given, and every name the table lists is one
+// the enum has (nameOf never answers "?" for a value the parser produced).
+TEST(Scene, EnumKeysRoundTrip) {
+  for (const char* name : {"slicing", "raycast"})
+    EXPECT_EQ(nameOf(loadScene("", {std::string("render.method=") + name}).render.method), name);
+  for (const char* name : {"float", "rgba8"})
+    EXPECT_EQ(nameOf(loadScene("", {std::string("compositing.precision=") + name}).compositing.precision), name);
+  for (const char* name : {"own", "fine"})
+    EXPECT_EQ(nameOf(loadScene("", {std::string("adaptive.steps=") + name}).adaptive.steps), name);
+  for (const char* name : {"original", "adaptive"})
+    EXPECT_EQ(nameOf(loadScene("", {std::string("reference.field=") + name}).reference.field), name);
+  EXPECT_EQ(sceneKeyValues(sceneKey("compositing.strategy")), "`direct`, `binary-swap`, `radix-k` or `auto`");
+  EXPECT_EQ(inputErrorOf([] { loadScene("", {"render.backend=vulkan"}); }),
+            "scene key 'render.backend': expected osmesa or egl, got 'vulkan'");
+}
+
+// camera.orbit.start turns the whole orbit about camera.up: frame i of a start of 360/N degrees
+// is frame i + 1 of no start, and the default is the orbit as before.
+TEST(Scene, OrbitStart) {
+  const Box3 box{{0, 0, 0}, {1, 1, 1}};
+  const auto plain = loadScene("", {"camera.orbit.frames=4"}).frameCameras(box);
+  const auto turned = loadScene("", {"camera.orbit.frames=4", "camera.orbit.start=90"}).frameCameras(box);
+  ASSERT_EQ(plain.size(), 4u);
+  ASSERT_EQ(turned.size(), 4u);
+  for (int i = 0; i < 3; ++i)
+    for (int a = 0; a < 3; ++a) EXPECT_NEAR(turned[i].position[a], plain[i + 1].position[a], 1e-9) << i;
+  EXPECT_EQ(loadScene("", {}).orbit.start, std::stod(tableDefault("camera.orbit.start")));
+  EXPECT_EQ(inputErrorOf([] { loadScene("", {"camera.orbit.start=400"}); }),
+            "scene key 'camera.orbit.start': must be in [-360, 360] degrees");
+}
+
 TEST(Scene, CompositingStrategies) {
   for (const char* name : {"direct", "binary-swap", "radix-k", "auto"})
-    EXPECT_EQ(loadScene("", {std::string("compositing.strategy=") + name}).strategy, name);
-  EXPECT_EQ(loadScene("", {}).radix, std::stoi(tableDefault("compositing.radix")));
-  EXPECT_EQ(loadScene("", {"compositing.radix=2"}).radix, 2);
-  EXPECT_EQ(loadScene("", {"compositing.radix=7"}).radix, 7);
+    EXPECT_EQ(nameOf(loadScene("", {std::string("compositing.strategy=") + name}).compositing.strategy), name);
+  EXPECT_EQ(loadScene("", {}).compositing.radix, std::stoi(tableDefault("compositing.radix")));
+  EXPECT_EQ(loadScene("", {"compositing.radix=2"}).compositing.radix, 2);
+  EXPECT_EQ(loadScene("", {"compositing.radix=7"}).compositing.radix, 7);
   std::string msg = inputErrorOf([] { loadScene("", {"compositing.strategy=tree"}); });
   EXPECT_NE(msg.find("compositing.strategy"), std::string::npos) << msg;
   EXPECT_NE(msg.find("tree"), std::string::npos) << msg;
@@ -202,11 +233,11 @@ TEST(Scene, Preintegration) {
 
 TEST(Scene, VolumeMethod) {
   Scene s = loadScene("", {});
-  EXPECT_EQ(s.volume_method, tableDefault("render.method"));
-  EXPECT_DOUBLE_EQ(s.ert_threshold, std::stod(tableDefault("render.ert_threshold")));
+  EXPECT_EQ(nameOf(s.render.method), tableDefault("render.method"));
+  EXPECT_DOUBLE_EQ(s.render.ert_threshold, std::stod(tableDefault("render.ert_threshold")));
   s = loadScene("", {"render.method=raycast", "render.ert_threshold=1"});
-  EXPECT_EQ(s.volume_method, "raycast");
-  EXPECT_EQ(s.ert_threshold, 1.0);
+  EXPECT_EQ(nameOf(s.render.method), "raycast");
+  EXPECT_EQ(s.render.ert_threshold, 1.0);
   std::string msg = inputErrorOf([] { loadScene("", {"render.method=splatting"}); });
   EXPECT_NE(msg.find("render.method"), std::string::npos) << msg;
   for (const char* bad : {"render.ert_threshold=0", "render.ert_threshold=1.5", "render.ert_threshold=-0.2"}) {
@@ -214,9 +245,9 @@ TEST(Scene, VolumeMethod) {
     EXPECT_NE(msg.find("render.ert_threshold"), std::string::npos) << msg;
   }
   s = loadScene("", {"render.adaptive_step=true", "render.adaptive_tolerance=0.1", "render.ray_block_cells=16"});
-  EXPECT_TRUE(s.adaptive_step);
-  EXPECT_EQ(s.adaptive_step_tolerance, 0.1);
-  EXPECT_EQ(s.ray_block_cells, 16);
+  EXPECT_TRUE(s.render.adaptive_step);
+  EXPECT_EQ(s.render.adaptive_step_tolerance, 0.1);
+  EXPECT_EQ(s.render.ray_block_cells, 16);
   EXPECT_TRUE(isFrameKey("render.adaptive_step"));
   EXPECT_TRUE(isFrameKey("render.adaptive_tolerance"));
   EXPECT_FALSE(isFrameKey("render.ray_block_cells"));  // the blocks are cut when bricks upload
@@ -282,7 +313,7 @@ TEST(SceneKeys, StructDefaultsAreTheTableDefaults) {
   EXPECT_FALSE(parsed.glow.box.has_value());
   EXPECT_TRUE(parsed.glow.emitters.empty());
   EXPECT_TRUE(parsed.surfaces.empty());
-  EXPECT_TRUE(parsed.volume_files.empty() && parsed.particle_files.empty());
+  EXPECT_TRUE(parsed.time.volume_files.empty() && parsed.time.particle_files.empty());
   EXPECT_EQ(parsed.transfer.points.size(),
             TransferFunction::preset(tableDefault("transfer.preset")).size());
 }

@@ -38,11 +38,11 @@ class SeriesFiles : public ::testing::Test {
 
 TEST_F(SeriesFiles, GlobIsSortedAndRelativeToTheSceneFile) {
   Scene s = loadScene(scene("volume: {files: \"step_*.raw\"}\n"), {});
-  ASSERT_EQ(s.volume_files.size(), 3u);
-  EXPECT_EQ(s.time_steps, 3);
-  EXPECT_EQ(fs::path(s.volume_files[0]).filename(), "step_0.raw");
-  EXPECT_EQ(fs::path(s.volume_files[2]).filename(), "step_2.raw");
-  EXPECT_EQ(s.volume.file, s.volume_files[0]);  // time.step 0
+  ASSERT_EQ(s.time.volume_files.size(), 3u);
+  EXPECT_EQ(s.time.steps, 3);
+  EXPECT_EQ(fs::path(s.time.volume_files[0]).filename(), "step_0.raw");
+  EXPECT_EQ(fs::path(s.time.volume_files[2]).filename(), "step_2.raw");
+  EXPECT_EQ(s.volume.file, s.time.volume_files[0]);  // time.step 0
   Scene s2 = loadScene(scene("volume: {files: \"step_*.raw\"}\n"), {"time.step=2"});
   EXPECT_EQ(fs::path(s2.volume.file).filename(), "step_2.raw");
 }
@@ -50,7 +50,7 @@ TEST_F(SeriesFiles, GlobIsSortedAndRelativeToTheSceneFile) {
 TEST_F(SeriesFiles, ListKeepsItsOrder) {
   Scene s = loadScene(scene("volume: {files: [other.raw, step_0.raw]}\n"), {"time.step=1"});
   EXPECT_EQ(fs::path(s.volume.file).filename(), "step_0.raw");
-  EXPECT_EQ(s.time_steps, 2);
+  EXPECT_EQ(s.time.steps, 2);
 }
 
 TEST_F(SeriesFiles, BadSeriesAreNamed) {
@@ -107,7 +107,7 @@ TEST(RequestTranslation, DottedAndNestedKeysBecomeOverrides) {
   Scene s = loadScene("", t.overrides);
   EXPECT_EQ(s.camera.fov_deg, 30);
   EXPECT_EQ(s.camera.position, glm::dvec3(1, 2, 3));
-  EXPECT_EQ(s.volume_method, "raycast");
+  EXPECT_EQ(nameOf(s.render.method), "raycast");
 }
 
 TEST(RequestTranslation, BadRequestsAreNamed) {

@@ -113,19 +113,19 @@ TEST(Shading, ReferenceShadesColourNotOpacity) {
 
 TEST(Shading, SceneKeys) {
   Scene s = loadScene("", {});
-  EXPECT_FALSE(s.shading.enabled);
+  EXPECT_FALSE(s.render.shading.enabled);
   const Shading d;
-  EXPECT_EQ(s.shading.ambient, d.ambient);
-  EXPECT_EQ(s.shading.diffuse, d.diffuse);
-  EXPECT_EQ(s.shading.specular, d.specular);
-  EXPECT_EQ(s.shading.shininess, d.shininess);
+  EXPECT_EQ(s.render.shading.ambient, d.ambient);
+  EXPECT_EQ(s.render.shading.diffuse, d.diffuse);
+  EXPECT_EQ(s.render.shading.specular, d.specular);
+  EXPECT_EQ(s.render.shading.shininess, d.shininess);
   s = loadScene("", {"render.shading=true", "render.shading_ambient=0.1", "render.shading_diffuse=0.9",
                      "render.shading_specular=0.5", "render.shading_shininess=64"});
-  EXPECT_TRUE(s.shading.enabled);
-  EXPECT_EQ(s.shading.ambient, 0.1);
-  EXPECT_EQ(s.shading.diffuse, 0.9);
-  EXPECT_EQ(s.shading.specular, 0.5);
-  EXPECT_EQ(s.shading.shininess, 64.0);
+  EXPECT_TRUE(s.render.shading.enabled);
+  EXPECT_EQ(s.render.shading.ambient, 0.1);
+  EXPECT_EQ(s.render.shading.diffuse, 0.9);
+  EXPECT_EQ(s.render.shading.specular, 0.5);
+  EXPECT_EQ(s.render.shading.shininess, 64.0);
   for (const char* key : {"render.shading", "render.shading_ambient", "render.shading_diffuse",
                           "render.shading_specular", "render.shading_shininess"})
     EXPECT_TRUE(isFrameKey(key)) << key;

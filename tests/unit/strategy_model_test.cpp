@@ -76,7 +76,7 @@ TEST(StrategyModel, ForecastsTheRadixKPixelsOfEveryKindOfWork) {
   for (const Case& c : cases)
     for (bool rgba8 : {false, true}) {
       CompositeOptions opt;
-      opt.precision = rgba8 ? Precision::RGBA8 : Precision::Float;
+      opt.precision = rgba8 ? Precision::kRgba8 : Precision::kFloat;
       const auto counted = countRadixK(c.ranks, c.k, c.width, c.height, opt);
       VisibilityOrder order;
       order.ranks.resize(size_t(c.ranks));

@@ -1,0 +1,53 @@
+// The glow section's keys: glow emitters (docs/glow.md).
+// One row per key: its path, its default (YAML), its help, its type (where the value goes and what
+// it may be), and AutoValue where `auto` is one of its values (scene/scene_keys.h).
+#include "scene/key_rows.h"
+
+namespace sortlast {
+
+void addGlowKeys(std::vector<SceneKey>& table) {
+  using namespace key_rows;
+  const Check kLength = key_rows::lengthCheck();
+  const Check kCoordinate = key_rows::coordinateCheck();
+  table.insert(table.end(), {
+    {"glow.emitters", "[]",
+     "Energy-wave glow emitters (docs/glow.md): a list of maps `{center: [x, y, z], direction: "
+     "[x, y, z], a, b, color: [r, g, b]}`. Each adds the field b / sqrt(dist(P, axis)^2 + eps^2) on "
+     "the side of the plane through `center` that `direction` points to (the axis: the line "
+     "through `center` along `direction`) and a / sqrt(|P - center|^2 + eps^2) on the other side, "
+     "eps = `glow.core_radius`; a = b makes it continuous. `direction` (default [1, 0, 0]) must "
+     "not be zero; a and b (default 1) must be >= 0; color entries (default [1, 1, 1]) in [0, 1]. "
+     "Per frame of an orbit and per step of a series (`time.step` s with an orbit of N frames "
+     "starts at frame s N; without an orbit at frame s), optional linear rates: `velocity` [x, y, z] "
+     "added to the centre, `turn` [x, y, z] added to the direction (then normalised), `a_rate`, "
+     "`b_rate` added to a and b (refused if a, b would turn negative or the direction zero by the "
+     "last frame of the last step). Glow "
+     "is emission without opacity, integrated exactly along each ray inside `glow.box`, dimmed "
+     "by the volume in front of it and stopped at opaque surfaces. Drawn by `sortlast render`, "
+     "`serve` and `reference`; refused with `render.method: slicing`, `adaptive.tolerance` > 0, "
+     "`compositing.precision: rgba8` and in situ (docs/glow.md).",
+     Structured{"list of emitters"}},
+    {"glow.core_radius", "0.01",
+     "eps, the emitters' core radius (world units): it keeps the field finite at the "
+     "centre and on the axis, where with eps = 0 the integral along a ray through them diverges.",
+     Real{member<&Scene::glow, &GlowSpec::core_radius>, {kLength}}},
+    {"glow.intensity", "1",
+     "Glow radiance per unit of integrated field (times each emitter's color).",
+     Real{member<&Scene::glow, &GlowSpec::intensity>, {{"in [0, 1e30]"}}}},
+    {"glow.tone_map", "none",
+     "`none` (radiance clamped to [0, 1] when written) or `exponential`: 1 - exp(-glow.exposure "
+     "x radiance) per channel. Applied once to the final composited frame (volume included: "
+     "after compositing, glow and volume light are one sum), never per brick: the map is not "
+     "additive, so per-brick mapping would change with the decomposition.",
+     Choice{member<&Scene::glow, &GlowSpec::tone_map>, names({"none", "exponential"})}},
+    {"glow.exposure", "1", "k of the exponential tone map.",
+     Real{member<&Scene::glow, &GlowSpec::exposure>, {{"in (0, 1e30]"}}}},
+    {"glow.box", "auto",
+     "`[[x0, y0, z0], [x1, y1, z1]]`: the box the glow is integrated in (the field's integral "
+     "along an unbounded ray diverges like log length). `auto`: the scene's bounds (volume and "
+     "particles); a scene of emitters alone must set it.",
+     Structured{"`auto` or [[x0, y0, z0], [x1, y1, z1]]", {kCoordinate}}},
+  });
+}
+
+}  // namespace sortlast

@@ -1,0 +1,95 @@
+// The render section's keys: how bricks are drawn: GL backend and device, volume renderer, sampling, shading.
+// One row per key: its path, its default (YAML), its help, its type (where the value goes and what
+// it may be), and AutoValue where `auto` is one of its values (scene/scene_keys.h).
+#include "scene/key_rows.h"
+
+namespace sortlast {
+
+void addRenderKeys(std::vector<SceneKey>& table) {
+  using namespace key_rows;
+  table.insert(table.end(), {
+    {"render.backend", "osmesa",
+     "OpenGL backend: `osmesa` (software) or `egl` (surfaceless platform, or the device "
+     "platform on an NVIDIA GPU).",
+     Choice{member<&Scene::render, &RenderSection::backend>}},
+    {"render.device", "auto",
+     "EGL on a node with GPUs: which hardware EGL device a rank renders on (Mesa's software "
+     "device is not counted). `auto`: (the rank's index on its node) mod (the node's devices), "
+     "so a node's ranks spread over its GPUs; N: device N. A device that cannot be opened ends "
+     "the job with its number and the rank; with no hardware device, `auto` falls back to the "
+     "surfaceless platform (llvmpipe). Only with `render.backend: egl` (docs/cluster.md).",
+     Int{member<&Scene::render, &RenderSection::device>, {{"integers in [0, 63]", "must be auto or a device number {allowed}, got {value}"}}},
+     AutoValue{}},
+    {"render.sample_spacing", "auto",
+     "Distance between slices (ray casting: between samples along each ray), in units of "
+     "the smallest voxel spacing (the paper: 1). `auto`: 0.5, 1 or 2, the largest whose own "
+     "error, estimated from small probe frames of the scene's automatic view at all three steps, "
+     "stays within 52 dB (session/auto_spacing.h); probed again when the transfer "
+     "function, the renderer's settings, the time step or the image size change, not the camera; "
+     "`--stats` gives "
+     "the choice and the estimates. 0.5 (the fixed default before) with ray casting and "
+     "`transfer.preintegrated: auto` reaches 45 dB on the benchmark's four data sets "
+     "(results/accuracy).",
+     Real{member<&Scene::render, &RenderSection::sample_spacing>, {{"in [0.01, 100]", "must be {allowed} voxels"}}},
+     AutoValue{member<&Scene::render, &RenderSection::sample_spacing_auto>}},
+    {"render.block_cells", "64",
+     "Slicing: empty-space skipping; bricks are cut into blocks of this many cells per axis, and "
+     "blocks whose values all map to zero opacity are not drawn (ray casting: "
+     "`render.ray_block_cells`).",
+     Int{member<&Scene::render, &RenderSection::block_cells>, {{">= 1"}}}},
+    {"render.ray_block_cells", "8",
+     "Ray casting: cells per axis of the blocks rays walk, on one grid aligned to the volume (the "
+     "same in every decomposition; a brick's outer blocks are cut by its faces). A block whose "
+     "values all map to zero opacity is jumped, and with its neighbours at once: each block knows "
+     "its distance to the nearest block that is not empty. Also the blocks whose range picks the "
+     "step of `render.adaptive_step`. (`render.block_cells` is the slicing renderer's.)",
+     Int{member<&Scene::render, &RenderSection::ray_block_cells>, {{">= 1"}}}},
+    {"render.method", "raycast",
+     "Volume renderer: `slicing` (3D-texture slicing, the paper's) or `raycast` (a GL ray caster "
+     "per brick, front to back on samples `render.sample_spacing` apart along each ray, with "
+     "early ray termination and empty blocks jumped along the ray).",
+     Choice{member<&Scene::render, &RenderSection::method>}},
+    {"render.ert_threshold", "0.99",
+     "Ray casting: a ray stops once its opacity reaches this; 1: never early. It "
+     "stops only inside a brick (bricks behind still render), and changes a pixel by at most "
+     "1 - threshold.",
+     Real{member<&Scene::render, &RenderSection::ert_threshold>,
+          {{"in (0, 1]", "must be {allowed} (1: no early termination)"}}}},
+    {"render.shading", "false",
+     "Gradient shading of the volume (both renderers and the reference): Blinn-Phong with a "
+     "headlight, two-sided. A sample of transfer-function colour c emits c' = clamp(c (ka + kd "
+     "cos) + ks cos^p, 0, 1), cos = |n . l|, n the unit gradient and l the direction to the eye "
+     "(the light, and the half vector); opacity is unchanged. The gradient is the central "
+     "difference of the trilinear field one voxel either side along each axis (one-sided at the "
+     "data set's faces); a sample whose gradient is at most 0.001 of `transfer.range` per "
+     "smallest voxel spacing is unshaded (flat regions keep their colour), fully shaded from "
+     "twice that, mixed linearly between. Not with `adaptive.tolerance` above 0. Six more "
+     "texture reads per sample: measured 2.2-3.6x the render time on llvmpipe.",
+     Flag{member<&Scene::render, &RenderSection::shading, &Shading::enabled>}},
+    {"render.shading_ambient", "0.3", "Gradient shading: ka, the ambient term.",
+     Real{member<&Scene::render, &RenderSection::shading, &Shading::ambient>, {{"in [0, 100]"}}}},
+    {"render.shading_diffuse", "0.7", "Gradient shading: kd, the diffuse term.",
+     Real{member<&Scene::render, &RenderSection::shading, &Shading::diffuse>, {{"in [0, 100]"}}}},
+    {"render.shading_specular", "0.2",
+     "Gradient shading: ks, the specular term, a white highlight added to the colour.",
+     Real{member<&Scene::render, &RenderSection::shading, &Shading::specular>, {{"in [0, 100]"}}}},
+    {"render.shading_shininess", "20",
+     "Gradient shading: p, the specular exponent.",
+     Real{member<&Scene::render, &RenderSection::shading, &Shading::shininess>, {{"in [1, 1000]"}}}},
+    {"render.adaptive_step", "false",
+     "Ray casting: adaptive steps. Each block (`render.ray_block_cells`) takes every m-th sample "
+     "of the rays' lattice (m = 1, 2, 4 or 8; each sample standing for the m steps around it, "
+     "opacity corrected for their length), the largest m with m x spacing x (the most the "
+     "transfer function's opacity or emission varies over the block's values) <= "
+     "`render.adaptive_tolerance`, and m x spacing <= 2 voxels. Blocks over steep parts of the "
+     "transfer function keep every sample; the lattice stays shared, so ranks and brick faces "
+     "agree as without it.",
+     Flag{member<&Scene::render, &RenderSection::adaptive_step>}},
+    {"render.adaptive_tolerance", "0.02",
+     "Ray casting with `render.adaptive_step`: the most one coarse sample's optical depth (and "
+     "emission) may be off, by the bound above.",
+     Real{member<&Scene::render, &RenderSection::adaptive_step_tolerance>, {{"in (0, 1]"}}}},
+  });
+}
+
+}  // namespace sortlast
