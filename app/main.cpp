@@ -9,6 +9,7 @@
 #include "common/error.h"
 #include "scene/scene.h"
 #include "app/adaptive_stats_job.h"
+#include "app/command_line_hint.h"
 #include "session/collective.h"
 #include "app/compare.h"
 #include "reference/surface_roughness.h"
@@ -308,7 +309,16 @@ int main(int argc, char** argv) {
 
   auto* keys = app.add_subcommand("keys", "Print every scene key with its default (Markdown)");
 
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // A mistyped subcommand or option: name it and the nearest one (CLI11 would say only "A
+    // subcommand is required" or "not expected").
+    const std::string hint = e.get_exit_code() == 0 ? "" : commandLineHint(app, argc, argv);
+    if (hint.empty()) return app.exit(e);
+    std::fprintf(stderr, "sortlast: error: %s\n", hint.c_str());
+    return e.get_exit_code();
+  }
 
   if (*keys) {
     std::fputs(sceneKeysMarkdown().c_str(), stdout);
