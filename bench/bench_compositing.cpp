@@ -1,4 +1,4 @@
-// bench_compositing: the compositing strategies alone, on synthetic layers (issue 4).
+// bench_compositing: the compositing strategies alone, on synthetic layers.
 //
 // Every rank makes one brick image per frame size: a soft disc of partial opacity (premultiplied,
 // alpha falling off toward the rim) at a seeded position, covering about a fifth of the frame,

@@ -1,4 +1,4 @@
-// The glow emitters' GL cost alone (issue 16): one fullscreen pass per frame evaluates every
+// The glow emitters' GL cost alone: one fullscreen pass per frame evaluates every
 // emitter's exact segment integral (render/glow/glow_segment.glsl) over each pixel's ray inside the
 // glow box, on llvmpipe; then the frame's PSNR (8-bit, after the tone map) against the same
 // integral in double on the CPU. What one brick's glow pass (render/glow/glow_renderer.h) costs

@@ -1,4 +1,4 @@
-# GLSL as files (issue 26): every *.glsl file of a folder compiled into a library as text, the way
+# GLSL as files: every *.glsl file of a folder compiled into a library as text, the way
 # cmake/embed_colormaps.cmake compiles in the colour maps. Two uses of this one file:
 #
 #   include(cmake/embed_shaders.cmake)              (the top-level CMakeLists.txt) defines

@@ -1,4 +1,4 @@
-# Two instrumented builds (issue 15), each in a build directory of its own:
+# Two instrumented builds, each in a build directory of its own:
 #  SORTLAST_SANITIZE: AddressSanitizer + UndefinedBehaviorSanitizer on everything (gcc or clang).
 #    UB aborts instead of printing and carrying on, so a test that hits it fails. The tests get
 #    ASAN_OPTIONS / UBSAN_OPTIONS / LSAN_OPTIONS from tests/CMakeLists.txt (sortlast_sanitizer_env).

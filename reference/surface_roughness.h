@@ -1,5 +1,5 @@
 #pragma once
-// A surface roughness figure from a rendered surface image (issue 14: measure smoothness, not
+// A surface roughness figure from a rendered surface image (measure smoothness, not
 // just speed): the angle between the normals of neighbouring pixels, over every pair of 4-
 // neighbours (right and down) that both hit and whose depths are continuous. A flat or gently
 // curved surface gives angles near 0 (a sphere of radius r seen across n pixels about
@@ -31,7 +31,7 @@ struct Roughness {
   double t_min = 0.0, t_max = 0.0, t_centre = 0.0;
   // Connected pieces of the surface in the region: groups of hit pixels joined through
   // continuous 4-neighbour pairs (the test above), each of at least min_piece_pixels. Droplets
-  // and sheets that smoothing lets vanish, or merges, change this count (issue 30).
+  // and sheets that smoothing lets vanish, or merges, change this count.
   long long pieces = 0;
 };
 

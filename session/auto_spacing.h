@@ -1,5 +1,5 @@
 #pragma once
-// render.sample_spacing: auto (issue 30). The default step of 0.5 voxel was chosen so sharp
+// render.sample_spacing: auto. The default step of 0.5 voxel was chosen so sharp
 // transfer functions reach 45 dB; on smooth data and smooth functions a coarser step gives the
 // same image for less time. Which step a scene can take depends on its data and its transfer
 // function, so the session measures it: it renders the scene small from its automatic camera

@@ -1,5 +1,5 @@
 #pragma once
-// The one program-variant cache (issue 26): a renderer that draws with variants of its program
+// The one program-variant cache: a renderer that draws with variants of its program
 // from frame to frame or brick to brick (the ray caster: ADAPTIVE, PREINTEGRATED, SHADING, GLOW;
 // slicing: PREINTEGRATED, SHADING) names each variant by flag bits of its own and gives a recipe
 // that turns flags into sources (its #defines and optional chunks, render/gl/shader_source.h).

@@ -1,5 +1,5 @@
 #pragma once
-// The one builder of GLSL sources (issue 26). Shader text lives in .glsl files beside its
+// The one builder of GLSL sources. Shader text lives in .glsl files beside its
 // renderer, compiled in by cmake/embed_shaders.cmake as GlslFile objects (generated headers such as
 // render/volume/glsl_files.h, namespace sortlast::glsl); a renderer composes one stage from them
 // the way VTK composes its shader templates:

@@ -1,4 +1,4 @@
-# Shared by the cluster tests (issue 27): runs the calling test inside scripts/cluster-rehearsal,
+# Shared by the cluster tests: runs the calling test inside scripts/cluster-rehearsal,
 # where its ranks live in network namespaces ("nodes") and talk over TCP only.
 # Usage, first lines of a test:  source cluster_lib.sh SORTLAST REHEARSAL; in_cluster NODES "$0" "$@"
 # Outside the rehearsal, in_cluster runs REHEARSAL --nodes NODES -- bash TEST ARGS... and exits

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The cluster rehearsal's correctness (issue 27): on 3 nodes (network namespaces, Open MPI over
+# The cluster rehearsal's correctness: on 3 nodes (network namespaces, Open MPI over
 # TCP only) the default scene, a metaball scene and the service give the same images, bit for bit,
 # as the same rank count on shared memory on this machine. Direct send, binary-swap and radix-k.
 # Skips (77) where namespaces cannot be made (not root).

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Faults on the cluster rehearsal (issue 27), 3 nodes over TCP. Each must end the way
+# Faults on the cluster rehearsal, 3 nodes over TCP. Each must end the way
 # docs/robustness.md promises: every process (mpirun, the orted daemons, the ranks) gone within
 # 10 s of the fault, a message naming the lost rank or node, a non-zero status, and no frame
 # written half-composited (every frame written equals shared memory's frame of the same camera).

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The fixed scene set (render_set.sh) against tests/golden/expected, value by value in float.
 # On the machine the set was recorded on (Debian 12's Mesa llvmpipe on an AVX-512 x86-64) every
-# value must be identical: a change that should not change behaviour (the restructure of issue 26,
+# value must be identical: a change that should not change behaviour (a restructure,
 # a refactor) is caught to the last bit. llvmpipe compiles its shaders for the CPU it runs on, so
 # another CPU may round a few values differently; such a run passes only within a fallback bound
 # stated below (2/255 per value, at most 0.5 % of an image's values beyond it) and says that it is

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The fixed scene set (issue 26): one frame of every renderer, compositing strategy, particle
+# The fixed scene set: one frame of every renderer, compositing strategy, particle
 # method, subdivision surfaces, glow, a service frame and an in-situ step, written to OUT as float
 # EXR (the unrounded frame; particle and surface scenes also their surface image, t and normal) and
 # one PNG (the service sends 8-bit frames only). Renders at small sizes so the whole set takes

@@ -30,7 +30,7 @@ render 1 "$DATA/one_particle.yaml" aniso "${A[@]}"
 # 0.034 degree: 5.0x). Height of the surface above the top layer's centres (y = 0.3; the camera
 # at y = 3.3 looks straight down the centre pixel): within 0.1 h of the round surface's, so the
 # pool does not sink or swell (measured 0.560 h against 0.523 h; with the kernels' centres
-# smoothed, position_smoothing 0.9, it sank to 0.29 h: issue 30).
+# smoothed, position_smoothing 0.9, it sank to 0.29 h).
 render 1 "$DATA/flat_lattice.yaml" round
 render 1 "$DATA/flat_lattice.yaml" aniso "${A[@]}"
 r_round=$("$S" roughness "$WORK/round.exr" --region 96 96 160 160)
@@ -55,7 +55,7 @@ run_np 1 reference "$DATA/flat_lattice.yaml" -q -o "$WORK/centres_ref.png" --sur
   --max-depth-error 1e-5 --max-normal-deg 0.01 >/dev/null || fail "smoothed centres: GL against the reference"
 
 # 2b. The dam break's pool (the region of scripts/bench-metaballs-smoothing at 256^2): roughness at
-# most 0.6x round's (issue 30's goal; measured 12.60 -> 6.69 degrees, 0.53x); and the droplets
+# most 0.6x round's (the goal; measured 12.60 -> 6.69 degrees, 0.53x); and the droplets
 # stay: connected surface pieces of the whole image at least 0.9x round's (measured 65 -> 62).
 render 1 "$DATA/dam_break.yaml" dam_round
 render 1 "$DATA/dam_break.yaml" dam_aniso "${A[@]}"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# camera.position: auto frames the whole scene (issue 15): a wide flat particle pool (procedural
+# camera.position: auto frames the whole scene: a wide flat particle pool (procedural
 # layers: 3 layers of a wide disc) and a long thin volume (200 x 16 x 16 samples, every sample
 # half opaque, so the image shows the whole box), in square, wide and tall images on 2 ranks: the
 # outermost rows and columns of every frame are background. The old distance (2 x the largest

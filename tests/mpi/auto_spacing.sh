@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# render.sample_spacing: auto (session/auto_spacing.h; issue 30): the step it picks on a
+# render.sample_spacing: auto (session/auto_spacing.h): the step it picks on a
 # smooth and on a sharp transfer function, the smooth scene's frame against the reference, and
 # the same choice and image on 1 and 3 ranks.
 # Usage: auto_spacing.sh SORTLAST DATA_DIR

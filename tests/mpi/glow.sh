@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Glow emitters on the GL path (issue 16, docs/glow.md) against `sortlast reference`, all within
+# Glow emitters on the GL path (docs/glow.md) against `sortlast reference`, all within
 # one 8-bit level (the float GL integral is within ~1e-6 of the double one, half-float bricks
 # within 2^-11 relative, both far under 1/255 after the tone map): glow alone on 1-4 ranks and
 # d = 1, 2, 3 bricks, every compositing strategy, the hard cameras (rays through the centre M,

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# HDF5 and NetCDF input (issue 28), the data written by this test with h5py and netCDF4-python
+# HDF5 and NetCDF input, the data written by this test with h5py and netCDF4-python
 # (Debian's python3-h5py, python3-netcdf4) from the neghip samples and the dam-break particles.
 #   hdf5:      contiguous uint8 (the only 3-D dataset, found), chunked+gzip float32 in a file of
 #              two 3-D datasets (volume.dataset), float64 written transposed (volume.axis_order

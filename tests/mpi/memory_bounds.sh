@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Memory bounds and numeric ranges (issue 15): scenes that cannot fit are refused before loading,
+# Memory bounds and numeric ranges: scenes that cannot fit are refused before loading,
 # quickly, on every rank, with the estimate, its largest parts and the budget; an allocation that
 # fails anyway names the phase instead of ending in a bare std::bad_alloc; numbers beyond float
 # math on the GPU name the key and the value.

@@ -21,7 +21,7 @@ for f in s["frames"]:
     assert abs(f["rle_ratio"] - f["bytes_rle"] / f["bytes_raw"]) < 1e-9
     assert f["total_s"] > 0 and f["composite_s"] >= 0
     assert sum(f["bricks_rendered"]) + sum(f["bricks_skipped"]) == 8
-# Where each rank rendered (issue 27): every rank's GL identity, gathered on rank 0, in rank order.
+# Where each rank rendered: every rank's GL identity, gathered on rank 0, in rank order.
 import socket
 g = s["ranks_gl"]
 assert [r["rank"] for r in g] == [0, 1], g

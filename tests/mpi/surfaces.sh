@@ -11,7 +11,7 @@
 #   open        open surfaces (boundaries: a saddle, and a fan round a boundary vertex of 5 faces):
 #               against the reference (colour, depth, normals), 1-4 ranks, d = 1-3, and seen
 #               from behind (two-sided)
-#   tagged      creases, corners and boundary rules (issue 31): a pawn-like lathe with infinitely sharp,
+#   tagged      creases, corners and boundary rules: a pawn-like lathe with infinitely sharp,
 #               2.5 and 1 rims, a cube with a semi-sharp (2.7) loop, Chaikin creases, a sheet
 #               under boundary interpolation `none` (holes): against the reference (colour, depth,
 #               normals), 1-4 ranks, d = 1-3, inside a volume, reflection lines

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Volume file formats read per brick (issue 28): the neghip samples written by this test as raw
+# Volume file formats read per brick: the neghip samples written by this test as raw
 # float64, NRRD (attached raw; detached .nhdr with line and byte skips, big-endian int16; gzip
 # float32; .nrrd with byte skip -1) and a .vti of two pieces in appended raw binary render exactly
 # like the raw uint8 file, on 1 and 3 ranks (each rank reads only its bricks' boxes). Bad files

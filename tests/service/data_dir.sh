@@ -88,7 +88,7 @@ refused ../outside/secret.yaml "a .. path out, after a load"
 curl -s --max-time 20 "$BASE/api/scene" >"$WORK/scene.json"
 [ "$(json "$WORK/scene.json" 'j["image"]["width"], j["image"]["height"]')" = "(128, 96)" ] \
   || bad "GET /api/scene after the load does not describe sub/other.yaml: $(head -c 200 "$WORK/scene.json")"
-# ... and where each rank renders (ranks_gl: issue 27), one entry a rank, after a load too.
+# ... and where each rank renders (ranks_gl), one entry a rank, after a load too.
 [ "$(json "$WORK/scene.json" '[(r["rank"], r["backend"], r["device"]) for r in j["ranks_gl"]]')" = "[(0, 'osmesa', -1), (1, 'osmesa', -1)]" ] \
   || bad "GET /api/scene: ranks_gl is $(json "$WORK/scene.json" 'j.get("ranks_gl")')"
 

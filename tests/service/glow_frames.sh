@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Glow emitters in a resident session (issue 16, docs/glow.md): frames of a glow scene at two sizes
+# Glow emitters in a resident session (docs/glow.md): frames of a glow scene at two sizes
 # and cameras, over a volume with the ray caster and alone, equal `sortlast render`'s (1/255) and
 # are within the glow tests' bounds of `sortlast reference` (tests/mpi/glow.sh); a
 # request for 8-bit partial images (compositing.precision rgba8, which would clamp the glow) is

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Memory bounds in the service (issue 15): a frame request for an image within --max-size but
+# Memory bounds in the service: a frame request for an image within --max-size but
 # beyond the memory a rank may use, and POST /api/load of a scene whose volume cannot fit, are
 # refused at once (400) with the estimate and the budget; the service goes on serving.
 # Usage: memory_bounds.sh SORTLAST DATA_DIR

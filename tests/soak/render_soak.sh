@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Soak test (issue 15): a long orbit on 2 ranks, small frames, and every rank's resident memory
+# Soak test: a long orbit on 2 ranks, small frames, and every rank's resident memory
 # (the per-frame rss_mb of --stats, VmRSS at the end of each frame) must not grow after the
 # warm-up: the least-squares slope over frames WARMUP.. stays below BOUND_KIB per frame. A leak of
 # a brick image, a texture or a message buffer per frame would be 9-36 KiB a frame at 96 x 96.

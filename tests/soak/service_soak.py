@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Drives a running `sortlast serve` with a few thousand mixed requests (issue 15's soak test) and
+"""Drives a running `sortlast serve` with a few thousand mixed requests (soak test) and
 records the server's resident memory after each good frame (the rss_mb of every rank in the frame's
 X-Sortlast-Stats header, VmRSS at the end of that frame).
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Soak test of the service (issue 15): `sortlast serve` on 2 ranks answers REQUESTS mixed requests
+# Soak test of the service: `sortlast serve` on 2 ranks answers REQUESTS mixed requests
 # (small frames with new cameras and transfer functions, bad requests, clients that disconnect;
 # service_soak.py) and the resident memory of every rank, sampled at each good frame, must not grow
 # after the warm-up: least-squares slope over requests WARMUP.. below BOUND_KIB per request.

@@ -36,7 +36,7 @@ ColourMap twoPoints(ColourSpace space, Rgb a, Rgb b) {
   return m;
 }
 
-// The names issue 13 asks for, ParaView's and a lowercase alias each.
+// The built-in maps by name: ParaView's and a lowercase alias each.
 const std::vector<std::pair<std::string, std::string>> kRequired = {
     {"Cool to Warm", "cool_to_warm"},
     {"Viridis (matplotlib)", "viridis"},

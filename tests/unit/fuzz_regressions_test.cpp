@@ -1,4 +1,4 @@
-// Issue 15: inputs the fuzzers (tests/fuzz) and the sanitizer build found mishandled, each kept
+// Inputs the fuzzers (tests/fuzz) and the sanitizer build found mishandled, each kept
 // here so the fix stays. The corpus entries under tests/fuzz/corpus/ replay them too, but only in
 // the fuzz build; these run with every unit test.
 #include <gtest/gtest.h>

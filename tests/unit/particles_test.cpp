@@ -504,7 +504,7 @@ TEST(ParticleScene, FrameCamerasFollowTheBounds) {
   EXPECT_NEAR(glm::length(c.position), k * 0.5 * std::sqrt(3.0), 1e-12);
 }
 
-// Issue 15: twice the largest extent cropped a flat 3 x 1 x 3 pool. Every corner of wide, flat,
+// Twice the largest extent cropped a flat 3 x 1 x 3 pool. Every corner of wide, flat,
 // long and thin boxes now projects inside the image, for square, wide and tall images, with at
 // least one pixel to spare.
 TEST(ParticleScene, AutomaticCameraFramesEveryShape) {

@@ -1,4 +1,4 @@
-// Issue 15: numbers that would overflow float math on the GPU are refused naming the key and the
+// Numbers that would overflow float math on the GPU are refused naming the key and the
 // value, and the memory estimate refuses scenes that cannot fit, naming the need, its largest
 // parts and the budget.
 #include <gtest/gtest.h>
@@ -73,7 +73,7 @@ TEST(RangeChecks, CameraTooFarFromTheSceneIsNamed) {
 }
 
 TEST(MemoryBudget, RefusesWhatCannotFitNamingTheParts) {
-  // issue 15's case: a 2000^3 procedural volume on 2 ranks: 4e9 samples with ghosts per rank,
+  // the motivating case: a 2000^3 procedural volume on 2 ranks: 4e9 samples with ghosts per rank,
   // 4 bytes on the host and 4 in the texture: > 30 GiB.
   Scene s = loadScene("", {"volume.procedural=sphere", "volume.dims=[2000,2000,2000]"});
   SessionLayout layout = makeLayout(s, noBox(), 0, 2);
@@ -107,7 +107,7 @@ TEST(MemoryBudget, RefusesWhatCannotFitNamingTheParts) {
                               MemoryBudget{1024.0 * 1024 * 1024, "1 GiB"}, 0, "x"));
 }
 
-// A GPU's memory (issue 27): the textures and render targets, against 90% of what the driver
+// A GPU's memory: the textures and render targets, against 90% of what the driver
 // reports free, shared by the node's ranks on that GPU; the refusal names the GPU. Without a
 // report (llvmpipe), no GPU bound.
 TEST(MemoryBudget, CountsTexturesAndTargetsAgainstTheGpuNamingIt) {
