@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "io/image.h"
-#include "scene/sections/compositing.h"
+#include "scene/sections.h"
 #include "compositing/brick_image.h"
 #include "common/visibility.h"
 
@@ -26,7 +26,7 @@ struct CompositeStats {
 };
 
 // How partial results are held: Precision, the scene's compositing.precision
-// (scene/sections/compositing.h says what each means).
+// (scene/sections.h says what each means).
 struct CompositeOptions {
   Precision precision = Precision::kFloat;
   // Direct send: send each brick image as soon as it is rendered and let rank 0 blend images as

@@ -2,6 +2,8 @@
 // What the section files (scene/sections/*.cpp) write their rows of the key table with: the key
 // types by their short names, the checks several sections share, and one function per section
 // that appends its rows. Only the section files and the table (scene_keys.cpp) include this.
+// One row per key: its path, its default (YAML), its help, its type (where the value goes and
+// what it may be), and AutoValue where `auto` is one of its values (scene/scene_keys.h).
 #include <initializer_list>
 #include <string>
 #include <utility>
@@ -10,7 +12,7 @@
 #include "scene/scene.h"
 #include "scene/scene_keys.h"
 
-namespace sortlast::key_rows {
+namespace sortlast {
 
 using Real = Number<double>;
 using OptionalReal = Number<std::optional<double>>;
@@ -35,24 +37,21 @@ inline Check coordinateCheck() {
 inline Check positiveCheck() { return {"a finite number > 0"}; }
 inline Check colourCheck() { return {"in [0, 1]", "entries must be {allowed}"}; }
 
-}  // namespace sortlast::key_rows
 
-namespace sortlast {
-
-// Each section's rows, appended in the order of docs/scene.md (scene_keys.cpp calls them).
-void addVolumeKeys(std::vector<SceneKey>& table);
-void addParticleKeys(std::vector<SceneKey>& table);
-void addTransferKeys(std::vector<SceneKey>& table);
-void addImageKeys(std::vector<SceneKey>& table);
-void addCameraKeys(std::vector<SceneKey>& table);
-void addBrickKeys(std::vector<SceneKey>& table);
-void addRenderKeys(std::vector<SceneKey>& table);
-void addAdaptiveKeys(std::vector<SceneKey>& table);
-void addCompositingKeys(std::vector<SceneKey>& table);
-void addTimeKeys(std::vector<SceneKey>& table);
-void addLimitKeys(std::vector<SceneKey>& table);
-void addGlowKeys(std::vector<SceneKey>& table);
-void addSurfaceKeys(std::vector<SceneKey>& table);
-void addReferenceKeys(std::vector<SceneKey>& table);
+// Each section's rows (scene_keys.cpp puts them in the order of docs/scene.md).
+std::vector<SceneKey> volumeKeys();
+std::vector<SceneKey> particleKeys();
+std::vector<SceneKey> transferKeys();
+std::vector<SceneKey> imageKeys();
+std::vector<SceneKey> cameraKeys();
+std::vector<SceneKey> brickKeys();
+std::vector<SceneKey> renderKeys();
+std::vector<SceneKey> adaptiveKeys();
+std::vector<SceneKey> compositingKeys();
+std::vector<SceneKey> timeKeys();
+std::vector<SceneKey> limitKeys();
+std::vector<SceneKey> glowKeys();
+std::vector<SceneKey> surfaceKeys();
+std::vector<SceneKey> referenceKeys();
 
 }  // namespace sortlast

@@ -13,12 +13,7 @@
 #include "io/volume_source.h"
 #include "scene/glow_scene.h"
 #include "scene/scene_keys.h"
-#include "scene/sections/adaptive.h"
-#include "scene/sections/compositing.h"
-#include "scene/sections/reference.h"
-#include "scene/sections/render.h"
-#include "scene/sections/small_sections.h"
-#include "scene/sections/transfer.h"
+#include "scene/sections.h"
 #include "scene/surface_scene.h"
 
 namespace sortlast {

@@ -1,13 +1,8 @@
 // The adaptive section's keys: the paper's adaptive sampling (a multiresolution volume).
-// One row per key: its path, its default (YAML), its help, its type (where the value goes and what
-// it may be), and AutoValue where `auto` is one of its values (scene/scene_keys.h).
 #include "scene/key_rows.h"
 
-namespace sortlast {
-
-void addAdaptiveKeys(std::vector<SceneKey>& table) {
-  using namespace key_rows;
-  table.insert(table.end(), {
+std::vector<sortlast::SceneKey> sortlast::adaptiveKeys() {
+  return {
     {"adaptive.tolerance", "0",
      "Adaptive sampling (the paper's section 4.2), in percent: each block of the volume is stored at the "
      "coarsest resolution (halved step by step, a coarse sample the mean of the fine cells "
@@ -33,7 +28,5 @@ void addAdaptiveKeys(std::vector<SceneKey>& table) {
      "accuracy at the full sampling cost, to tell what the data reduction costs from what the "
      "fewer samples cost).",
      Choice{member<&Scene::adaptive, &AdaptiveSection::steps>}},
-  });
+  };
 }
-
-}  // namespace sortlast

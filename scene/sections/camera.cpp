@@ -1,15 +1,10 @@
 // The camera section's keys: the camera and its orbit.
-// One row per key: its path, its default (YAML), its help, its type (where the value goes and what
-// it may be), and AutoValue where `auto` is one of its values (scene/scene_keys.h).
 #include "scene/key_rows.h"
 
-namespace sortlast {
-
-void addCameraKeys(std::vector<SceneKey>& table) {
-  using namespace key_rows;
-  const Check kLength = key_rows::lengthCheck();
-  const Check kCoordinate = key_rows::coordinateCheck();
-  table.insert(table.end(), {
+std::vector<sortlast::SceneKey> sortlast::cameraKeys() {
+  const Check kLength = lengthCheck();
+  const Check kCoordinate = coordinateCheck();
+  return {
     {"camera.position", "auto",
      "Eye position. `auto`: along (0.55, 0.35, 1) from `camera.look_at`, just far enough that "
      "the bounding sphere of the scene's bounds (the volume box, grown to hold the particles' "
@@ -45,7 +40,5 @@ void addCameraKeys(std::vector<SceneKey>& table) {
      "grown to hold the particles' domain; the paper's R, kept for the benchmark protocol: it "
      "may crop a wide scene, which `camera.position: auto` does not).",
      OptionalReal{member<&Scene::orbit, &OrbitSpec::radius>, {{"> 0"}, kLength}}, AutoValue{}},
-  });
+  };
 }
-
-}  // namespace sortlast

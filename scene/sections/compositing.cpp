@@ -1,13 +1,9 @@
-// The compositing section's keys: how brick images reach rank 0: strategy, the network auto assumes, precision, RLE.
-// One row per key: its path, its default (YAML), its help, its type (where the value goes and what
-// it may be), and AutoValue where `auto` is one of its values (scene/scene_keys.h).
+// The compositing section's keys: how brick images reach rank 0: strategy, the network auto
+// assumes, precision, RLE.
 #include "scene/key_rows.h"
 
-namespace sortlast {
-
-void addCompositingKeys(std::vector<SceneKey>& table) {
-  using namespace key_rows;
-  table.insert(table.end(), {
+std::vector<sortlast::SceneKey> sortlast::compositingKeys() {
+  return {
     {"compositing.strategy", "direct",
      "How brick images reach rank 0: `direct` (every brick image to rank 0, which blends them "
      "all), `binary-swap` (each rank blends its own bricks, then pairs of ranks swap halves of "
@@ -47,7 +43,5 @@ void addCompositingKeys(std::vector<SceneKey>& table) {
      "Run-length code transparent runs in every image message (the paper's Fig. 7). false: every "
      "pixel travels (to measure what RLE saves).",
      Flag{member<&Scene::compositing, &CompositingSection::rle>}},
-  });
+  };
 }
-
-}  // namespace sortlast

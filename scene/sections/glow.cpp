@@ -1,15 +1,10 @@
 // The glow section's keys: glow emitters (docs/glow.md).
-// One row per key: its path, its default (YAML), its help, its type (where the value goes and what
-// it may be), and AutoValue where `auto` is one of its values (scene/scene_keys.h).
 #include "scene/key_rows.h"
 
-namespace sortlast {
-
-void addGlowKeys(std::vector<SceneKey>& table) {
-  using namespace key_rows;
-  const Check kLength = key_rows::lengthCheck();
-  const Check kCoordinate = key_rows::coordinateCheck();
-  table.insert(table.end(), {
+std::vector<sortlast::SceneKey> sortlast::glowKeys() {
+  const Check kLength = lengthCheck();
+  const Check kCoordinate = coordinateCheck();
+  return {
     {"glow.emitters", "[]",
      "Energy-wave glow emitters (docs/glow.md): a list of maps `{center: [x, y, z], direction: "
      "[x, y, z], a, b, color: [r, g, b]}`. Each adds the field b / sqrt(dist(P, axis)^2 + eps^2) on "
@@ -47,7 +42,5 @@ void addGlowKeys(std::vector<SceneKey>& table) {
      "along an unbounded ray diverges like log length). `auto`: the scene's bounds (volume and "
      "particles); a scene of emitters alone must set it.",
      Structured{"`auto` or [[x0, y0, z0], [x1, y1, z1]]", {kCoordinate}}},
-  });
+  };
 }
-
-}  // namespace sortlast

@@ -1,20 +1,16 @@
-// The particles section's keys: the particles: their file or generator, and the metaball model and methods (io/particles.h holds ParticleDesc).
-// One row per key: its path, its default (YAML), its help, its type (where the value goes and what
-// it may be), and AutoValue where `auto` is one of its values (scene/scene_keys.h).
+// The particles section's keys: the particles: their file or generator, and the metaball model and
+// methods (io/particles.h holds ParticleDesc).
 #include "scene/key_rows.h"
 
-namespace sortlast {
-
-void addParticleKeys(std::vector<SceneKey>& table) {
-  using namespace key_rows;
-  const Check kLength = key_rows::lengthCheck();
-  const Check kPositive = key_rows::positiveCheck();
-  const Check kColour = key_rows::colourCheck();
+std::vector<sortlast::SceneKey> sortlast::particleKeys() {
+  const Check kLength = lengthCheck();
+  const Check kPositive = positiveCheck();
+  const Check kColour = colourCheck();
   // Radii beyond 8 h would make every particle's reach (and the bricks' ghost margins) huge;
   // below 1/64 h the field falls between the ray caster's samples (step h/8).
   const Check kScale{"in [1/64, 8]", "must be {allowed} (units of h), got {value}"};
   const Check kDensity{"in [0, 1e9]", "must be {allowed}, got {value}"};
-  table.insert(table.end(), {
+  return {
     {"particles.file", "\"\"",
      "Particle centres, rendered as metaballs. `.vtk` (legacy polydata or unstructured grid), "
      "`.vtp`/`.vtu` (VTK XML): the points; `.csv`: x,y,z per line (optional header line, `#` "
@@ -171,7 +167,5 @@ void addParticleKeys(std::vector<SceneKey>& table) {
      Real{member<&Scene::particles, &ParticleDesc::anisotropic,
                  &AnisotropicParams::position_smoothing>,
           {{"in [0, 1]", "must be {allowed}, got {value}"}}}},
-  });
+  };
 }
-
-}  // namespace sortlast

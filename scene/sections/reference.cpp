@@ -1,13 +1,8 @@
 // The reference section's keys: the CPU reference integrator.
-// One row per key: its path, its default (YAML), its help, its type (where the value goes and what
-// it may be), and AutoValue where `auto` is one of its values (scene/scene_keys.h).
 #include "scene/key_rows.h"
 
-namespace sortlast {
-
-void addReferenceKeys(std::vector<SceneKey>& table) {
-  using namespace key_rows;
-  table.insert(table.end(), {
+std::vector<sortlast::SceneKey> sortlast::referenceKeys() {
+  return {
     {"reference.step", "0.0625",
      "Step of the CPU reference integrator, in units of the smallest voxel spacing.",
      Real{member<&Scene::reference, &ReferenceSection::step>, {{"in (0, 1]", "must be {allowed} voxels"}}}},
@@ -17,7 +12,5 @@ void addReferenceKeys(std::vector<SceneKey>& table) {
      "of `adaptive.tolerance` and `adaptive.blocks`, exactly as the ray caster's adaptive blocks "
      "hold it: to measure the renderer apart from what adaptive sampling itself costs).",
      Choice{member<&Scene::reference, &ReferenceSection::field>}},
-  });
+  };
 }
-
-}  // namespace sortlast

@@ -1,13 +1,9 @@
-// The render section's keys: how bricks are drawn: GL backend and device, volume renderer, sampling, shading.
-// One row per key: its path, its default (YAML), its help, its type (where the value goes and what
-// it may be), and AutoValue where `auto` is one of its values (scene/scene_keys.h).
+// The render section's keys: how bricks are drawn: GL backend and device, volume renderer,
+// sampling, shading.
 #include "scene/key_rows.h"
 
-namespace sortlast {
-
-void addRenderKeys(std::vector<SceneKey>& table) {
-  using namespace key_rows;
-  table.insert(table.end(), {
+std::vector<sortlast::SceneKey> sortlast::renderKeys() {
+  return {
     {"render.backend", "osmesa",
      "OpenGL backend: `osmesa` (software) or `egl` (surfaceless platform, or the device "
      "platform on an NVIDIA GPU).",
@@ -89,7 +85,5 @@ void addRenderKeys(std::vector<SceneKey>& table) {
      "Ray casting with `render.adaptive_step`: the most one coarse sample's optical depth (and "
      "emission) may be off, by the bound above.",
      Real{member<&Scene::render, &RenderSection::adaptive_step_tolerance>, {{"in (0, 1]"}}}},
-  });
+  };
 }
-
-}  // namespace sortlast

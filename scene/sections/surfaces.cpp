@@ -1,13 +1,8 @@
 // The surfaces section's keys: subdivision surfaces (docs/subdivision.md).
-// One row per key: its path, its default (YAML), its help, its type (where the value goes and what
-// it may be), and AutoValue where `auto` is one of its values (scene/scene_keys.h).
 #include "scene/key_rows.h"
 
-namespace sortlast {
-
-void addSurfaceKeys(std::vector<SceneKey>& table) {
-  using namespace key_rows;
-  table.insert(table.end(), {
+std::vector<sortlast::SceneKey> sortlast::surfaceKeys() {
+  return {
     {"surfaces", "[]",
      "Catmull-Clark subdivision surfaces drawn exactly (docs/subdivision.md), opaque, composited "
      "with the volume and particles: a list of maps. Each has exactly one of `file` (an OBJ "
@@ -30,7 +25,5 @@ void addSurfaceKeys(std::vector<SceneKey>& table) {
      "its pixel's ray. Every mesh is read and checked when the scene is read: a bad one is an "
      "error naming `surfaces[i]`.",
      Structured{"list of surfaces"}},
-  });
+  };
 }
-
-}  // namespace sortlast

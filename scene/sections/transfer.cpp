@@ -1,14 +1,10 @@
-// The transfer section's keys: the transfer function: control points or a preset, colour map, range, table, pre-integration.
-// One row per key: its path, its default (YAML), its help, its type (where the value goes and what
-// it may be), and AutoValue where `auto` is one of its values (scene/scene_keys.h).
+// The transfer section's keys: the transfer function: control points or a preset, colour map,
+// range, table, pre-integration.
 #include "scene/key_rows.h"
 
-namespace sortlast {
-
-void addTransferKeys(std::vector<SceneKey>& table) {
-  using namespace key_rows;
-  const Check kLength = key_rows::lengthCheck();
-  table.insert(table.end(), {
+std::vector<sortlast::SceneKey> sortlast::transferKeys() {
+  const Check kLength = lengthCheck();
+  return {
     {"transfer.preset", "default",
      "Control points to use when `transfer.points` is not given: `default`, `ramp` (the "
      "paper's opacity = value, grey) or `sharp` (a narrow opaque band).",
@@ -56,7 +52,5 @@ void addTransferKeys(std::vector<SceneKey>& table) {
      "accurate on sharp transfer functions. Needs `render.sample_spacing` <= 2 (so segment ends "
      "stay within the bricks' ghost layer) and `adaptive.tolerance` 0.",
      Flag{member<&Scene::transfer, &TransferSpec::preintegrated>}, AutoValue{}},
-  });
+  };
 }
-
-}  // namespace sortlast

@@ -1,14 +1,10 @@
-// The volume section's keys: the volume: its file or procedural field, grid, sample type and layout (io/volume_source.h holds VolumeDesc).
-// One row per key: its path, its default (YAML), its help, its type (where the value goes and what
-// it may be), and AutoValue where `auto` is one of its values (scene/scene_keys.h).
+// The volume section's keys: the volume: its file or procedural field, grid, sample type and layout
+// (io/volume_source.h holds VolumeDesc).
 #include "scene/key_rows.h"
 
-namespace sortlast {
-
-void addVolumeKeys(std::vector<SceneKey>& table) {
-  using namespace key_rows;
-  const Check kLength = key_rows::lengthCheck();
-  table.insert(table.end(), {
+std::vector<sortlast::SceneKey> sortlast::volumeKeys() {
+  const Check kLength = lengthCheck();
+  return {
     {"volume.file", "\"\"",
      "Data file. Empty: a procedural volume (`volume.procedural`). `.vti`: a VTK XML image, each "
      "rank reading its bricks' extent; `.vtk`: a legacy VTK image, read whole by rank 0 and "
@@ -90,7 +86,5 @@ void addVolumeKeys(std::vector<SceneKey>& table) {
                   {{"little", false}, {"big", true}}}},
     {"volume.header_bytes", "0", "Bytes to skip at the start of a raw file.",
      Long{member<&Scene::volume, &VolumeDesc::header_bytes>, {{">= 0"}}}},
-  });
+  };
 }
-
-}  // namespace sortlast
