@@ -21,6 +21,7 @@
 #include "render/particles/metaball_grid_renderer.h"
 #include "render/particles/metaball_renderer.h"
 #include "render/particles/metaball_slices_renderer.h"
+#include "render/particles/particle_renderer.h"
 #include "render/volume/raycast_renderer.h"
 #include "render/volume/slicing_renderer.h"
 #include "render/surfaces/subdiv_renderer.h"

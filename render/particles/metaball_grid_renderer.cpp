@@ -8,6 +8,7 @@
 #include "io/particles.h"
 #include "render/gl/glsl_files.h"  // generated from render/gl/*.glsl (cmake/embed_shaders.cmake)
 #include "render/particles/glsl_files.h"
+#include "render/particles/metaball_renderer.h"  // setRayUniforms
 
 namespace sortlast {
 

@@ -9,8 +9,10 @@
 // sqrt(F) - T exactly as the billboard passes do. Output: the same SurfaceBrick and textures.
 #include <vector>
 
+#include "render/gl/gl_context.h"
+#include "render/gl/gl_program.h"
 #include "render/particles/metaball_grid.h"
-#include "render/particles/metaball_renderer.h"
+#include "render/particles/particle_renderer.h"
 #include "render/particles/surface_target.h"
 
 namespace sortlast {

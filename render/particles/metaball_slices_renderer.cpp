@@ -10,6 +10,7 @@
 #include "common/error.h"
 #include "render/gl/glsl_files.h"  // generated from render/gl/*.glsl (cmake/embed_shaders.cmake)
 #include "render/particles/glsl_files.h"
+#include "render/particles/metaball_renderer.h"  // setRayUniforms
 
 namespace sortlast {
 

@@ -13,8 +13,10 @@
 // surface is less exact than theirs; tests/mpi/particles_slices.sh states by how much.
 #include <vector>
 
-#include "render/particles/metaball_renderer.h"
+#include "render/gl/gl_context.h"
+#include "render/gl/gl_program.h"
 #include "render/particles/metaball_slices.h"
+#include "render/particles/particle_renderer.h"
 #include "render/particles/surface_target.h"
 
 namespace sortlast {
