@@ -142,11 +142,10 @@ SurfaceBrick MetaballGridRenderer::render(int handle, const Camera& cam, double,
   Rect r = screenRectOf(cam, b.bound);
   if (r.empty()) return out;
 
-  const unsigned p = program_;
-  setRayUniforms(gl_, p, cam, target_.width(), target_.height(), s_, b.clip);
-  gl_.Uniform3f(gl_.GetUniformLocation(p, "u_grid_lo"), b.lo.x, b.lo.y, b.lo.z);
-  gl_.Uniform1f(gl_.GetUniformLocation(p, "u_cell"), b.cell);
-  gl_.Uniform4i(gl_.GetUniformLocation(p, "u_dims"), b.dims.x, b.dims.y, b.dims.z, 0);
+  setRayUniforms(gl_, program_, cam, target_.width(), target_.height(), s_, b.clip);
+  program_.set("u_grid_lo", b.lo);
+  program_.set("u_cell", b.cell);
+  program_.set("u_dims", glm::ivec4(b.dims, 0));
   gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, b.offsets);
   gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, b.items);
   if (s_.anisotropic) gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, b.kernels);

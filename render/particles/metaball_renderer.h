@@ -30,8 +30,8 @@ namespace sortlast {
 // passes'): the rays of `cam` over a width x height image, h, T, the step w, the sample cap, the
 // refinement passes, the colour and the brick's clip box. A program that lacks one ignores it
 // (location -1).
-void setRayUniforms(const GlApi& gl, unsigned program, const Camera& cam, int width, int height,
-                    const MetaballSettings& s, const Box3& clip);
+void setRayUniforms(const GlApi& gl, const GlProgram& program, const Camera& cam, int width,
+                    int height, const MetaballSettings& s, const Box3& clip);
 
 class MetaballRenderer : public ParticleRenderer {
  public:
@@ -68,11 +68,11 @@ class MetaballRenderer : public ParticleRenderer {
     unsigned vbo = 0;
     int count = 0;
   };
-  void setCommonUniforms(unsigned program, const Camera& cam, const GpuBrick& b) const;
+  void setCommonUniforms(const GlProgram& program, const Camera& cam, const GpuBrick& b) const;
   void fullscreen(unsigned program);
   void buildPyramid(const Rect& r);
-  void drawBillboards(unsigned program, const GpuBrick& b, const glm::mat4& vp, const Rect& r,
-                      float cull_pad);
+  void drawBillboards(const GlProgram& program, const GpuBrick& b, const glm::mat4& vp,
+                      const Rect& r, float cull_pad);
   void attach(unsigned texture, int level = 0);
   void allocateTargets(int width, int height);
   void freeTargets();

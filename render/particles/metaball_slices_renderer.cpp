@@ -116,16 +116,16 @@ void MetaballSlicesRenderer::splat(GpuBrick& g, const SliceLattice& L,
                  nullptr, GL_STATIC_DRAW);
 
   gl_.UseProgram(splat_);
-  gl_.Uniform1f(gl_.GetUniformLocation(splat_, "u_h"), float(s_.h));
-  gl_.Uniform1f(gl_.GetUniformLocation(splat_, "u_spacing"), L.spacing);
-  gl_.Uniform1ui(gl_.GetUniformLocation(splat_, "u_slots"), unsigned(g.slots));
+  splat_.set("u_h", float(s_.h));
+  splat_.set("u_spacing", L.spacing);
+  splat_.set("u_slots", unsigned(g.slots));
   gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, offsets);
   gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, list);
   gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, voxels);
   gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, g.samples);
   // At most 65,535 work groups per dispatch (the minimum GL guarantees).
   for (size_t first = 0; first < g.slots; first += 65535) {
-    gl_.Uniform1ui(gl_.GetUniformLocation(splat_, "u_first"), unsigned(first));
+    splat_.set("u_first", unsigned(first));
     gl_.DispatchCompute(unsigned(std::min<size_t>(65535, g.slots - first)), 1, 1);
   }
   gl_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -141,12 +141,10 @@ SurfaceBrick MetaballSlicesRenderer::render(int handle, const Camera& cam, doubl
   Rect r = screenRectOf(cam, b.bound);
   if (r.empty()) return out;
 
-  const unsigned p = program_;
-  setRayUniforms(gl_, p, cam, target_.width(), target_.height(), s_, b.clip);
-  gl_.Uniform1f(gl_.GetUniformLocation(p, "u_spacing"), float(s_.slice_spacing * s_.h));
-  gl_.Uniform4i(gl_.GetUniformLocation(p, "u_voxel_lo"), b.voxel_lo.x, b.voxel_lo.y, b.voxel_lo.z,
-                0);
-  gl_.Uniform4i(gl_.GetUniformLocation(p, "u_dims"), b.dims.x, b.dims.y, b.dims.z, 0);
+  setRayUniforms(gl_, program_, cam, target_.width(), target_.height(), s_, b.clip);
+  program_.set("u_spacing", float(s_.slice_spacing * s_.h));
+  program_.set("u_voxel_lo", glm::ivec4(b.voxel_lo, 0));
+  program_.set("u_dims", glm::ivec4(b.dims, 0));
   gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, b.slot_of);
   gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, b.samples);
 
