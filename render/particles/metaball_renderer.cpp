@@ -32,33 +32,13 @@ unsigned makeTexture(const GlApi& gl, GLenum format, int w, int h, int levels = 
 
 }  // namespace
 
-void setRayUniforms(const GlApi& gl, const GlProgram& p, const Camera& cam, int width, int height,
-                    const MetaballSettings& s, const Box3& clip) {
-  gl.UseProgram(p);
-  double th = std::tan(0.5 * cam.fov_deg * 3.14159265358979323846 / 180.0);
-  p.set("u_eye", glm::vec3(cam.position));
-  p.set("u_fwd", glm::vec3(cam.forward()));
-  p.set("u_right_s", glm::vec3(cam.right() * th * (double(cam.width) / cam.height)));
-  p.set("u_up_s", glm::vec3(cam.trueUp() * th));
-  p.set("u_size", glm::vec2(float(width), float(height)));
-  p.set("u_h", float(s.h));
-  p.set("u_T", float(s.threshold));
-  p.set("u_w", float(s.step));
-  p.set("u_cap", float(s.max_samples));
-  p.set("u_refine", s.refine_iterations);
-  p.set("u_colour", glm::vec3(s.colour));
-  p.set("u_box_lo", glm::vec3(clip.lo));
-  p.set("u_box_hi", glm::vec3(clip.hi));
-}
-
 MetaballRenderer::MetaballRenderer(const GlContext& ctx, int width, int height,
                                    const MetaballSettings& settings)
-    : gl_(ctx.gl()), s_(settings), target_(ctx.gl(), width, height) {
+    : MetaballBase(ctx, width, height, settings, "metaball") {
   if (settings.anisotropic) throw std::logic_error("MetaballRenderer: anisotropic smoothing is grid-only");
   allocateTargets(width, height);
   gl_.GenFramebuffers(1, &fbo_);
   gl_.GenVertexArrays(1, &vao_);
-  gl_.GenVertexArrays(1, &empty_vao_);
   gl_.GenQueries(1, &query_);
 
   // Every pass's shaders start with metaball_common.glsl, but the pyramid's reduction.
@@ -115,8 +95,7 @@ void MetaballRenderer::resize(int width, int height) {
   // Immutable storage (TexStorage2D): new textures of the new size.
   freeTargets();
   allocateTargets(width, height);
-  target_.resize(width, height);
-  gl_.check("metaball renderer resize");
+  MetaballBase::resize(width, height);
 }
 
 void MetaballRenderer::setSettings(const MetaballSettings& settings) {
@@ -131,7 +110,6 @@ MetaballRenderer::~MetaballRenderer() {
   freeTargets();
   gl_.DeleteQueries(1, &query_);
   gl_.DeleteVertexArrays(1, &vao_);
-  gl_.DeleteVertexArrays(1, &empty_vao_);
   gl_.DeleteFramebuffers(1, &fbo_);
 }
 

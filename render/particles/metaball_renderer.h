@@ -21,24 +21,14 @@
 #include "io/image.h"
 #include "render/gl/gl_context.h"
 #include "render/gl/gl_program.h"
-#include "render/particles/particle_renderer.h"
-#include "render/particles/surface_target.h"
+#include "render/particles/metaball_base.h"
 
 namespace sortlast {
 
-// The uniforms every method's programs share (render/particles/metaball_common.glsl and the
-// passes'): the rays of `cam` over a width x height image, h, T, the step w, the sample cap, the
-// refinement passes, the colour and the brick's clip box. A program that lacks one ignores it
-// (location -1).
-void setRayUniforms(const GlApi& gl, const GlProgram& program, const Camera& cam, int width,
-                    int height, const MetaballSettings& s, const Box3& clip);
-
-class MetaballRenderer : public ParticleRenderer {
+class MetaballRenderer : public MetaballBase {
  public:
   MetaballRenderer(const GlContext& ctx, int width, int height, const MetaballSettings& settings);
   ~MetaballRenderer() override;
-  MetaballRenderer(const MetaballRenderer&) = delete;
-  MetaballRenderer& operator=(const MetaballRenderer&) = delete;
 
   // A new image size for the next frames: the per-pixel textures are reallocated, the bricks'
   // particle buffers stay.
@@ -55,16 +45,9 @@ class MetaballRenderer : public ParticleRenderer {
   SurfaceBrick render(int handle, const Camera& cam, double near_plane, double far_plane,
                       bool want_surface = false) override;
 
-  // After render(): a texture of (t, nx, ny, nz) per pixel over the last brick's rectangle
-  // (t = 1e30 where it missed), for a volume renderer to end its rays at the surface.
-  unsigned surfaceTexture() const override { return target_.surface(); }
-  // After render(): the shaded colour (RGBA32F, premultiplied, alpha 1 on the surface).
-  unsigned colourTexture() const override { return target_.colour(); }
-
  private:
-  struct GpuBrick {
-    Box3 clip;
-    Box3 bound;        // clip box cut down to where the particles' field can be non-zero
+  // bound: the clip box cut down to where the particles' field can be non-zero.
+  struct GpuBrick : BrickBox {
     unsigned vbo = 0;
     int count = 0;
   };
@@ -77,12 +60,9 @@ class MetaballRenderer : public ParticleRenderer {
   void allocateTargets(int width, int height);
   void freeTargets();
 
-  const GlApi& gl_;
   int width_, height_, levels_;
-  MetaballSettings s_;
-  unsigned fbo_ = 0, vao_ = 0, empty_vao_ = 0, query_ = 0;
+  unsigned fbo_ = 0, vao_ = 0, query_ = 0;
   unsigned state_ = 0, hit_ = 0, next_ = 0, pot_ = 0, pot2_ = 0, pyramid_ = 0;
-  SurfaceTarget target_;  // the shade pass's colour and the surface (t, normal)
   // One program per pass (render/particles/metaball_*.glsl).
   GlProgram advance_, potential_, init_, window_, step_, secant_, bracket_, bracket_base_, shade_,
       reduce_;
