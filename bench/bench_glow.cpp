@@ -62,28 +62,24 @@ int main(int argc, char** argv) {
   auto ctx = createGlContext(argc > 4 ? argv[4] : "osmesa");  // egl: scripts/gpu-check
   const GlApi& gl = ctx->gl();
   // The glow pass's chunks (render/glow/glow_renderer.cpp) with this benchmark's main.
-  unsigned program = linkProgram(gl, ShaderSource().add(glsl::fullscreen_vert),
-                                 ShaderSource()
-                                     .add(glsl::glow_segment)
-                                     .add(glsl::glow_emitters)
-                                     .add(glsl::glow_along)
-                                     .add(glsl::glow_pixel_ray)
-                                     .add(glsl::bench_glow_frag));
+  const GlProgram program(gl, linkProgram(gl, ShaderSource().add(glsl::fullscreen_vert),
+                                          ShaderSource()
+                                              .add(glsl::glow_segment)
+                                              .add(glsl::glow_emitters)
+                                              .add(glsl::glow_along)
+                                              .add(glsl::glow_pixel_ray)
+                                              .add(glsl::bench_glow_frag)));
   unsigned vao = 0;
   const unsigned target = makeFloatTexture(gl, size, size, nullptr);
   makeFramebuffer(gl, target);
   const unsigned emitters = makeFloatTexture(gl, 3, count, texels.data());
   gl.UseProgram(program);
-  auto loc = [&](const char* name) { return gl.GetUniformLocation(program, name); };
-  auto u3 = [&](const char* name, glm::dvec3 v) {
-    gl.Uniform3f(loc(name), float(v.x), float(v.y), float(v.z));
-  };
   bindGlowEmitters(gl, program, GlowPass{emitters, count, eps, intensity, {}, {}}, 0);
-  setPixelRayUniforms(gl, program, cam);
-  u3("u_box_lo", glm::dvec3(lo));
-  u3("u_box_hi", glm::dvec3(hi));
-  gl.Uniform1f(loc("u_intensity"), intensity);
-  gl.Uniform1f(loc("u_exposure"), exposure);
+  setPixelRayUniforms(program, cam);
+  program.set("u_box_lo", lo);
+  program.set("u_box_hi", hi);
+  program.set("u_intensity", intensity);
+  program.set("u_exposure", exposure);
   gl.GenVertexArrays(1, &vao);
   gl.BindVertexArray(vao);
   gl.Viewport(0, 0, size, size);

@@ -57,10 +57,8 @@ void BrickRenderer::enableVolume(const TransferFunction& tf, int table_size, int
                                                 method.raycast_settings, textures_.get());
   else
     volume_ = std::make_unique<SlicingRenderer>(*ctx_, width_, height_, block_cells);
-  std::visit([&](auto& r) {
-    r->setTransferFunction(tf, table_size, preintegrated);
-    r->setShading(method.shading);
-  }, volume_);
+  volume_->setTransferFunction(tf, table_size, preintegrated);
+  volume_->setShading(method.shading);
 }
 
 void BrickRenderer::enableParticles(const MetaballSettings& settings) {
@@ -106,29 +104,29 @@ void BrickRenderer::setImageSize(int width, int height) {
   height_ = height;
   if (subdiv_) subdiv_->resize(width, height);
   if (glow_) glow_->resize(width, height);
-  std::visit([&](auto& r) { if (r) r->resize(width, height); }, volume_);
+  if (volume_) volume_->resize(width, height);
   if (metaballs_) metaballs_->resize(width, height);
 }
 
 void BrickRenderer::setTransferFunction(const TransferFunction& tf, int table_size, bool preintegrated) {
-  std::visit([&](auto& r) { if (r) r->setTransferFunction(tf, table_size, preintegrated); }, volume_);
+  if (volume_) volume_->setTransferFunction(tf, table_size, preintegrated);
 }
 
 void BrickRenderer::setVolumeMethodSettings(const VolumeMethod& method) {
-  if (auto* ray = std::get_if<std::unique_ptr<RaycastRenderer>>(&volume_); ray && *ray)
-    (*ray)->setSettings(method.raycast_settings);
-  std::visit([&](auto& r) { if (r) r->setShading(method.shading); }, volume_);
+  if (!volume_) return;
+  if (RaycastRenderer* ray = volume_->raycaster()) ray->setSettings(method.raycast_settings);
+  volume_->setShading(method.shading);
 }
 
 std::optional<BrickRenderer::BlockRanges> BrickRenderer::blockRangesPart(const GridGeometry& grid) const {
-  auto* ray = std::get_if<std::unique_ptr<RaycastRenderer>>(&volume_);
-  if (!ray || !*ray) return std::nullopt;
-  return (*ray)->globalRangesPart(grid);
+  const RaycastRenderer* ray = volume_ ? volume_->raycaster() : nullptr;
+  if (!ray) return std::nullopt;
+  return ray->globalRangesPart(grid);
 }
 
 void BrickRenderer::setBlockRanges(BlockRanges ranges) {
-  auto* ray = std::get_if<std::unique_ptr<RaycastRenderer>>(&volume_);
-  if (ray && *ray) (*ray)->setGlobalRanges(std::move(ranges.first), std::move(ranges.second));
+  if (RaycastRenderer* ray = volume_ ? volume_->raycaster() : nullptr)
+    ray->setGlobalRanges(std::move(ranges.first), std::move(ranges.second));
 }
 
 void BrickRenderer::setMetaballSettings(const MetaballSettings& settings) {
@@ -141,7 +139,7 @@ void BrickRenderer::reset() {
   bricks_.clear();
   metaballs_.reset();
   glow_.reset();
-  volume_ = std::unique_ptr<SlicingRenderer>();
+  volume_.reset();
 }
 
 int BrickRenderer::addBrick(const Brick* volume_brick, const GridGeometry* grid,
@@ -150,11 +148,11 @@ int BrickRenderer::addBrick(const Brick* volume_brick, const GridGeometry* grid,
                             const AdaptiveBrickBlocks* adaptive) {
   Handles h;
   if (volume_brick && adaptive) {
-    auto* ray = std::get_if<std::unique_ptr<RaycastRenderer>>(&volume_);
-    if (!ray || !*ray) throw std::logic_error("adaptive bricks need the ray caster (enableVolume)");
-    h.volume = (*ray)->addAdaptiveBrick(*volume_brick, *grid, *adaptive);
-  } else if (volume_brick) {
-    std::visit([&](auto& r) { if (r) h.volume = r->addBrick(*volume_brick, *grid, *samples); }, volume_);
+    RaycastRenderer* ray = volume_ ? volume_->raycaster() : nullptr;
+    if (!ray) throw std::logic_error("adaptive bricks need the ray caster (enableVolume)");
+    h.volume = ray->addAdaptiveBrick(*volume_brick, *grid, *adaptive);
+  } else if (volume_brick && volume_) {
+    h.volume = volume_->addBrick(*volume_brick, *grid, *samples);
   }
   if (particles && metaballs_) h.particles = metaballs_->addBrick(particle_clip, *particles);
   return addHandles(h, particle_clip);
@@ -164,7 +162,7 @@ int BrickRenderer::addBrick(const Brick& volume_brick, const GridGeometry& grid,
                             const BrickSamples& samples, const Box3& particle_clip,
                             const std::vector<glm::vec3>* particles) {
   Handles h;
-  std::visit([&](auto& r) { if (r) h.volume = r->addBrick(volume_brick, grid, samples); }, volume_);
+  if (volume_) h.volume = volume_->addBrick(volume_brick, grid, samples);
   if (particles && metaballs_) h.particles = metaballs_->addBrick(particle_clip, *particles);
   return addHandles(h, particle_clip);
 }
@@ -252,13 +250,13 @@ BrickFrame BrickRenderer::render(int handle, const Camera& cam, double slice_spa
   std::optional<GlowPass> glow;
   if (glow_) glow = glow_->pass(h.glow ? h.glow_box : noBox(), h.glow_whole);
   RenderedBrick rb;
-  if (auto* ray = std::get_if<std::unique_ptr<RaycastRenderer>>(&volume_); ray && *ray)
-    rb = (*ray)->render(h.volume, cam, slice_spacing, near_plane, far_plane, opaque, glow ? &*glow : nullptr);
-  else if (glow)
-    throw std::logic_error("glow in a slicing brick");
-  else
-    rb = std::get<std::unique_ptr<SlicingRenderer>>(volume_)->render(h.volume, cam, slice_spacing, near_plane,
-                                                                    far_plane, opaque);
+  if (glow) {
+    RaycastRenderer* ray = volume_->raycaster();
+    if (!ray) throw std::logic_error("glow in a slicing brick");
+    rb = ray->render(h.volume, cam, slice_spacing, near_plane, far_plane, opaque, &*glow);
+  } else {
+    rb = volume_->render(h.volume, cam, slice_spacing, near_plane, far_plane, opaque);
+  }
   // The surface floats cover the layer's rectangle; re-cut them to the brick image's rectangle.
   recutSurface(out.surface, surface.rect, rb.rect);
   out.rect = rb.rect;

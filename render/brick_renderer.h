@@ -8,7 +8,6 @@
 // opaque layer (mergeSurfaceLayers) that ends the volume's rays.
 #include <memory>
 #include <optional>
-#include <variant>
 #include <vector>
 
 #include "adaptive/adaptive_brick.h"
@@ -21,8 +20,10 @@
 #include "render/particles/metaball_grid_renderer.h"
 #include "render/particles/metaball_renderer.h"
 #include "render/particles/metaball_slices_renderer.h"
+#include "render/particles/particle_renderer.h"
 #include "render/volume/raycast_renderer.h"
 #include "render/volume/slicing_renderer.h"
+#include "render/volume/volume_renderer.h"
 #include "render/surfaces/subdiv_renderer.h"
 
 namespace sortlast {
@@ -123,8 +124,8 @@ class BrickRenderer {
   // The ray caster's brick textures between time steps (before volume_: it outlives the renderers).
   std::unique_ptr<VolumeTexturePool> textures_;
   int width_, height_;
-  // The volume renderer; a null slicing renderer until enableVolume().
-  std::variant<std::unique_ptr<SlicingRenderer>, std::unique_ptr<RaycastRenderer>> volume_;
+  // The volume renderer (slicing or ray casting); null until enableVolume().
+  std::unique_ptr<VolumeRenderer> volume_;
   std::unique_ptr<ParticleRenderer> metaballs_;  // particles.method: billboards or grid
   std::unique_ptr<SubdivRenderer> subdiv_;       // the scene's surfaces; null: none
   size_t surface_count_ = 0;

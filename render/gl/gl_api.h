@@ -101,7 +101,11 @@ using PfnDrawArrays = void(APIENTRYP)(GLenum, GLint, GLsizei);
   X(BindBufferBase, PFNGLBINDBUFFERBASEPROC)                    \
   X(ReadBuffer, PFNGLREADBUFFERPROC)                            \
   X(DispatchCompute, PFNGLDISPATCHCOMPUTEPROC)                  \
-  X(GetBufferSubData, PFNGLGETBUFFERSUBDATAPROC)
+  X(GetBufferSubData, PFNGLGETBUFFERSUBDATAPROC)                \
+  X(Uniform4f, PFNGLUNIFORM4FPROC)                              \
+  X(GetUniformfv, PFNGLGETUNIFORMFVPROC)                        \
+  X(GetUniformiv, PFNGLGETUNIFORMIVPROC)                        \
+  X(GetUniformuiv, PFNGLGETUNIFORMUIVPROC)
 
 struct GlApi {
 #define SORTLAST_GL_MEMBER(name, type) type name = nullptr;

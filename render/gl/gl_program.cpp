@@ -76,17 +76,63 @@ unsigned linkComputeProgram(const GlApi& gl, const ShaderSource& cs) {
   return link(gl, p, {c}, cs.paths());
 }
 
+GlProgram::GlProgram(GlProgram&& o) noexcept
+    : gl_(o.gl_), id_(std::exchange(o.id_, 0)), locations_(std::move(o.locations_)) {
+  o.locations_.clear();
+}
+
 GlProgram& GlProgram::operator=(GlProgram&& o) noexcept {
   if (this != &o) {
     if (id_) gl_->DeleteProgram(id_);
     gl_ = o.gl_;
     id_ = std::exchange(o.id_, 0);
+    locations_ = std::move(o.locations_);
+    o.locations_.clear();
   }
   return *this;
 }
 
 GlProgram::~GlProgram() {
   if (id_) gl_->DeleteProgram(id_);
+}
+
+int GlProgram::uniformLocation(std::string_view name) const {
+  auto at = locations_.find(name);
+  if (at == locations_.end()) {
+    std::string key(name);  // GetUniformLocation takes a null-terminated name
+    const int loc = gl_->GetUniformLocation(id_, key.c_str());
+    at = locations_.emplace(std::move(key), loc).first;
+  }
+  return at->second;
+}
+
+// A location of -1 is passed on: glUniform* ignores it without an error (GL 4.5 core, 7.6.1).
+void GlProgram::set(std::string_view name, int v) const { gl_->Uniform1i(uniformLocation(name), v); }
+
+void GlProgram::set(std::string_view name, unsigned v) const {
+  gl_->Uniform1ui(uniformLocation(name), v);
+}
+
+void GlProgram::set(std::string_view name, float v) const { gl_->Uniform1f(uniformLocation(name), v); }
+
+void GlProgram::set(std::string_view name, const glm::vec2& v) const {
+  gl_->Uniform2f(uniformLocation(name), v.x, v.y);
+}
+
+void GlProgram::set(std::string_view name, const glm::vec3& v) const {
+  gl_->Uniform3f(uniformLocation(name), v.x, v.y, v.z);
+}
+
+void GlProgram::set(std::string_view name, const glm::vec4& v) const {
+  gl_->Uniform4f(uniformLocation(name), v.x, v.y, v.z, v.w);
+}
+
+void GlProgram::set(std::string_view name, const glm::ivec4& v) const {
+  gl_->Uniform4i(uniformLocation(name), v.x, v.y, v.z, v.w);
+}
+
+void GlProgram::set(std::string_view name, const glm::mat4& v) const {
+  gl_->UniformMatrix4fv(uniformLocation(name), 1, GL_FALSE, &v[0][0]);
 }
 
 }  // namespace sortlast

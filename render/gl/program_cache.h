@@ -25,7 +25,7 @@ class ProgramCache {
   ProgramCache(const GlApi& gl, Recipe recipe) : gl_(gl), recipe_(std::move(recipe)) {}
 
   // The program of variant `flags`, linked now if this is its first use (throws as linkProgram).
-  unsigned get(unsigned flags) {
+  const GlProgram& get(unsigned flags) {
     auto at = programs_.find(flags);
     if (at == programs_.end()) {
       const ProgramSources s = recipe_(flags);

@@ -36,25 +36,21 @@ std::vector<float> glowEmitterTexels(const std::vector<GlowEmitter>& emitters) {
   return t;
 }
 
-void bindGlowEmitters(const GlApi& gl, unsigned program, const GlowPass& pass, int unit) {
-  gl.Uniform1f(gl.GetUniformLocation(program, "u_glow_eps"), pass.eps);
-  gl.Uniform1i(gl.GetUniformLocation(program, "u_glow_count"), pass.count);
-  gl.Uniform1i(gl.GetUniformLocation(program, "u_glow_emitters"), unit);
+void bindGlowEmitters(const GlApi& gl, const GlProgram& program, const GlowPass& pass, int unit) {
+  program.set("u_glow_eps", pass.eps);
+  program.set("u_glow_count", pass.count);
+  program.set("u_glow_emitters", unit);
   gl.ActiveTexture(GL_TEXTURE0 + unsigned(unit));
   gl.BindTexture(GL_TEXTURE_2D, pass.emitters);
 }
 
-void setPixelRayUniforms(const GlApi& gl, unsigned program, const Camera& cam) {
-  auto u3 = [&](const char* name, const glm::dvec3& v) {
-    gl.Uniform3f(gl.GetUniformLocation(program, name), float(v.x), float(v.y), float(v.z));
-  };
+void setPixelRayUniforms(const GlProgram& program, const Camera& cam) {
   const double th = std::tan(0.5 * cam.fov_deg * 3.14159265358979323846 / 180.0);
-  u3("u_eye", cam.position);
-  u3("u_forward", cam.forward());
-  u3("u_right", cam.right() * (th * double(cam.width) / cam.height));
-  u3("u_up", cam.trueUp() * th);
-  gl.Uniform2f(gl.GetUniformLocation(program, "u_pixel_scale"), float(2.0 / cam.width),
-               float(2.0 / cam.height));
+  program.set("u_eye", glm::vec3(cam.position));
+  program.set("u_forward", glm::vec3(cam.forward()));
+  program.set("u_right", glm::vec3(cam.right() * (th * double(cam.width) / cam.height)));
+  program.set("u_up", glm::vec3(cam.trueUp() * th));
+  program.set("u_pixel_scale", glm::vec2(float(2.0 / cam.width), float(2.0 / cam.height)));
 }
 
 }  // namespace sortlast

@@ -11,6 +11,7 @@
 #include "glow/glow_field.h"
 #include "render/gl/brick_output.h"
 #include "render/gl/gl_api.h"
+#include "render/gl/gl_program.h"
 
 namespace sortlast {
 
@@ -25,11 +26,11 @@ std::vector<float> glowEmitterTexels(const std::vector<GlowEmitter>& emitters);
 
 // The uniforms of glow_emitters.glsl for `program` (in use): the emitters' texture on texture
 // unit `unit`, their count and core radius. Every program that includes it binds them here.
-void bindGlowEmitters(const GlApi& gl, unsigned program, const GlowPass& pass, int unit);
+void bindGlowEmitters(const GlApi& gl, const GlProgram& program, const GlowPass& pass, int unit);
 
 // The pixel-ray uniforms (u_eye, u_forward, u_right, u_up, u_pixel_scale) for `program` (in use),
 // shared by glow_pixel_ray.glsl and the ray caster's main(): the image plane at distance 1, pixel
 // centre (x, y) at forward + sx right + sy up, as in Camera::rayDirection.
-void setPixelRayUniforms(const GlApi& gl, unsigned program, const Camera& cam);
+void setPixelRayUniforms(const GlProgram& program, const Camera& cam);
 
 }  // namespace sortlast

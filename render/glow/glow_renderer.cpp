@@ -53,20 +53,16 @@ GlowBrickImage GlowRenderer::render(const Box3& box, const Box3& whole, const Ca
     gl_.Enable(GL_BLEND);
     gl_.BlendFunc(GL_ONE, GL_ONE);
     gl_.UseProgram(program_);
-    auto loc = [&](const char* name) { return gl_.GetUniformLocation(program_, name); };
-    auto u3 = [&](const char* name, const glm::dvec3& v) {
-      gl_.Uniform3f(loc(name), float(v.x), float(v.y), float(v.z));
-    };
-    setPixelRayUniforms(gl_, program_, cam);
-    u3("u_box_lo", box.lo);
-    u3("u_box_hi", box.hi);
-    u3("u_box_hi_open", glm::dvec3(glm::lessThan(box.hi, whole.hi)));
-    gl_.Uniform1f(loc("u_intensity"), intensity_);
-    gl_.Uniform1i(loc("u_surface"), 2);
-    gl_.Uniform1i(loc("u_has_surface"), has_surface ? 1 : 0);
+    setPixelRayUniforms(program_, cam);
+    program_.set("u_box_lo", glm::vec3(box.lo));
+    program_.set("u_box_hi", glm::vec3(box.hi));
+    program_.set("u_box_hi_open", glm::vec3(glm::lessThan(box.hi, whole.hi)));
+    program_.set("u_intensity", intensity_);
+    program_.set("u_surface", 2);
+    program_.set("u_has_surface", has_surface ? 1 : 0);
     if (has_surface) {
       const Rect& sr = surface->rect;
-      gl_.Uniform4i(loc("u_surface_rect"), sr.x, sr.y, sr.w, sr.h);
+      program_.set("u_surface_rect", glm::ivec4(sr.x, sr.y, sr.w, sr.h));
       gl_.ActiveTexture(GL_TEXTURE2);
       gl_.BindTexture(GL_TEXTURE_2D, surface->surface_texture);
     }

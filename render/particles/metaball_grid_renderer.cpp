@@ -11,27 +11,9 @@
 
 namespace sortlast {
 
-namespace {
-
-unsigned upload(const GlApi& gl, const void* data, size_t bytes) {
-  unsigned b = 0;
-  gl.GenBuffers(1, &b);
-  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, b);
-  // An empty list still needs a buffer to bind: 4 bytes.
-  gl.BufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(bytes > 0 ? bytes : 4), bytes > 0 ? data : nullptr,
-                GL_STATIC_DRAW);
-  return b;
-}
-
-}  // namespace
-
 MetaballGridRenderer::MetaballGridRenderer(const GlContext& ctx, int width, int height,
                                            const MetaballSettings& settings)
-    : gl_(ctx.gl()), s_(settings), target_(ctx.gl(), width, height) {
-  gl_.GenVertexArrays(1, &empty_vao_);
-  GLint max_block = 0;
-  gl_.GetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
-  max_block_bytes_ = max_block > 0 ? max_block : (1LL << 27);
+    : MetaballBase(ctx, width, height, settings, "metaball grid") {
   // Anisotropic smoothing: the same shader with the per-particle kernel block switched on (the
   // round one stays as it was, so its images do not change).
   program_ = GlProgram(gl_, linkProgram(gl_, ShaderSource().add(glsl::fullscreen_vert),
@@ -40,18 +22,6 @@ MetaballGridRenderer::MetaballGridRenderer(const GlContext& ctx, int width, int 
                                             .add(glsl::metaball_common)
                                             .add(glsl::metaball_grid_frag)));
   gl_.check("metaball grid renderer setup");
-}
-
-MetaballGridRenderer::~MetaballGridRenderer() {
-  for (auto& b : bricks_)
-    for (unsigned buf : {b.offsets, b.items, b.kernels})
-      if (buf) gl_.DeleteBuffers(1, &buf);
-  gl_.DeleteVertexArrays(1, &empty_vao_);
-}
-
-void MetaballGridRenderer::resize(int width, int height) {
-  target_.resize(width, height);
-  gl_.check("metaball grid renderer resize");
 }
 
 void MetaballGridRenderer::setSettings(const MetaballSettings& settings) {
@@ -120,13 +90,13 @@ int MetaballGridRenderer::addBrick(const Box3& clip, const std::vector<glm::vec3
         throw std::runtime_error("metaball grid: a brick's anisotropic kernels (" +
                                  std::to_string(k.size() * 16) +
                                  " bytes) exceed one shader storage block; use more bricks");
-      g.kernels = upload(gl_, k.data(), k.size() * sizeof(glm::vec4));
+      g.kernels = keepStorage(k.data(), k.size() * sizeof(glm::vec4));
     }
     g.lo = grid.lo;
     g.cell = grid.cell;
     g.dims = grid.dims;
-    g.offsets = upload(gl_, grid.offsets.data(), grid.offsets.size() * 4);
-    g.items = upload(gl_, items.data(), items.size() * sizeof(glm::vec4));
+    g.offsets = keepStorage(grid.offsets.data(), grid.offsets.size() * 4);
+    g.items = keepStorage(items.data(), items.size() * sizeof(glm::vec4));
     gl_.check("metaball grid upload");
   }
   bricks_.push_back(g);
@@ -136,28 +106,15 @@ int MetaballGridRenderer::addBrick(const Box3& clip, const std::vector<glm::vec3
 SurfaceBrick MetaballGridRenderer::render(int handle, const Camera& cam, double, double,
                                           bool want_surface) {
   const GpuBrick& b = bricks_.at(size_t(handle));
-  SurfaceBrick out;
-  if (b.count == 0) return out;
-  Rect r = screenRectOf(cam, b.bound);
-  if (r.empty()) return out;
-
-  const unsigned p = program_;
-  setRayUniforms(gl_, p, cam, target_.width(), target_.height(), s_, b.clip);
-  gl_.Uniform3f(gl_.GetUniformLocation(p, "u_grid_lo"), b.lo.x, b.lo.y, b.lo.z);
-  gl_.Uniform1f(gl_.GetUniformLocation(p, "u_cell"), b.cell);
-  gl_.Uniform4i(gl_.GetUniformLocation(p, "u_dims"), b.dims.x, b.dims.y, b.dims.z, 0);
-  gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, b.offsets);
-  gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, b.items);
-  if (s_.anisotropic) gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, b.kernels);
-
-  target_.bindForDrawing(r, "metaball grid");
-  gl_.BindVertexArray(empty_vao_);
-  gl_.DrawArrays(GL_TRIANGLES, 0, 3);
-
-  target_.readBack(r, want_surface, out);
-  out.rounds = 1;
-  gl_.check("metaball grid render");
-  return out;
+  if (b.count == 0) return {};
+  return drawOnePass(program_, b, cam, want_surface, [&] {
+    program_.set("u_grid_lo", b.lo);
+    program_.set("u_cell", b.cell);
+    program_.set("u_dims", glm::ivec4(b.dims, 0));
+    gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, b.offsets);
+    gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, b.items);
+    if (s_.anisotropic) gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, b.kernels);
+  });
 }
 
 }  // namespace sortlast

@@ -9,20 +9,17 @@
 // sqrt(F) - T exactly as the billboard passes do. Output: the same SurfaceBrick and textures.
 #include <vector>
 
+#include "render/gl/gl_context.h"
+#include "render/gl/gl_program.h"
+#include "render/particles/metaball_base.h"
 #include "render/particles/metaball_grid.h"
-#include "render/particles/metaball_renderer.h"
-#include "render/particles/surface_target.h"
 
 namespace sortlast {
 
-class MetaballGridRenderer : public ParticleRenderer {
+class MetaballGridRenderer : public MetaballBase {
  public:
   MetaballGridRenderer(const GlContext& ctx, int width, int height, const MetaballSettings& settings);
-  ~MetaballGridRenderer() override;
-  MetaballGridRenderer(const MetaballGridRenderer&) = delete;
-  MetaballGridRenderer& operator=(const MetaballGridRenderer&) = delete;
 
-  void resize(int width, int height) override;
   // h must stay (the grids and the bricks' ghosts depend on it): std::logic_error otherwise.
   void setSettings(const MetaballSettings& settings) override;
   // `particles`: the brick's own particles and its ghosts, in global order. Builds the grid on
@@ -31,25 +28,17 @@ class MetaballGridRenderer : public ParticleRenderer {
   // near_plane and far_plane are not needed (no rasterised geometry); kept for the interface.
   SurfaceBrick render(int handle, const Camera& cam, double near_plane, double far_plane,
                       bool want_surface = false) override;
-  unsigned surfaceTexture() const override { return target_.surface(); }
-  unsigned colourTexture() const override { return target_.colour(); }
 
  private:
-  struct GpuBrick {
-    Box3 clip;
-    Box3 bound;  // clip box cut down to where the particles' field can be non-zero
+  // bound: the clip box cut down to where the particles' field can be non-zero.
+  struct GpuBrick : BrickBox {
     glm::vec3 lo{0.0f};
     float cell = 1.0f;
     glm::ivec3 dims{0};
-    unsigned centres = 0, offsets = 0, items = 0, kernels = 0;  // SSBOs (kernels: anisotropic)
+    unsigned offsets = 0, items = 0, kernels = 0;  // SSBOs (kernels: anisotropic), kept by the base
     int count = 0;
   };
 
-  const GlApi& gl_;
-  MetaballSettings s_;
-  long long max_block_bytes_ = 0;
-  SurfaceTarget target_;
-  unsigned empty_vao_ = 0;
   GlProgram program_;  // the ANISOTROPIC variant with anisotropic smoothing
   std::vector<GpuBrick> bricks_;
 };

@@ -32,39 +32,13 @@ unsigned makeTexture(const GlApi& gl, GLenum format, int w, int h, int levels = 
 
 }  // namespace
 
-void setRayUniforms(const GlApi& gl, unsigned p, const Camera& cam, int width, int height,
-                    const MetaballSettings& s, const Box3& clip) {
-  gl.UseProgram(p);
-  auto v3 = [&](const char* name, const glm::dvec3& v) {
-    gl.Uniform3f(gl.GetUniformLocation(p, name), float(v.x), float(v.y), float(v.z));
-  };
-  auto f1 = [&](const char* name, double v) {
-    gl.Uniform1f(gl.GetUniformLocation(p, name), float(v));
-  };
-  double th = std::tan(0.5 * cam.fov_deg * 3.14159265358979323846 / 180.0);
-  v3("u_eye", cam.position);
-  v3("u_fwd", cam.forward());
-  v3("u_right_s", cam.right() * th * (double(cam.width) / cam.height));
-  v3("u_up_s", cam.trueUp() * th);
-  gl.Uniform2f(gl.GetUniformLocation(p, "u_size"), float(width), float(height));
-  f1("u_h", s.h);
-  f1("u_T", s.threshold);
-  f1("u_w", s.step);
-  f1("u_cap", s.max_samples);
-  gl.Uniform1i(gl.GetUniformLocation(p, "u_refine"), s.refine_iterations);
-  v3("u_colour", s.colour);
-  v3("u_box_lo", clip.lo);
-  v3("u_box_hi", clip.hi);
-}
-
 MetaballRenderer::MetaballRenderer(const GlContext& ctx, int width, int height,
                                    const MetaballSettings& settings)
-    : gl_(ctx.gl()), s_(settings), target_(ctx.gl(), width, height) {
+    : MetaballBase(ctx, width, height, settings, "metaball") {
   if (settings.anisotropic) throw std::logic_error("MetaballRenderer: anisotropic smoothing is grid-only");
   allocateTargets(width, height);
   gl_.GenFramebuffers(1, &fbo_);
   gl_.GenVertexArrays(1, &vao_);
-  gl_.GenVertexArrays(1, &empty_vao_);
   gl_.GenQueries(1, &query_);
 
   // Every pass's shaders start with metaball_common.glsl, but the pyramid's reduction.
@@ -86,19 +60,15 @@ MetaballRenderer::MetaballRenderer(const GlContext& ctx, int width, int height,
   shade_ = link(fullscreen, glsl::metaball_shade_frag);
   reduce_ =
       GlProgram(gl_, linkProgram(gl_, fullscreen, ShaderSource().add(glsl::metaball_reduce_frag)));
-  for (unsigned p : {advance_.id(), potential_.id(), init_.id(), window_.id(), step_.id(),
-                     secant_.id(), bracket_.id(), bracket_base_.id(), shade_.id()}) {
-    gl_.UseProgram(p);
-    auto set = [&](const char* name, int unit) {
-      int loc = gl_.GetUniformLocation(p, name);
-      if (loc >= 0) gl_.Uniform1i(loc, unit);
-    };
-    set("u_state", kStateUnit);
-    set("u_hit", kHitUnit);
-    set("u_next", kNextUnit);
-    set("u_pot", kPotUnit);
-    set("u_pyramid", kPyramidUnit);
-    set("u_pot2", kPot2Unit);
+  for (const GlProgram* p : {&advance_, &potential_, &init_, &window_, &step_, &secant_, &bracket_,
+                             &bracket_base_, &shade_}) {
+    gl_.UseProgram(*p);
+    p->set("u_state", int(kStateUnit));
+    p->set("u_hit", int(kHitUnit));
+    p->set("u_next", int(kNextUnit));
+    p->set("u_pot", int(kPotUnit));
+    p->set("u_pyramid", int(kPyramidUnit));
+    p->set("u_pot2", int(kPot2Unit));
   }
   gl_.check("metaball renderer setup");
 }
@@ -125,8 +95,7 @@ void MetaballRenderer::resize(int width, int height) {
   // Immutable storage (TexStorage2D): new textures of the new size.
   freeTargets();
   allocateTargets(width, height);
-  target_.resize(width, height);
-  gl_.check("metaball renderer resize");
+  MetaballBase::resize(width, height);
 }
 
 void MetaballRenderer::setSettings(const MetaballSettings& settings) {
@@ -141,7 +110,6 @@ MetaballRenderer::~MetaballRenderer() {
   freeTargets();
   gl_.DeleteQueries(1, &query_);
   gl_.DeleteVertexArrays(1, &vao_);
-  gl_.DeleteVertexArrays(1, &empty_vao_);
   gl_.DeleteFramebuffers(1, &fbo_);
 }
 
@@ -168,12 +136,13 @@ void MetaballRenderer::attach(unsigned texture, int level) {
   gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture, level);
 }
 
-void MetaballRenderer::setCommonUniforms(unsigned p, const Camera& cam, const GpuBrick& b) const {
+void MetaballRenderer::setCommonUniforms(const GlProgram& p, const Camera& cam,
+                                         const GpuBrick& b) const {
   setRayUniforms(gl_, p, cam, width_, height_, s_, b.clip);
-  gl_.Uniform1i(gl_.GetUniformLocation(p, "u_window"), s_.samples_per_pass);
+  p.set("u_window", s_.samples_per_pass);
   // 4 h: on the 65,536-particle layers at 512^2 the advance pass then skips the particles behind
   // the front (1.9 s/frame against 2.0 s looking all the way; 2 h: 1.8 s, 8 h: 2.3 s, noisy).
-  gl_.Uniform1f(gl_.GetUniformLocation(p, "u_lookahead"), float(4.0 * s_.h));
+  p.set("u_lookahead", float(4.0 * s_.h));
 }
 
 void MetaballRenderer::fullscreen(unsigned program) {
@@ -187,15 +156,14 @@ void MetaballRenderer::buildPyramid(const Rect& r) {
   if (!s_.cull) return;
   attach(target_.colour());
   gl_.UseProgram(reduce_);
-  gl_.Uniform4i(gl_.GetUniformLocation(reduce_, "u_rect"), r.x, r.y, r.w, r.h);
-  int level_loc = gl_.GetUniformLocation(reduce_, "u_level");
+  reduce_.set("u_rect", glm::ivec4(r.x, r.y, r.w, r.h));
   gl_.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   for (int level = 1; level < levels_; ++level) {
     int x0 = r.x >> level, y0 = r.y >> level;
     int x1 = (r.x + r.w - 1) >> level, y1 = (r.y + r.h - 1) >> level;
     gl_.Viewport(0, 0, std::max(1, width_ >> level), std::max(1, height_ >> level));
     gl_.Scissor(x0, y0, x1 - x0 + 1, y1 - y0 + 1);
-    gl_.Uniform1i(level_loc, level);
+    reduce_.set("u_level", level);
     gl_.BindImageTexture(kBelowImage, pyramid_, level - 1, GL_FALSE, 0, GL_READ_ONLY, GL_RG32F);
     gl_.BindImageTexture(kLevelImage, pyramid_, level, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
     fullscreen(reduce_);
@@ -204,13 +172,13 @@ void MetaballRenderer::buildPyramid(const Rect& r) {
   gl_.Scissor(r.x, r.y, r.w, r.h);
 }
 
-void MetaballRenderer::drawBillboards(unsigned program, const GpuBrick& b, const glm::mat4& vp,
-                                      const Rect& r, float cull_pad) {
+void MetaballRenderer::drawBillboards(const GlProgram& program, const GpuBrick& b,
+                                      const glm::mat4& vp, const Rect& r, float cull_pad) {
   gl_.UseProgram(program);
-  gl_.UniformMatrix4fv(gl_.GetUniformLocation(program, "u_view_proj"), 1, GL_FALSE, &vp[0][0]);
-  gl_.Uniform1i(gl_.GetUniformLocation(program, "u_levels"), s_.cull ? levels_ : 0);
-  gl_.Uniform1f(gl_.GetUniformLocation(program, "u_cull_pad"), cull_pad);
-  gl_.Uniform4i(gl_.GetUniformLocation(program, "u_rect"), r.x, r.y, r.w, r.h);
+  program.set("u_view_proj", vp);
+  program.set("u_levels", s_.cull ? levels_ : 0);
+  program.set("u_cull_pad", cull_pad);
+  program.set("u_rect", glm::ivec4(r.x, r.y, r.w, r.h));
   gl_.BindVertexArray(vao_);
   gl_.BindBuffer(GL_ARRAY_BUFFER, b.vbo);
   gl_.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
@@ -228,10 +196,9 @@ SurfaceBrick MetaballRenderer::render(int handle, const Camera& cam, double near
   if (r.empty()) return out;
 
   const glm::mat4 vp = cam.viewProjection(near_plane, far_plane);
-  for (unsigned p : {advance_.id(), potential_.id(), init_.id(), window_.id(), step_.id(),
-                     secant_.id(), bracket_.id(), bracket_base_.id(), shade_.id()})
-    setCommonUniforms(p, cam, b);
-  const int mode_loc = gl_.GetUniformLocation(potential_, "u_mode");
+  for (const GlProgram* p : {&advance_, &potential_, &init_, &window_, &step_, &secant_, &bracket_,
+                             &bracket_base_, &shade_})
+    setCommonUniforms(*p, cam, b);
 
   gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
   gl_.Viewport(0, 0, width_, height_);
@@ -264,7 +231,8 @@ SurfaceBrick MetaballRenderer::render(int handle, const Camera& cam, double near
   };
   // The potential passes write two RGBA targets (samples 0-3 and 4-7 of a window); every other
   // pass draws into attachment 0 only.
-  auto blendPass = [&](unsigned target, float clear, GLenum equation, unsigned program, float pad) {
+  auto blendPass = [&](unsigned target, float clear, GLenum equation, const GlProgram& program,
+                       float pad) {
     attach(target);
     const bool two = target == pot_;
     gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, two ? pot2_ : 0, 0);
@@ -296,7 +264,7 @@ SurfaceBrick MetaballRenderer::render(int handle, const Camera& cam, double near
     imagePass(window_);
     buildPyramid(r);
     gl_.UseProgram(potential_);
-    gl_.Uniform1i(mode_loc, 0);
+    potential_.set("u_mode", 0);
     blendPass(pot_, 0.0f, GL_FUNC_ADD, potential_, float(s_.h));
     attach(target_.colour());
     gl_.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
@@ -318,7 +286,7 @@ SurfaceBrick MetaballRenderer::render(int handle, const Camera& cam, double near
     imagePass(bracket_base_);
     buildPyramid(r);
     gl_.UseProgram(potential_);
-    gl_.Uniform1i(mode_loc, 1);
+    potential_.set("u_mode", 1);
     blendPass(pot_, 0.0f, GL_FUNC_ADD, potential_, float(s_.h));
     imagePass(bracket_);
   }
@@ -326,7 +294,7 @@ SurfaceBrick MetaballRenderer::render(int handle, const Camera& cam, double near
   buildPyramid(r);
   // 4: gradient at the surface, then shading.
   gl_.UseProgram(potential_);
-  gl_.Uniform1i(mode_loc, 2);
+  potential_.set("u_mode", 2);
   blendPass(pot_, 0.0f, GL_FUNC_ADD, potential_, float(s_.h));
   attach(target_.colour());
   gl_.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);

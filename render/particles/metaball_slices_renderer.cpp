@@ -13,27 +13,9 @@
 
 namespace sortlast {
 
-namespace {
-
-unsigned upload(const GlApi& gl, const void* data, size_t bytes) {
-  unsigned b = 0;
-  gl.GenBuffers(1, &b);
-  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, b);
-  // An empty list still needs a buffer to bind: 4 bytes.
-  gl.BufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(bytes > 0 ? bytes : 4),
-                bytes > 0 ? data : nullptr, GL_STATIC_DRAW);
-  return b;
-}
-
-}  // namespace
-
 MetaballSlicesRenderer::MetaballSlicesRenderer(const GlContext& ctx, int width, int height,
                                                const MetaballSettings& settings)
-    : gl_(ctx.gl()), s_(settings), target_(ctx.gl(), width, height) {
-  gl_.GenVertexArrays(1, &empty_vao_);
-  GLint max_block = 0;
-  gl_.GetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
-  max_block_bytes_ = max_block > 0 ? max_block : (1LL << 27);
+    : MetaballBase(ctx, width, height, settings, "metaball slices") {
   // Both shaders with the slot side filled in.
   const std::string side = std::to_string(kSliceSlotSide);
   program_ = GlProgram(gl_, linkProgram(gl_, ShaderSource().add(glsl::fullscreen_vert),
@@ -45,18 +27,6 @@ MetaballSlicesRenderer::MetaballSlicesRenderer(const GlContext& ctx, int width, 
       gl_, linkComputeProgram(
                gl_, ShaderSource().define("SIDE", side).add(glsl::metaball_slices_splat_comp)));
   gl_.check("metaball slices renderer setup");
-}
-
-MetaballSlicesRenderer::~MetaballSlicesRenderer() {
-  for (auto& b : bricks_)
-    for (unsigned buf : {b.slot_of, b.samples})
-      if (buf) gl_.DeleteBuffers(1, &buf);
-  gl_.DeleteVertexArrays(1, &empty_vao_);
-}
-
-void MetaballSlicesRenderer::resize(int width, int height) {
-  target_.resize(width, height);
-  gl_.check("metaball slices renderer resize");
 }
 
 void MetaballSlicesRenderer::setSettings(const MetaballSettings& settings) {
@@ -105,26 +75,26 @@ void MetaballSlicesRenderer::splat(GpuBrick& g, const SliceLattice& L,
     std::memcpy(&w, &k, sizeof w);
     items[i] = glm::vec4(particles[k], w);
   }
-  unsigned offsets = upload(gl_, L.offsets.data(), L.offsets.size() * 4);
-  unsigned list = upload(gl_, items.data(), items.size() * sizeof(glm::vec4));
-  unsigned voxels = upload(gl_, L.slot_voxel.data(), L.slot_voxel.size() * sizeof(glm::ivec4));
-  g.slot_of = upload(gl_, L.slot_of.data(), L.slot_of.size() * 4);
-  g.samples = upload(gl_, nullptr, 0);
+  unsigned offsets = uploadStorage(L.offsets.data(), L.offsets.size() * 4);
+  unsigned list = uploadStorage(items.data(), items.size() * sizeof(glm::vec4));
+  unsigned voxels = uploadStorage(L.slot_voxel.data(), L.slot_voxel.size() * sizeof(glm::ivec4));
+  g.slot_of = keepStorage(L.slot_of.data(), L.slot_of.size() * 4);
+  g.samples = keepStorage(nullptr, 0);
   gl_.BindBuffer(GL_SHADER_STORAGE_BUFFER, g.samples);
   gl_.BufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(g.slots * kSliceSlotPoints * sizeof(float)),
                  nullptr, GL_STATIC_DRAW);
 
   gl_.UseProgram(splat_);
-  gl_.Uniform1f(gl_.GetUniformLocation(splat_, "u_h"), float(s_.h));
-  gl_.Uniform1f(gl_.GetUniformLocation(splat_, "u_spacing"), L.spacing);
-  gl_.Uniform1ui(gl_.GetUniformLocation(splat_, "u_slots"), unsigned(g.slots));
+  splat_.set("u_h", float(s_.h));
+  splat_.set("u_spacing", L.spacing);
+  splat_.set("u_slots", unsigned(g.slots));
   gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, offsets);
   gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, list);
   gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, voxels);
   gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, g.samples);
   // At most 65,535 work groups per dispatch (the minimum GL guarantees).
   for (size_t first = 0; first < g.slots; first += 65535) {
-    gl_.Uniform1ui(gl_.GetUniformLocation(splat_, "u_first"), unsigned(first));
+    splat_.set("u_first", unsigned(first));
     gl_.DispatchCompute(unsigned(std::min<size_t>(65535, g.slots - first)), 1, 1);
   }
   gl_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -135,28 +105,14 @@ void MetaballSlicesRenderer::splat(GpuBrick& g, const SliceLattice& L,
 SurfaceBrick MetaballSlicesRenderer::render(int handle, const Camera& cam, double, double,
                                             bool want_surface) {
   const GpuBrick& b = bricks_.at(size_t(handle));
-  SurfaceBrick out;
-  if (b.slots == 0) return out;
-  Rect r = screenRectOf(cam, b.bound);
-  if (r.empty()) return out;
-
-  const unsigned p = program_;
-  setRayUniforms(gl_, p, cam, target_.width(), target_.height(), s_, b.clip);
-  gl_.Uniform1f(gl_.GetUniformLocation(p, "u_spacing"), float(s_.slice_spacing * s_.h));
-  gl_.Uniform4i(gl_.GetUniformLocation(p, "u_voxel_lo"), b.voxel_lo.x, b.voxel_lo.y, b.voxel_lo.z,
-                0);
-  gl_.Uniform4i(gl_.GetUniformLocation(p, "u_dims"), b.dims.x, b.dims.y, b.dims.z, 0);
-  gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, b.slot_of);
-  gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, b.samples);
-
-  target_.bindForDrawing(r, "metaball slices");
-  gl_.BindVertexArray(empty_vao_);
-  gl_.DrawArrays(GL_TRIANGLES, 0, 3);
-
-  target_.readBack(r, want_surface, out);
-  out.rounds = 1;
-  gl_.check("metaball slices render");
-  return out;
+  if (b.slots == 0) return {};
+  return drawOnePass(program_, b, cam, want_surface, [&] {
+    program_.set("u_spacing", float(s_.slice_spacing * s_.h));
+    program_.set("u_voxel_lo", glm::ivec4(b.voxel_lo, 0));
+    program_.set("u_dims", glm::ivec4(b.dims, 0));
+    gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, b.slot_of);
+    gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, b.samples);
+  });
 }
 
 }  // namespace sortlast

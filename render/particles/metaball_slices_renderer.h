@@ -13,21 +13,18 @@
 // surface is less exact than theirs; tests/mpi/particles_slices.sh states by how much.
 #include <vector>
 
-#include "render/particles/metaball_renderer.h"
+#include "render/gl/gl_context.h"
+#include "render/gl/gl_program.h"
+#include "render/particles/metaball_base.h"
 #include "render/particles/metaball_slices.h"
-#include "render/particles/surface_target.h"
 
 namespace sortlast {
 
-class MetaballSlicesRenderer : public ParticleRenderer {
+class MetaballSlicesRenderer : public MetaballBase {
  public:
   MetaballSlicesRenderer(const GlContext& ctx, int width, int height,
                          const MetaballSettings& settings);
-  ~MetaballSlicesRenderer() override;
-  MetaballSlicesRenderer(const MetaballSlicesRenderer&) = delete;
-  MetaballSlicesRenderer& operator=(const MetaballSlicesRenderer&) = delete;
 
-  void resize(int width, int height) override;
   // h and the slice spacing must stay (the lattices and the ghosts depend on them):
   // std::logic_error otherwise.
   void setSettings(const MetaballSettings& settings) override;
@@ -38,24 +35,16 @@ class MetaballSlicesRenderer : public ParticleRenderer {
   // near_plane and far_plane are not needed (no rasterised geometry); kept for the interface.
   SurfaceBrick render(int handle, const Camera& cam, double near_plane, double far_plane,
                       bool want_surface = false) override;
-  unsigned surfaceTexture() const override { return target_.surface(); }
-  unsigned colourTexture() const override { return target_.colour(); }
 
  private:
-  struct GpuBrick {
-    Box3 clip;
-    Box3 bound;  // the box of the brick's voxels, cut to the clip box
+  // bound: the box of the brick's voxels, cut to the clip box.
+  struct GpuBrick : BrickBox {
     glm::ivec3 voxel_lo{0}, dims{0};
-    unsigned slot_of = 0, samples = 0;  // SSBOs
+    unsigned slot_of = 0, samples = 0;  // SSBOs, kept by the base
     size_t slots = 0;
   };
   void splat(GpuBrick& g, const SliceLattice& L, const std::vector<glm::vec3>& particles);
 
-  const GlApi& gl_;
-  MetaballSettings s_;
-  long long max_block_bytes_ = 0;
-  SurfaceTarget target_;
-  unsigned empty_vao_ = 0;
   GlProgram program_, splat_;  // the ray pass; the splat (compute)
   std::vector<GpuBrick> bricks_;
 };

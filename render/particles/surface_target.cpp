@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "render/particles/metaball_renderer.h"
+#include "render/particles/particle_renderer.h"
 
 namespace sortlast {
 

@@ -1,7 +1,6 @@
 #include "render/surfaces/subdiv_renderer.h"
 
 #include <glm/geometric.hpp>
-#include <glm/gtc/type_ptr.hpp>
 #include <glm/vector_relational.hpp>
 
 #include <algorithm>
@@ -226,8 +225,7 @@ void SubdivRenderer::draw(const Camera& cam, const Box3& clip, double near_plane
     if (!g.two_sided) gl_.Enable(GL_CULL_FACE);
     gl_.FrontFace(GL_CW);
     gl_.UseProgram(coarse_program_);
-    gl_.UniformMatrix4fv(gl_.GetUniformLocation(coarse_program_, "view_projection"), 1, GL_FALSE,
-                         glm::value_ptr(vp));
+    coarse_program_.set("view_projection", vp);
     gl_.BindVertexArray(g.vao);
     gl_.DrawArrays(GL_TRIANGLES, 0, g.vertex_count);
     gl_.Disable(GL_DEPTH_TEST);
@@ -246,34 +244,30 @@ void SubdivRenderer::draw(const Camera& cam, const Box3& clip, double near_plane
     // after a texture barrier (what the surfaces before this one wrote).
     gl_.TextureBarrier();
     gl_.UseProgram(program_);
-    auto loc = [&](const char* name) { return gl_.GetUniformLocation(program_, name); };
-    auto vec3 = [&](const char* name, const glm::dvec3& x) {
-      gl_.Uniform3f(loc(name), float(x.x), float(x.y), float(x.z));
-    };
-    vec3("eye", cam.position);
-    vec3("ray_forward", cam.forward());
-    vec3("ray_right", cam.right() * (th * aspect));
-    vec3("ray_up", cam.trueUp() * th);
-    gl_.Uniform2f(loc("image_size"), float(cam.width), float(cam.height));
-    vec3("clip_lo", clip.lo);
-    vec3("clip_hi", clip.hi);
-    gl_.Uniform1i(loc("coarse"), 0);
-    gl_.Uniform1i(loc("nearest"), 1);
+    program_.set("eye", glm::vec3(cam.position));
+    program_.set("ray_forward", glm::vec3(cam.forward()));
+    program_.set("ray_right", glm::vec3(cam.right() * (th * aspect)));
+    program_.set("ray_up", glm::vec3(cam.trueUp() * th));
+    program_.set("image_size", glm::vec2(float(cam.width), float(cam.height)));
+    program_.set("clip_lo", glm::vec3(clip.lo));
+    program_.set("clip_hi", glm::vec3(clip.hi));
+    program_.set("coarse", 0);
+    program_.set("nearest", 1);
     gl_.ActiveTexture(GL_TEXTURE0);
     gl_.BindTexture(GL_TEXTURE_2D, coarse_);
     gl_.ActiveTexture(GL_TEXTURE1);
     gl_.BindTexture(GL_TEXTURE_2D, surface_);
     gl_.ActiveTexture(GL_TEXTURE0);
     const SubdivShading& sh = g.shading;
-    vec3("colour", sh.colour);
-    vec3("centre", g.centre);
-    vec3("light_dir", glm::normalize(sh.light_direction));
-    vec3("stripe_axis", stripeAxis(sh.light_direction));
-    gl_.Uniform1f(loc("size"), float(g.size));
-    gl_.Uniform1f(loc("stripe_width"), float(sh.stripe_width));
-    gl_.Uniform1i(loc("stripes"), sh.stripes);
-    gl_.Uniform1i(loc("reflection_lines"), sh.mode == "reflection_lines" ? 1 : 0);
-    gl_.Uniform1i(loc("newton_steps"), sh.newton_steps);
+    program_.set("colour", glm::vec3(sh.colour));
+    program_.set("centre", glm::vec3(g.centre));
+    program_.set("light_dir", glm::vec3(glm::normalize(sh.light_direction)));
+    program_.set("stripe_axis", glm::vec3(stripeAxis(sh.light_direction)));
+    program_.set("size", float(g.size));
+    program_.set("stripe_width", float(sh.stripe_width));
+    program_.set("stripes", sh.stripes);
+    program_.set("reflection_lines", sh.mode == "reflection_lines" ? 1 : 0);
+    program_.set("newton_steps", sh.newton_steps);
     for (int b = 0; b < 4; ++b) gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, b, g.ssbo[b]);
     gl_.BindVertexArray(screen_vao_);
     gl_.DrawArrays(GL_TRIANGLES, 0, 3);

@@ -267,51 +267,46 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
     // Adaptive blocks cannot be shaded (raycast_sample.frag.glsl sampleAt); the scene refuses it.
     if (g.adaptive && shading_.enabled)
       throw std::logic_error("ray caster: gradient shading of an adaptive brick");
-    const unsigned program =
+    const GlProgram& program =
         programs_.get((g.adaptive ? kAdaptive : 0) | (preint ? kPreintegrated : 0) |
                       (shading_.enabled ? kShading : 0) | (float_filter_ ? kFloatFilter : 0) |
                       (glowing ? kGlow : 0));
     gl_.UseProgram(program);
-    auto u3 = [&](const char* name, const glm::dvec3& v) {
-      gl_.Uniform3f(gl_.GetUniformLocation(program, name), float(v.x), float(v.y), float(v.z));
-    };
-    setPixelRayUniforms(gl_, program, cam);
+    setPixelRayUniforms(program, cam);
     if (g.adaptive) {
-      u3("u_index_scale", glm::dvec3(g.lookup.index_scale));
-      u3("u_index_offset", glm::dvec3(g.lookup.index_offset));
-      u3("u_block_cells", glm::dvec3(g.lookup.block_cells));
-      u3("u_atlas_inv", glm::dvec3(g.lookup.atlas_inv));
-      gl_.Uniform1i(gl_.GetUniformLocation(program, "u_blocks"), 5);
-      gl_.Uniform1i(gl_.GetUniformLocation(program, "u_own_steps"),
-                    settings_.own_resolution_steps ? 1 : 0);
+      program.set("u_index_scale", g.lookup.index_scale);
+      program.set("u_index_offset", g.lookup.index_offset);
+      program.set("u_block_cells", g.lookup.block_cells);
+      program.set("u_atlas_inv", g.lookup.atlas_inv);
+      program.set("u_blocks", 5);
+      program.set("u_own_steps", settings_.own_resolution_steps ? 1 : 0);
       gl_.ActiveTexture(GL_TEXTURE5);
       gl_.BindTexture(GL_TEXTURE_3D, g.lookup.table);
     } else {
-      u3("u_tex_scale", glm::dvec3(b.tex_scale));
-      u3("u_tex_offset", glm::dvec3(b.tex_offset));
+      program.set("u_tex_scale", b.tex_scale);
+      program.set("u_tex_offset", b.tex_offset);
     }
-    gl_.Uniform1f(gl_.GetUniformLocation(program, "u_delta"), float(spacing));
-    gl_.Uniform1f(gl_.GetUniformLocation(program, "u_ert"),
-                  settings_.ert_threshold < 1.0 ? float(settings_.ert_threshold) : 2.0f);
-    gl_.Uniform1i(gl_.GetUniformLocation(program, "u_volume"), 0);
-    gl_.Uniform1i(gl_.GetUniformLocation(program, "u_surface"), 2);
-    gl_.Uniform1i(gl_.GetUniformLocation(program, "u_planes"), 3);
-    gl_.Uniform1i(gl_.GetUniformLocation(program, "u_skip"), 4);
-    gl_.Uniform1i(gl_.GetUniformLocation(program, "u_has_surface"), has_surface ? 1 : 0);
+    program.set("u_delta", float(spacing));
+    program.set("u_ert", settings_.ert_threshold < 1.0 ? float(settings_.ert_threshold) : 2.0f);
+    program.set("u_volume", 0);
+    program.set("u_surface", 2);
+    program.set("u_planes", 3);
+    program.set("u_skip", 4);
+    program.set("u_has_surface", has_surface ? 1 : 0);
     table_.use(program);
     if (preint) table_.usePreintegrated(program, spacing);  // segments delta long
-    if (shading_.enabled) setShadingUniforms(gl_, program, shading_, b, table_.function());
+    if (shading_.enabled) setShadingUniforms(program, shading_, b, table_.function());
     if (has_surface) {
       const Rect& sr = surface->rect;
-      gl_.Uniform4i(gl_.GetUniformLocation(program, "u_surface_rect"), sr.x, sr.y, sr.w, sr.h);
+      program.set("u_surface_rect", glm::ivec4(sr.x, sr.y, sr.w, sr.h));
       gl_.ActiveTexture(GL_TEXTURE2);
       gl_.BindTexture(GL_TEXTURE_2D, surface->surface_texture);
     }
     if (glowing) {
-      u3("u_glow_lo", glow->box.lo);
-      u3("u_glow_hi", glow->box.hi);
-      u3("u_glow_hi_open", glm::dvec3(glm::lessThan(glow->box.hi, glow->whole.hi)));
-      gl_.Uniform1f(gl_.GetUniformLocation(program, "u_glow_intensity"), glow->intensity);
+      program.set("u_glow_lo", glm::vec3(glow->box.lo));
+      program.set("u_glow_hi", glm::vec3(glow->box.hi));
+      program.set("u_glow_hi_open", glm::vec3(glm::lessThan(glow->box.hi, glow->whole.hi)));
+      program.set("u_glow_intensity", glow->intensity);
       bindGlowEmitters(gl_, program, *glow, 7);  // 6: the pre-integration table
     }
     gl_.ActiveTexture(GL_TEXTURE3);

@@ -40,6 +40,7 @@
 #include "render/volume/step_rule.h"
 #include "render/volume/transfer_table.h"
 #include "render/volume/volume_brick.h"
+#include "render/volume/volume_renderer.h"
 
 namespace sortlast {
 
@@ -53,28 +54,28 @@ struct RaycastSettings {
   double adaptive_tolerance = 0.02;
 };
 
-class RaycastRenderer {
+class RaycastRenderer : public VolumeRenderer {
  public:
   // block_cells: cells per axis of the skipping (and step) blocks, aligned to the volume.
   // pool (optional, outliving this renderer): where the bricks' textures come from and go back to.
   RaycastRenderer(const GlContext& ctx, int width, int height, int block_cells,
                   const RaycastSettings& settings, VolumeTexturePool* pool = nullptr);
-  ~RaycastRenderer();
+  ~RaycastRenderer() override;
   RaycastRenderer(const RaycastRenderer&) = delete;
   RaycastRenderer& operator=(const RaycastRenderer&) = delete;
 
   // With `preintegrated`, rays composite pre-integrated segments
   // (render/volume/raycast_march.frag.glsl).
-  void setTransferFunction(const TransferFunction& tf, int table_size, bool preintegrated = false);
+  void setTransferFunction(const TransferFunction& tf, int table_size, bool preintegrated = false) override;
   // A new image size for the next frames (the bricks' textures stay).
-  void resize(int width, int height) { target_.resize(width, height); }
+  void resize(int width, int height) override { target_.resize(width, height); }
   // Early ray termination and adaptive stepping can change between frames.
   void setSettings(const RaycastSettings& settings) { settings_ = settings; }
   // Gradient shading (transfer/shading.h) for the next frames; not for adaptive bricks.
-  void setShading(const Shading& shading) { shading_ = shading; }
+  void setShading(const Shading& shading) override { shading_ = shading; }
   // Uploads a brick's stored samples (x fastest); returns a handle for render().
-  int addBrick(const Brick& brick, const GridGeometry& grid, const std::vector<float>& samples);
-  int addBrick(const Brick& brick, const GridGeometry& grid, const BrickSamples& samples);
+  int addBrick(const Brick& brick, const GridGeometry& grid, const std::vector<float>& samples) override;
+  int addBrick(const Brick& brick, const GridGeometry& grid, const BrickSamples& samples) override;
   // Uploads the adaptive blocks a brick draws; returns a handle for render().
   int addAdaptiveBrick(const Brick& brick, const GridGeometry& grid,
                        const AdaptiveBrickBlocks& blocks);
@@ -92,8 +93,13 @@ class RaycastRenderer {
   // program, render/volume/raycast_glow.frag.glsl), the rectangle covers that box, and the image
   // comes back in float.
   RenderedBrick render(int handle, const Camera& cam, double spacing, double near_plane,
-                       double far_plane, const SurfaceLayer* surface = nullptr,
-                       const GlowPass* glow = nullptr);
+                       double far_plane, const SurfaceLayer* surface, const GlowPass* glow);
+  // The same without glow (the volume renderers' common call).
+  RenderedBrick render(int handle, const Camera& cam, double spacing, double near_plane,
+                       double far_plane, const SurfaceLayer* surface = nullptr) override {
+    return render(handle, cam, spacing, near_plane, far_plane, surface, nullptr);
+  }
+  RaycastRenderer* raycaster() override { return this; }
 
  private:
   // The adaptive lookup's per-brick inputs (render/volume/adaptive_gpu_brick.h).

@@ -102,26 +102,26 @@ RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spac
   if (!tris.empty()) {
     gl_.Enable(GL_BLEND);
     gl_.BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // premultiplied "over", back to front
-    const unsigned program =
+    const GlProgram& program =
         programs_.get((preint ? kPreintegrated : 0) |
                       (shading_.enabled ? kShading : 0) | (float_filter_ ? kFloatFilter : 0));
     gl_.UseProgram(program);
     glm::mat4 vp = cam.viewProjection(near_plane, far_plane);
-    gl_.UniformMatrix4fv(gl_.GetUniformLocation(program, "u_view_proj"), 1, GL_FALSE, &vp[0][0]);
-    gl_.Uniform1i(gl_.GetUniformLocation(program, "u_volume"), 0);
-    gl_.Uniform3f(gl_.GetUniformLocation(program, "u_tex_scale"), b.tex_scale.x, b.tex_scale.y, b.tex_scale.z);
-    gl_.Uniform3f(gl_.GetUniformLocation(program, "u_tex_offset"), b.tex_offset.x, b.tex_offset.y, b.tex_offset.z);
-    gl_.Uniform3f(gl_.GetUniformLocation(program, "u_eye"), float(eye.x), float(eye.y), float(eye.z));
-    gl_.Uniform3f(gl_.GetUniformLocation(program, "u_forward"), float(fwd.x), float(fwd.y), float(fwd.z));
-    gl_.Uniform1f(gl_.GetUniformLocation(program, "u_spacing"), float(spacing));
+    program.set("u_view_proj", vp);
+    program.set("u_volume", 0);
+    program.set("u_tex_scale", b.tex_scale);
+    program.set("u_tex_offset", b.tex_offset);
+    program.set("u_eye", glm::vec3(eye));
+    program.set("u_forward", glm::vec3(fwd));
+    program.set("u_spacing", float(spacing));
     table_.use(program);
     if (preint) table_.usePreintegrated(program, spacing);  // L0: the slice spacing
-    if (shading_.enabled) setShadingUniforms(gl_, program, shading_, b, table_.function());
-    gl_.Uniform1i(gl_.GetUniformLocation(program, "u_surface"), 2);
-    gl_.Uniform1i(gl_.GetUniformLocation(program, "u_has_surface"), has_surface ? 1 : 0);
+    if (shading_.enabled) setShadingUniforms(program, shading_, b, table_.function());
+    program.set("u_surface", 2);
+    program.set("u_has_surface", has_surface ? 1 : 0);
     if (has_surface) {
       const Rect& sr = surface->rect;
-      gl_.Uniform4i(gl_.GetUniformLocation(program, "u_surface_rect"), sr.x, sr.y, sr.w, sr.h);
+      program.set("u_surface_rect", glm::ivec4(sr.x, sr.y, sr.w, sr.h));
       gl_.ActiveTexture(GL_TEXTURE2);
       gl_.BindTexture(GL_TEXTURE_2D, surface->surface_texture);
     }

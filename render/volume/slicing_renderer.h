@@ -22,32 +22,33 @@
 #include "render/gl/gl_context.h"
 #include "render/volume/transfer_table.h"
 #include "render/volume/volume_brick.h"
+#include "render/volume/volume_renderer.h"
 
 namespace sortlast {
 
-class SlicingRenderer {
+class SlicingRenderer : public VolumeRenderer {
  public:
   SlicingRenderer(const GlContext& ctx, int width, int height, int block_cells = 64);
-  ~SlicingRenderer();
+  ~SlicingRenderer() override;
   SlicingRenderer(const SlicingRenderer&) = delete;
   SlicingRenderer& operator=(const SlicingRenderer&) = delete;
 
   // With `preintegrated`, fragments draw pre-integrated segments (render/volume/slicing.frag.glsl).
-  void setTransferFunction(const TransferFunction& tf, int table_size, bool preintegrated = false);
+  void setTransferFunction(const TransferFunction& tf, int table_size, bool preintegrated = false) override;
   // A new image size for the next frames (the bricks' textures stay).
-  void resize(int width, int height) { target_.resize(width, height); }
+  void resize(int width, int height) override { target_.resize(width, height); }
   // Gradient shading (transfer/shading.h) for the next frames.
-  void setShading(const Shading& shading) { shading_ = shading; }
+  void setShading(const Shading& shading) override { shading_ = shading; }
   // Uploads a brick's stored samples (x fastest); returns a handle for render(). The samples'
   // min and max are kept so invisible bricks can be skipped.
-  int addBrick(const Brick& brick, const GridGeometry& grid, const std::vector<float>& samples);
-  int addBrick(const Brick& brick, const GridGeometry& grid, const BrickSamples& samples);
+  int addBrick(const Brick& brick, const GridGeometry& grid, const std::vector<float>& samples) override;
+  int addBrick(const Brick& brick, const GridGeometry& grid, const BrickSamples& samples) override;
 
   // Renders one brick for `cam`; `spacing` is the world distance between slice planes and
   // [near_plane, far_plane] must enclose the whole volume (the same for all bricks of a frame).
   // Slice fragments at or behind `surface` are not drawn.
   RenderedBrick render(int handle, const Camera& cam, double spacing, double near_plane,
-                       double far_plane, const SurfaceLayer* surface = nullptr);
+                       double far_plane, const SurfaceLayer* surface = nullptr) override;
 
  private:
   const GlApi& gl_;

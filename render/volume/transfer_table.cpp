@@ -44,18 +44,17 @@ bool TransferTable::visible(float vmin, float vmax) const {
   return tf_.tableSpanVisible(entries, vmin, vmax);
 }
 
-void TransferTable::use(unsigned program) const {
-  gl_.Uniform1i(gl_.GetUniformLocation(program, "u_table"), 1);
+void TransferTable::use(const GlProgram& program) const {
+  program.set("u_table", 1);
   double range = tf_.rangeHi() - tf_.rangeLo();
-  gl_.Uniform2f(gl_.GetUniformLocation(program, "u_value_map"), float(1.0 / range),
-                float(-tf_.rangeLo() / range));
+  program.set("u_value_map", glm::vec2(float(1.0 / range), float(-tf_.rangeLo() / range)));
   double n = size_;
-  gl_.Uniform2f(gl_.GetUniformLocation(program, "u_table_map"), float((n - 1) / n), float(0.5 / n));
+  program.set("u_table_map", glm::vec2(float((n - 1) / n), float(0.5 / n)));
   gl_.ActiveTexture(GL_TEXTURE1);
   gl_.BindTexture(GL_TEXTURE_1D, texture_);
 }
 
-void TransferTable::usePreintegrated(unsigned program, double base_length) {
+void TransferTable::usePreintegrated(const GlProgram& program, double base_length) {
   const int n = PreintegrationTable::kDefaultSize;
   gl_.ActiveTexture(GL_TEXTURE6);
   gl_.BindTexture(GL_TEXTURE_2D, texture2d_);
@@ -84,10 +83,10 @@ void TransferTable::usePreintegrated(unsigned program, double base_length) {
     built_length_ = base_length;
     built_size_ = n;
   }
-  gl_.Uniform1i(gl_.GetUniformLocation(program, "u_preint"), 6);
+  program.set("u_preint", 6);
   const double m = n;
-  gl_.Uniform2f(gl_.GetUniformLocation(program, "u_preint_map"), float((m - 1) / m), float(0.5 / m));
-  gl_.Uniform1f(gl_.GetUniformLocation(program, "u_preint_length"), float(base_length));
+  program.set("u_preint_map", glm::vec2(float((m - 1) / m), float(0.5 / m)));
+  program.set("u_preint_length", float(base_length));
 }
 
 }  // namespace sortlast

@@ -14,6 +14,7 @@
 #include "transfer/preintegration.h"
 #include "transfer/transfer_function.h"
 #include "render/gl/gl_api.h"
+#include "render/gl/gl_program.h"
 
 namespace sortlast {
 
@@ -38,10 +39,10 @@ class TransferTable {
   // 2D one too: a segment between two values in the range).
   bool visible(float vmin, float vmax) const;
   // Binds the table to texture unit 1 and sets `program`'s u_table, u_value_map and u_table_map.
-  void use(unsigned program) const;
+  void use(const GlProgram& program) const;
   // Builds the 2D table for segments of `base_length` (world units) if it is stale, binds it to
   // texture unit 6 and sets `program`'s u_preint, u_preint_map and u_preint_length.
-  void usePreintegrated(unsigned program, double base_length);
+  void usePreintegrated(const GlProgram& program, double base_length);
   const TransferFunction& function() const { return tf_; }
 
  private:

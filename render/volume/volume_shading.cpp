@@ -5,16 +5,15 @@
 
 namespace sortlast {
 
-void setShadingUniforms(const GlApi& gl, unsigned program, const Shading& s, const VolumeBrick& b,
+void setShadingUniforms(const GlProgram& program, const Shading& s, const VolumeBrick& b,
                         const TransferFunction& tf) {
-  auto at = [&](const char* name) { return gl.GetUniformLocation(program, name); };
-  gl.Uniform3f(at("u_phong"), float(s.ambient), float(s.diffuse), float(s.specular));
-  gl.Uniform1f(at("u_shininess"), float(s.shininess));
+  program.set("u_phong", glm::vec3(float(s.ambient), float(s.diffuse), float(s.specular)));
+  program.set("u_shininess", float(s.shininess));
   const glm::dvec3 voxel = 1.0 / glm::dvec3(b.brick.stored.size());
-  gl.Uniform3f(at("u_voxel_tex"), float(voxel.x), float(voxel.y), float(voxel.z));
+  program.set("u_voxel_tex", glm::vec3(voxel));
   const glm::dvec3 scale = 0.5 / b.spacing;
-  gl.Uniform3f(at("u_gradient_scale"), float(scale.x), float(scale.y), float(scale.z));
-  gl.Uniform1f(at("u_flat_gradient"), float(flatGradient(tf.rangeLo(), tf.rangeHi(), b.spacing)));
+  program.set("u_gradient_scale", glm::vec3(scale));
+  program.set("u_flat_gradient", float(flatGradient(tf.rangeLo(), tf.rangeHi(), b.spacing)));
 }
 
 bool floatFilter(const GlDeviceInfo& device) {

@@ -15,6 +15,7 @@
 #include "transfer/shading.h"
 #include "transfer/transfer_function.h"
 #include "render/gl/gl_api.h"
+#include "render/gl/gl_program.h"
 #include "render/gl/gl_context.h"
 #include "render/volume/volume_brick.h"
 
@@ -29,7 +30,7 @@ namespace sortlast {
 // 512^2).
 //
 // Sets the shaded program's uniforms for brick `b`.
-void setShadingUniforms(const GlApi& gl, unsigned program, const Shading& s, const VolumeBrick& b,
+void setShadingUniforms(const GlProgram& program, const Shading& s, const VolumeBrick& b,
                         const TransferFunction& tf);
 
 // Whether the volume programs filter the brick texture in float (FLOAT_FILTER in
