@@ -1,4 +1,4 @@
-// bench/bench_glow.cpp's pass: render/glow/glow_pass.frag.glsl without the surface layer,
+// bench/glow/main.cpp's pass: render/glow/glow_pass.frag.glsl without the surface layer,
 // tone-mapped here because this benchmark has no compositing (one brick, the final frame). After
 // glow_segment, glow_emitters, glow_along and glow_pixel_ray (render/glow/).
 uniform vec3 u_box_lo, u_box_hi;

@@ -2,7 +2,7 @@
 // emitter's exact segment integral (render/glow/glow_segment.glsl) over each pixel's ray inside the
 // glow box, on llvmpipe; then the frame's PSNR (8-bit, after the tone map) against the same
 // integral in double on the CPU. What one brick's glow pass (render/glow/glow_renderer.h) costs
-// with d = 1, without the pipeline around it (scripts/bench-glow measures that too, through
+// with d = 1, without the pipeline around it (bench/glow/run measures that too, through
 // `sortlast render`).
 //
 // Usage: bench_glow EMITTERS SIZE FRAMES   -> one CSV line:
@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "bench/glsl_files.h"  // generated from bench/*.glsl (cmake/embed_shaders.cmake)
+#include "bench/glow/glsl_files.h"  // generated from bench/glow/*.glsl (cmake/embed_shaders.cmake)
 #include "common/camera.h"
 #include "glow/glow_integral.h"
 #include "render/gl/gl_context.h"

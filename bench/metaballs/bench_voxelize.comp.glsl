@@ -1,4 +1,4 @@
-// bench/bench_metaball_slices.cpp's GL bit voxelization: the same test as
+// bench/metaballs/metaball_slices.cpp's GL bit voxelization: the same test as
 // render/particles/metaball_slices.cpp (sphere of radius h padded 1% against each voxel's closed
 // box), one invocation per particle, one bit per voxel (atomicOr), x fastest. Not used by the
 // renderer: measured against the CPU pass it would replace.

@@ -13,7 +13,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "bench/glsl_files.h"  // generated from bench/*.glsl (cmake/embed_shaders.cmake)
+#include "bench/metaballs/glsl_files.h"  // generated from bench/metaballs/*.glsl (cmake/embed_shaders.cmake)
 #include "io/particles.h"
 #include "render/gl/gl_program.h"
 #include "render/particles/metaball_slices.h"

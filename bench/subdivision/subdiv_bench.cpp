@@ -1,4 +1,4 @@
-// The CPU side of scripts/bench-subdivision: for each mesh, the paper's precomputation time
+// The CPU side of bench/subdivision/run: for each mesh, the paper's precomputation time
 // (control mesh, eigenbases, 45 x 16 points per irregular patch), evaluation rates, the error
 // figures of the tests (exact evaluation against OpenSubdiv, float tables against exact) and the
 // coarse meshes' deviation from the limit surface. One CSV row per mesh on stdout.
