@@ -1,8 +1,8 @@
-"""One CSV row of scripts/bench-accuracy: compares each rendered frame (DIR/f[_000i].png) with the
+"""One CSV row of bench/accuracy/run: compares each rendered frame (DIR/f[_000i].png) with the
 reference frame (DIR/ref[_000i].png) using `sortlast compare`, and reads the frame time from the
 --stats JSON (mean total_s over frames after the first).
 
-Usage: python3 scripts/bench_accuracy_row.py SORTLAST DIR FRAMES DATASET SETTING STATS_JSON
+Usage: python3 bench/accuracy/row.py SORTLAST DIR FRAMES DATASET SETTING STATS_JSON
 """
 import json
 import statistics

@@ -1,9 +1,9 @@
-"""Summarises scripts/bench-accuracy: OUT/accuracy.md (per data set every setting, the Pareto front of
+"""Summarises bench/accuracy/run: OUT/accuracy.md (per data set every setting, the Pareto front of
 the settings without issue 13's features ("old") and of all settings ("new"), the fastest setting at
 >= 45 and >= 50 dB of each; the adaptive-sampling table like the paper's Tables 5-6) and
 OUT/accuracy.png (seconds per frame against PSNR, one panel per data set, both fronts drawn).
 
-Usage: python3 scripts/bench_accuracy_summary.py OUT_DIR
+Usage: python3 bench/accuracy/summarise.py OUT_DIR [RAW_DIR]   (reads OUT_DIR/accuracy.csv)
 """
 import csv
 import glob
@@ -20,6 +20,10 @@ DEFAULTS = {"neghip": "raycast_s0.5_ert0.99_pre"}
 DEFAULT_PLAIN = "raycast_s0.5_ert0.99"
 AUTO = "defaults_auto"
 out = sys.argv[1]
+# The raw --stats JSON (the step `auto` chose, the adaptive-stats tables): bench/accuracy/run's
+# build/bench-runs/accuracy unless given; without them those cells read "?" and the tables are left out.
+raw = sys.argv[2] if len(sys.argv) > 2 else "build/bench-runs/accuracy"
+os.makedirs(raw, exist_ok=True)
 rows = [r for r in csv.DictReader(open(os.path.join(out, "accuracy.csv"))) if r["setting"] != "default"]
 for r in rows:
     r["s_per_frame"] = float(r["s_per_frame"])
@@ -69,7 +73,7 @@ for ds in datasets:
     a = [r for r in sel if r["setting"] == AUTO]
     auto = "–"
     if a:
-        stats = os.path.join(out, "stats", f"{ds}__{AUTO}.json")
+        stats = os.path.join(raw, "stats", f"{ds}__{AUTO}.json")
         step = "?"
         if os.path.exists(stats):
             step = json.load(open(stats))["frames"][0].get("sample_spacing", "?")
@@ -91,7 +95,7 @@ for ds in datasets:
                ", ".join(f"{r['setting']} ({r['s_per_frame']:.3f} s, {r['psnr_db']:.1f} dB)" for r in f)]
 
 # The paper's Tables 5-6: data left and preprocessing time per tolerance and block count.
-stats = sorted(glob.glob(os.path.join(out, "stats", "*__adaptive-stats_*.json")))
+stats = sorted(glob.glob(os.path.join(raw, "stats", "*__adaptive-stats_*.json")))
 if stats:
     md += ["\n## Adaptive sampling: data left and preprocessing (the paper's Tables 5-6)\n",
            "| data set | blocks | tolerance % | data left % | preprocessing s | frame s (ray cast, 0.5 voxel) | PSNR dB |",
@@ -122,7 +126,7 @@ panels = []
 for ds in datasets:
     series = []
     for fam in families:
-        dat = os.path.join(out, f"acc_{ds}_{fam}.dat")
+        dat = os.path.join(raw, f"acc_{ds}_{fam}.dat")
         pts = [r for r in rows if r["dataset"] == ds and r["family"] == fam]
         if not pts:
             continue
@@ -138,7 +142,7 @@ for ds in datasets:
     if any(r["dataset"] == ds for r in before):
         fronts.insert(0, ("before issue 13", "red", pareto([r for r in before if r["dataset"] == ds])))
     for name, colour, f in fronts:
-        dat = os.path.join(out, f"acc_{ds}_front_{fronts.index((name, colour, f))}.dat")
+        dat = os.path.join(raw, f"acc_{ds}_front_{fronts.index((name, colour, f))}.dat")
         with open(dat, "w") as fh:
             for r in f:
                 fh.write(f"{r['s_per_frame']} {r['psnr_db']}\n")
@@ -157,6 +161,6 @@ for ds, series in panels:
                "50 with lines dashtype 3 lc rgb 'gray' title '50 dB', " + ", ".join(series)]
 script.append("unset multiplot")
 subprocess.run(["gnuplot"], input="\n".join(script), text=True, check=True)
-for f in glob.glob(os.path.join(out, "acc_*.dat")):
+for f in glob.glob(os.path.join(raw, "acc_*.dat")):
     os.remove(f)
 print(f"wrote {out}/accuracy.md and {png}", file=sys.stderr)

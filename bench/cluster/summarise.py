@@ -1,11 +1,11 @@
-"""Summarises scripts/bench-cluster's CSVs (compositing.csv, render.csv in OUT_DIR).
+"""Summarises bench/cluster/run's CSVs (compositing.csv, render.csv in OUT_DIR).
 
 Writes OUT/summary.md (the 8-node 1 Gbit/s 1024² goal ratio, the fastest strategy per case, what
 RLE pays, the renderer's rows), OUT/compositing.png (compositing seconds against link bandwidth,
 gnuplot pngcairo) and, per bandwidth, OUT/fit-GBIT/ with the cost model of
-scripts/bench_compositing_fit.py fitted to that bandwidth's runs (fit.md, model.png).
+bench/compositing/fit.py fitted to that bandwidth's runs (fit.md, model.png).
 
-Usage: python3 scripts/bench_cluster_summary.py OUT_DIR
+Usage: python3 bench/cluster/summarise.py OUT_DIR
 """
 import csv
 import os
@@ -14,6 +14,9 @@ import subprocess
 import sys
 
 out = sys.argv[1]
+# The chart's and the fits' gnuplot data files (bench/cluster/run --raw, default build/bench-runs/cluster).
+raw = sys.argv[2] if len(sys.argv) > 2 else "build/bench-runs/cluster"
+os.makedirs(raw, exist_ok=True)
 here = os.path.dirname(os.path.abspath(__file__))
 comp_path = os.path.join(out, "compositing.csv")
 comp = list(csv.DictReader(open(comp_path))) if os.path.exists(comp_path) else []
@@ -106,7 +109,7 @@ cols = ["strategy", "radix", "precision", "rle", "layers", "ranks", "width", "he
         "bytes_sent", "messages", "pixels_composited", "memcpy_s"]
 raw = list(csv.DictReader(open(comp_path))) if comp else []
 md += ["", "## The cost model per bandwidth", "",
-       "scripts/bench_compositing_fit.py fitted to each bandwidth's runs (all node counts and sizes): "
+       "bench/compositing/fit.py fitted to each bandwidth's runs (all node counts and sizes): "
        "β is seconds per byte sent (all ranks' bytes). A link of R Gbit/s moves a byte in 8/R ns; "
        "direct send's bytes all cross rank 0's link, so its β should approach 8/R ns where the wire "
        "dominates; the swap strategies' bytes cross P links at once. Full tables in fit-GBIT/fit.md.", "",
@@ -121,7 +124,8 @@ for g in gbits:
         for r in raw:
             if float(r["gbit"]) == g:
                 w.writerow([r[c] for c in cols])
-    res = subprocess.run([sys.executable, os.path.join(here, "bench_compositing_fit.py"), d],
+    res = subprocess.run([sys.executable, os.path.join(here, "..", "compositing", "fit.py"), d,
+                          os.path.join(raw, os.path.basename(d))],
                          capture_output=True, text=True)
     if res.returncode != 0:
         md.append(f"| {g:g} | fit failed: {res.stderr.strip()[:200]} |")
@@ -154,7 +158,7 @@ if not comp:
 # Chart: compositing seconds against bandwidth; top row 8 nodes at each size (float), bottom row
 # 1024² on 2 and 4 nodes (float) and 8 nodes in RGBA8.
 panels = [(8, s, "float") for s in sizes][:3] + [(2, 1024, "float"), (4, 1024, "float"), (8, 1024, "rgba8")]
-dat = os.path.join(out, "compositing.dat")
+dat = os.path.join(raw, "compositing.dat")
 series = [(n, rle) for n in names for rle in ("on", "off")]
 blocks = {}  # (panel, series) -> index in the data file, where there are points
 with open(dat, "w") as f:

@@ -1,4 +1,4 @@
-"""Fits the classic compositing cost model to scripts/bench-compositing's CSV.
+"""Fits the classic compositing cost model to bench/compositing/run's CSV.
 
     t = alpha * messages + beta * bytes_sent + gamma * pixels_composited
 
@@ -7,7 +7,8 @@ equations solved here, columns scaled to unit norm first). Writes OUT/fit.md (al
 R^2, and every run as measured / predicted / multiple of one memcpy of the frame's RGBA8 bytes x
 ranks) and OUT/model.png (gnuplot pngcairo: measured against predicted, log-log).
 
-Usage: python3 scripts/bench_compositing_fit.py OUT_DIR   (reads OUT_DIR/bench-compositing.csv)
+Usage: python3 bench/compositing/fit.py OUT_DIR [RAW_DIR]   (reads OUT_DIR/bench-compositing.csv;
+the chart's gnuplot data file goes to RAW_DIR, default build/bench-runs/compositing)
 """
 import csv
 import os
@@ -15,6 +16,8 @@ import subprocess
 import sys
 
 out = sys.argv[1]
+raw = sys.argv[2] if len(sys.argv) > 2 else "build/bench-runs/compositing"
+os.makedirs(raw, exist_ok=True)
 rows = list(csv.DictReader(open(os.path.join(out, "bench-compositing.csv"))))
 for r in rows:
     for k in ("ranks", "width", "height"):
@@ -155,7 +158,7 @@ md += ["", "RGBA8 / float precision:", "", "| layers | strategy | runs | seconds
 open(os.path.join(out, "fit.md"), "w").write("\n".join(md) + "\n")
 print("\n".join(md))
 
-dat = os.path.join(out, "model.dat")
+dat = os.path.join(raw, "model.dat")
 with open(dat, "w") as f:
     for i, lab in enumerate(labels):
         f.write(f"# {lab}\n")

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
-"""bench.csv, bench.png and README.md of results/insitu from the run logs of scripts/bench-insitu.
+"""bench.csv, bench.png and README.md of results/insitu from the run logs of bench/insitu/run.
 
-Usage: bench_insitu_summary.py OUT_DIR EVERY
-Reads OUT_DIR/logs/<example>-<size>-np<ranks>-run<k>.log (rank 0's `step S sim_s X vis_s Y
+Usage: summarise.py OUT_DIR EVERY [RAW_DIR]
+Reads RAW_DIR/logs/ (default build/bench-runs/insitu/logs/, bench/insitu/run's):
+<example>-<size>-np<ranks>-run<k>.log (rank 0's `step S sim_s X vis_s Y
 mem_mib Z added_mib A texture_mib T` lines, then `# load L`) and the pictures-*.txt logs.
 """
 import csv
@@ -85,8 +86,9 @@ def best_of(runs):
     return rows
 
 
-def chart(rows, out):
-    dat = os.path.join(out, "bench.dat")
+def chart(rows, out, raw):
+    os.makedirs(raw, exist_ok=True)
+    dat = os.path.join(raw, "bench.dat")
     with open(dat, "w") as f:
         f.write("# label ten_steps_s vis_s_per_render added_mib texture_mib\n")
         for r in rows:
@@ -116,11 +118,11 @@ unset multiplot
     subprocess.run(["gnuplot"], input=script, text=True, check=True)
 
 
-def pictures_lines(out):
+def pictures_lines(raw):
     """The cost of an image late in the pictures runs (the developed state)."""
     lines = []
     for name, what in (("gray_scott", "64³, 2 ranks"), ("particles", "8,000, 2 ranks")):
-        path = os.path.join(out, "logs", f"pictures-{name}.txt")
+        path = os.path.join(raw, "logs", f"pictures-{name}.txt")
         if not os.path.exists(path):
             continue
         steps = [l.split() for l in open(path) if l.startswith("step ")]
@@ -133,8 +135,9 @@ def pictures_lines(out):
 
 def main():
     out, every = sys.argv[1], int(sys.argv[2])
+    raw = sys.argv[3] if len(sys.argv) > 3 else "build/bench-runs/insitu"
     runs = []
-    for path in sorted(glob.glob(os.path.join(out, "logs", "*-run*.log"))):
+    for path in sorted(glob.glob(os.path.join(raw, "logs", "*-run*.log"))):
         m = re.match(r"(gray_scott|particles)-(\d+)-np(\d+)-run(\d+)\.log$", os.path.basename(path))
         if m:
             runs.append({"example": m[1], "size": m[2], "ranks": m[3], "run": m[4], **parse_log(path, every)})
@@ -144,7 +147,7 @@ def main():
         w.writeheader()
         w.writerows(runs)
     rows = best_of(runs)
-    chart(rows, out)
+    chart(rows, out, raw)
 
     cols = ["example", "size", "ranks", "sim_s_per_step", "sim_s_median", "ten_steps_s", "vis_s_per_render",
             "vis_s_first", "render_over_ten_steps", "added_mib", "texture_mib", "load_avg"]
@@ -162,7 +165,7 @@ def main():
             time_lines.append(f"{label(r)}: one image {r['vis_s_per_render']} s vs 10 steps {r['ten_steps_s']} s "
                               f"(x{ratio:.0f}): {'holds' if ratio < 1 else 'FAILS'}")
     part_mem = "; ".join(f"{label(r)} {r['added_mib']} MiB" for r in rows if r["example"] == "particles")
-    late = pictures_lines(out)
+    late = pictures_lines(raw)
     def spread(example):
         v = [float(r["vis_s_per_render"]) for r in rows if r["example"] == example]
         return f"{min(v):.2g}–{max(v):.2g} s" if v else "?"
@@ -179,9 +182,9 @@ def main():
     steps = runs[0]["steps"] if runs else "?"
     runs_per = rows[0]["runs"] if rows else "?"
 
-    text = f"""# In situ — `scripts/bench-insitu`
+    text = f"""# In situ — `bench/insitu/run`
 
-[CSV, a row per run](bench.csv) · [chart](bench.png) · per-step logs in `logs/`
+[CSV, a row per run](bench.csv) · [chart](bench.png) · per-step logs (not kept in git) in `build/bench-runs/insitu/logs/`
 
 Measured {datetime.date.today().isoformat()} on {machine()}; `mpirun --bind-to none`, so 2 and 4
 ranks share the 2 cores (with llvmpipe's threads). Other work on the machine shows in `load_avg`

@@ -1,7 +1,8 @@
-"""Summarises the runs of scripts/bench-metaballs into two CSV tables, two gnuplot charts and
+"""Summarises the runs of bench/metaballs/run into two CSV tables, two gnuplot charts and
 summary.md.
 
-Usage: bench_metaballs_summary.py OUT_DIR DEPTH_TOLERANCE
+Usage: summarise.py OUT_DIR DEPTH_TOLERANCE [RAW_DIR]
+The stats/ paths below are under RAW_DIR (bench/metaballs/run --raw, default build/bench-runs/metaballs).
 
 Every GL row carries its metaball method (particles.method), the last part of its file name.
 Speed (stats/speed/SCENE-COUNT-SIZE-npN-METHOD.json): the first frame of each orbit is left out (it pays
@@ -25,7 +26,9 @@ import subprocess
 import sys
 
 out, tol = sys.argv[1], float(sys.argv[2])
-stats_dir = os.path.join(out, "stats")
+# The charts' data files go to RAW_DIR too.
+raw = sys.argv[3] if len(sys.argv) > 3 else "build/bench-runs/metaballs"
+stats_dir = os.path.join(raw, "stats")
 renderers = set()
 
 
@@ -131,7 +134,7 @@ renderer = "; ".join(sorted(renderers))
 
 # ---- Chart (a): fps against particles, 1 rank, both methods and the CPU reference ----
 widths = sorted({r["width"] for r in speed if r["scene"] == "layers"})
-dat = os.path.join(out, "bench-metaballs-speed.dat")
+dat = os.path.join(raw, "bench-metaballs-speed.dat")
 plots, index = [], 0
 dash = {"grid": 1, "billboards": 2}
 with open(dat, "w") as f:
@@ -187,7 +190,7 @@ subprocess.run(["gnuplot"], input=script, text=True, check=True)
 # ---- Chart (b): frame time against holes and depth RMS ----
 acc_png = os.path.join(out, "bench-metaballs-accuracy.png")
 if accuracy:
-    adat = os.path.join(out, "bench-metaballs-accuracy.dat")
+    adat = os.path.join(raw, "bench-metaballs-accuracy.dat")
     with open(adat, "w") as f:
         for method in methods:
             for r in accuracy:
@@ -243,7 +246,7 @@ if os.path.exists(sb_path):
     slices_build = [json.loads(line) for line in open(sb_path) if line.strip()]
 
 # ---- summary.md ----
-md = [f"# Metaballs — `scripts/bench-metaballs`", "",
+md = [f"# Metaballs — `bench/metaballs/run`", "",
       f"Generated {datetime.date.today()} on {os.cpu_count()} cores, {renderer}.", ""]
 md += ["## Speed, the paper's Table 1 layout", "",
        f"Frames per second, `layers` scene: 1 rank / the best of 1–{max_ranks} ranks (that rank count). "

@@ -1,4 +1,4 @@
-"""The Python module's costs (scripts/bench-python runs it): one measurement per call.
+"""The Python module's costs (bench/python/run runs it): one measurement per call.
 
   frame SCENE_ARGS...: Session.frame's wall time in Python against the session's own frame time
       (--stats total_s), median of 20 frames after 2 warm-up frames; JSON on stdout.

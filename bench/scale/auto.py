@@ -5,7 +5,7 @@ points and reports, per point, the strategy auto chooses, its simulated time aga
 simulated strategy's, and the forecast's error per strategy. Writes a CSV, a markdown table and
 a chart (forecast against simulated seconds).
 
-    python3 scripts/bench_scale_auto.py FORECAST.csv SWEEP.csv... --out results/scale/auto
+    python3 bench/scale/auto.py FORECAST.csv SWEEP.csv... --out results/scale/auto
 """
 import argparse
 import collections
@@ -81,7 +81,7 @@ def main():
     n = len(rows)
     worst = max((r for r in rows if r[10] != ""), key=lambda r: r[10], default=None)
     lines = [f"# `compositing.strategy: auto` on the simulated sweep", "",
-             f"Written by `scripts/bench_scale_auto.py`. {n} points; auto within "
+             f"Written by `bench/scale/auto.py`. {n} points; auto within "
              f"{100 * a.tolerance:.0f} % of the best simulated strategy at {n - bad - unsimulated} "
              f"of {n - unsimulated} simulated choices; auto itself ran in the simulation at "
              f"{sum(k in ran for k in sim)} points, choosing as forecast at "

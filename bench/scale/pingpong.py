@@ -1,9 +1,9 @@
 """Ping-pong between 2 ranks on this machine (mpi4py): the latency and bandwidth of Open MPI's
-shared memory, for scripts/bench-scale's `local` platform (the loopback of the validation runs).
+shared memory, for bench/scale/run's `local` platform (the loopback of the validation runs).
 Prints `latency_us bandwidth_gbps`: half the round trip of a 1-byte message, and 2 x 8 MiB over the
 round trip of an 8 MiB message (medians of 50 and 20 round trips).
 
-Usage: mpirun -np 2 /usr/bin/python3 scripts/bench_scale_pingpong.py
+Usage: mpirun -np 2 /usr/bin/python3 bench/scale/pingpong.py
 """
 import statistics
 

@@ -1,6 +1,6 @@
-"""Charts and a summary of scripts/bench-scale's CSVs (results/scale/, docs/smpi.md).
+"""Charts and a summary of bench/scale/run's CSVs (results/scale/, docs/smpi.md).
 
-    /usr/bin/python3 scripts/bench_scale_chart.py OUT_DIR
+    /usr/bin/python3 bench/scale/summarise.py OUT_DIR
 
 Reads OUT_DIR/{bench-scale,validation,big}.csv (those present) and writes:
   time_<platform>.png   simulated seconds against P per strategy (float, RLE on), one panel per
@@ -25,7 +25,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 out = sys.argv[1]
-root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
 
 
 def load(name):
@@ -70,7 +70,7 @@ def predict(r):
 colours = {"direct": "tab:red", "binary-swap": "tab:blue", "radix-k k=4": "tab:green",
            "radix-k k=8": "tab:purple", "radix-k k=16": "tab:brown", "radix-k k=32": "tab:olive"}
 md = ["# Compositing at scale: summary", "",
-      "Written by `scripts/bench_scale_chart.py` from the CSVs here. Simulated seconds: SimGrid SMPI, "
+      "Written by `bench/scale/summarise.py` from the CSVs here. Simulated seconds: SimGrid SMPI, "
       "the real strategies, compute charged at `rates.csv` (one simulated host = one core of the "
       "measuring machine). Synthetic sphere layers, coverage 0.4.", ""]
 

@@ -1,4 +1,4 @@
-"""Summarises scripts/bench-scaling's --stats JSON files: OUT/scaling.csv, OUT/scaling.md (tables:
+"""Summarises bench/scaling/run's --stats JSON files: OUT/scaling.csv, OUT/scaling.md (tables:
 strong and weak scaling, overlap on/off) and OUT/scaling.png (seconds per frame against ranks).
 
 The first frame of each run is left out (texture residency, shader compilation). Per frame:
@@ -6,7 +6,8 @@ render = the slowest rank's render time; composite = rank 0's blend time; the re
 wall time is transfer and waiting. Strong-scaling speed-up is t(1 rank) / t(P); weak-scaling
 efficiency is t(1) / t(P).
 
-Usage: python3 scripts/bench_scaling_summary.py OUT_DIR
+Usage: python3 bench/scaling/summarise.py OUT_DIR [RAW_DIR]: reads RAW_DIR/stats/*.json (default
+build/bench-runs/scaling); the chart's data files go to RAW_DIR.
 """
 import csv
 import glob
@@ -17,8 +18,10 @@ import subprocess
 import sys
 
 out = sys.argv[1]
+raw = sys.argv[2] if len(sys.argv) > 2 else "build/bench-runs/scaling"
+os.makedirs(raw, exist_ok=True)
 rows = []
-for path in sorted(glob.glob(os.path.join(out, "stats", "*.json"))):
+for path in sorted(glob.glob(os.path.join(raw, "stats", "*.json"))):
     kind, dataset, strategy, np_ = os.path.basename(path)[:-5].split("__")
     s = json.load(open(path))
     frames = s["frames"][1:] or s["frames"]
@@ -69,7 +72,7 @@ plots = []
 for kind in ("strong", "weak"):
     series = []
     for strategy in sorted({r["strategy"] for r in rows if r["kind"] == kind}):
-        dat = os.path.join(out, f"scaling_{kind}_{strategy}.dat")
+        dat = os.path.join(raw, f"scaling_{kind}_{strategy}.dat")
         with open(dat, "w") as f:
             for r in rows:
                 if r["kind"] == kind and r["strategy"] == strategy:
@@ -94,6 +97,6 @@ plot {", ".join(plots[1][1])}
 unset multiplot
 """
 subprocess.run(["gnuplot"], input=script, text=True, check=True)
-for f in glob.glob(os.path.join(out, "scaling_*.dat")):
+for f in glob.glob(os.path.join(raw, "scaling_*.dat")):
     os.remove(f)
 print(f"wrote {out}/scaling.csv, scaling.md and scaling.png", file=sys.stderr)

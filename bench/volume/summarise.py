@@ -1,8 +1,11 @@
-"""Summarises the --stats JSON files of scripts/bench-volume into a CSV table and a gnuplot chart.
+"""Summarises the --stats JSON files of bench/volume/run into a CSV table and a gnuplot chart.
 
 The first frame of each run is left out (it pays for texture residency and shader compilation).
 Per frame: render and encode are the slowest rank's; composite is rank 0's blend time; transfer is
 the rest of the frame's wall time (sending, waiting for the slowest rank, gathering stats).
+
+Usage: summarise.py OUT_DIR [RAW_DIR]: reads RAW_DIR/stats/*.json (default build/bench-runs/volume),
+writes OUT_DIR/bench-volume.csv and .png (the chart's data file in RAW_DIR).
 """
 import csv
 import glob
@@ -13,8 +16,10 @@ import subprocess
 import sys
 
 out = sys.argv[1]
+raw = sys.argv[2] if len(sys.argv) > 2 else "build/bench-runs/volume"
+os.makedirs(raw, exist_ok=True)
 rows = []
-for path in sorted(glob.glob(os.path.join(out, "stats", "*.json"))):
+for path in sorted(glob.glob(os.path.join(raw, "stats", "*.json"))):
     name = os.path.basename(path)[:-5]
     dataset, size, np_ = name.rsplit("_", 2)
     s = json.load(open(path))
@@ -49,7 +54,7 @@ for r in rows:
     print("| " + " | ".join(str(r[c]) for c in cols) + " |")
 
 # Stacked bars: one bar per (dataset, image, ranks).
-dat = os.path.join(out, "bench-volume.dat")
+dat = os.path.join(raw, "bench-volume.dat")
 with open(dat, "w") as f:
     for r in rows:
         label = f"{r['dataset'][:4]} {r['image']} np{r['ranks']}"
