@@ -104,7 +104,7 @@ for n in names:
                 md.append(f"| {n} | {nodes} | {g:g} | {statistics.median(t):.2f} ({min(t):.2f}–{max(t):.2f}) | "
                           f"{statistics.median(b):.2f} |")
 
-# The cost model per bandwidth (bench_compositing_fit.py's columns).
+# The cost model per bandwidth (bench/compositing/fit.py's columns).
 cols = ["strategy", "radix", "precision", "rle", "layers", "ranks", "width", "height", "seconds",
         "bytes_sent", "messages", "pixels_composited", "memcpy_s"]
 raw = list(csv.DictReader(open(comp_path))) if comp else []

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""glow_emitters.py N [SCALE]: the benchmarks' seeded list of N glow emitters as a YAML flow list
+"""emitters.py N [SCALE]: the benchmarks' seeded list of N glow emitters as a YAML flow list
 (for --set glow.emitters=...): centres uniform in [-1.5, 1.5]^3 times SCALE, Gaussian directions,
 a and b uniform in [0.2, 1], colours uniform in [0.2, 1]. Used by bench/glow/run and
 bench/glow/run-cpu, so both measure the same emitters."""

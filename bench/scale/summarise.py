@@ -42,7 +42,7 @@ def load(name):
     return rows
 
 
-# The strategies' own runs at coverage 0.4 (auto's runs and other coverages: bench_scale_auto.py).
+# The strategies' own runs at coverage 0.4 (auto's runs and other coverages: auto.py).
 sweep = [r for r in load("bench-scale.csv") + load("sweep-k32.csv") + load("big.csv")
          if r["strategy"] != "auto" and abs(float(r["coverage"]) - 0.4) < 1e-9]
 valid = load("validation.csv")
