@@ -15,8 +15,8 @@ import sys
 
 out = sys.argv[1]
 # The chart's and the fits' gnuplot data files (bench/cluster/run --raw, default build/bench-runs/cluster).
-raw = sys.argv[2] if len(sys.argv) > 2 else "build/bench-runs/cluster"
-os.makedirs(raw, exist_ok=True)
+raw_dir = sys.argv[2] if len(sys.argv) > 2 else "build/bench-runs/cluster"
+os.makedirs(raw_dir, exist_ok=True)
 here = os.path.dirname(os.path.abspath(__file__))
 comp_path = os.path.join(out, "compositing.csv")
 comp = list(csv.DictReader(open(comp_path))) if os.path.exists(comp_path) else []
@@ -125,7 +125,7 @@ for g in gbits:
             if float(r["gbit"]) == g:
                 w.writerow([r[c] for c in cols])
     res = subprocess.run([sys.executable, os.path.join(here, "..", "compositing", "fit.py"), d,
-                          os.path.join(raw, os.path.basename(d))],
+                          os.path.join(raw_dir, os.path.basename(d))],
                          capture_output=True, text=True)
     if res.returncode != 0:
         md.append(f"| {g:g} | fit failed: {res.stderr.strip()[:200]} |")
@@ -158,7 +158,7 @@ if not comp:
 # Chart: compositing seconds against bandwidth; top row 8 nodes at each size (float), bottom row
 # 1024² on 2 and 4 nodes (float) and 8 nodes in RGBA8.
 panels = [(8, s, "float") for s in sizes][:3] + [(2, 1024, "float"), (4, 1024, "float"), (8, 1024, "rgba8")]
-dat = os.path.join(raw, "compositing.dat")
+dat = os.path.join(raw_dir, "compositing.dat")
 series = [(n, rle) for n in names for rle in ("on", "off")]
 blocks = {}  # (panel, series) -> index in the data file, where there are points
 with open(dat, "w") as f:
