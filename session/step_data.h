@@ -30,7 +30,7 @@ struct StepData {
   double scattered_h = 0;                   // the ghost margin `particles` were chosen with
   double cost_mib = 0;                      // the largest any rank holds for this step
   // Rank 0: every rank's seconds reading its volume bricks (ghosts included) and its peak resident
-  // memory just after (MiB): --stats' volume_read_s and peak_rss_after_read_mb (scripts/bench-io).
+  // memory just after (MiB): --stats' volume_read_s and peak_rss_after_read_mb (bench/io/run).
   std::vector<double> read_s, read_peak_rss_mb;
   std::string hdf5_transfers;  // an HDF5 volume: "collective" or "independent" (volume.mpi_io)
   bool dropped = false;                     // dropHostCopies() was called

@@ -1,6 +1,6 @@
 // forecast_sweep: the cost model of `compositing.strategy: auto` (compositing/strategy_model.h)
 // at every point of a bench_scale sweep, for comparing with the simulated times
-// (scripts/bench_scale_auto.py). No MPI run: each point's footprint is the synthetic layers'
+// (bench/scale/auto.py). No MPI run: each point's footprint is the synthetic layers'
 // forecast rectangles (scale_layers.h sphereLayerBound), the network the platform's as
 // scripts/scale_platform.py --print-network gives it (--networks).
 // Reads CSV lines of bench_scale (platform,strategy,radix,precision,rle,ranks,width,height,
@@ -26,7 +26,7 @@ namespace {
 using namespace sortlast;
 
 // --networks FILE: lines `platform,ranks,latency_us,gbit_per_s,ranks_per_core`, as
-// scripts/bench-scale records them from scale_platform.py --print-network.
+// bench/scale/run records them from scale_platform.py --print-network.
 using NetworkTable = std::map<std::pair<std::string, int>, std::pair<NetworkModel, double>>;
 
 NetworkTable readNetworks(const std::string& path) {

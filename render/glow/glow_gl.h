@@ -1,6 +1,6 @@
 #pragma once
 // What every GL user of the glow emitters shares (the brick pass, the ray caster's GLOW variant,
-// tests/unit/glow_glsl_test.cpp, bench/bench_glow.cpp): float data textures, the emitters'
+// tests/unit/glow_glsl_test.cpp, bench/glow/main.cpp): float data textures, the emitters'
 // texel layout and binding, and the pixel rays' uniforms. Their GLSL is in render/glow/*.glsl:
 // glow_segment (one emitter's exact segment integral), glow_emitters (the emitters' uniforms and
 // glowSpan), glow_along (every emitter's integral along a ray), glow_pixel_ray, and the pass itself

@@ -54,7 +54,7 @@ run_np 1 reference "$DATA/flat_lattice.yaml" -q -o "$WORK/centres_ref.png" --sur
 "$S" compare-surface "$WORK/centres_ref.exr" "$WORK/centres.exr" --max-holes 0 --max-extra 0 \
   --max-depth-error 1e-5 --max-normal-deg 0.01 >/dev/null || fail "smoothed centres: GL against the reference"
 
-# 2b. The dam break's pool (the region of scripts/bench-metaballs-smoothing at 256^2): roughness at
+# 2b. The dam break's pool (the region of bench/metaballs/run-smoothing at 256^2): roughness at
 # most 0.6x round's (the goal; measured 12.60 -> 6.69 degrees, 0.53x); and the droplets
 # stay: connected surface pieces of the whole image at least 0.9x round's (measured 65 -> 62).
 render 1 "$DATA/dam_break.yaml" dam_round

@@ -45,7 +45,7 @@ dam)
   # h = 0.107, s = 1/4, away from silhouettes (10,629 pixels). Measured: 2 holes, 0 extra hits;
   # depth error above 0.1 h on 461 pixels, above 0.2 h on 58, above h on 43 (slivers thinner than
   # the lattice that the interpolated field closes or misses, and the layer behind them hit).
-  # Against the spacing (scripts/bench-metaballs, 256^2): s = 1/2: 51 holes, 6,631 / 2,637 / 171
+  # Against the spacing (bench/metaballs/run, 256^2): s = 1/2: 51 holes, 6,631 / 2,637 / 171
   # pixels beyond 0.1 h / 0.2 h / h; 1/8: 0 holes, 16 / 14 / 11; 1/16: 0 holes, 6 / 6 / 5. The
   # grid method: 0 holes, 3 pixels beyond 1e-3 h.
   scene=$DATA/dam_break.yaml
