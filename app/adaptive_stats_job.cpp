@@ -11,6 +11,7 @@
 
 #include "adaptive/adaptive_blocks.h"
 #include "common/error.h"
+#include "scene/file_steps.h"
 #include "scene/scene.h"
 
 namespace sortlast {
@@ -30,6 +31,7 @@ nlohmann::ordered_json vec(const glm::ivec3& v) { return {v.x, v.y, v.z}; }
 int runAdaptiveStatsJob(const AdaptiveStatsOptions& options) {
   try {
     Scene scene = loadScene(options.scene, options.overrides);
+    resolveFileSteps(scene);
     if (!scene.hasVolume()) throw InputError("adaptive-stats: the scene has no volume");
     if (options.runs < 1) throw InputError("adaptive-stats: --runs must be >= 1");
     const int threads = options.threads > 0

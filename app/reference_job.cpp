@@ -9,6 +9,7 @@
 
 #include "common/error.h"
 #include "io/image.h"
+#include "scene/file_steps.h"
 #include "scene/scene.h"
 #include "reference/frame_reference.h"
 #include "reference/metaball_reference.h"
@@ -31,6 +32,7 @@ void writeSurfaceFrame(const SurfaceImage& surface, const Camera& cam, const glm
 int runReferenceJob(const RenderOptions& opts, int threads, const std::string& surface_out) {
   try {
     Scene scene = loadScene(opts.scene, opts.overrides);
+    resolveFileSteps(scene);
     FrameReference reference(scene, threads);
     if (!surface_out.empty() && !reference.hasParticles() && !reference.hasSurfaces())
       throw InputError(

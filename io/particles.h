@@ -12,8 +12,26 @@
 
 #include "io/anisotropic_kernels.h"
 #include "common/box.h"
+#include "common/enum_names.h"
 
 namespace sortlast {
+
+// particles.method: billboards (the paper's multi-pass method) | grid (one pass over a grid of
+// cells of edge h) | slices (the field sampled on a lattice, render/particles/metaball_slices_renderer.h).
+enum class ParticleMethod { kBillboards, kGrid, kSlices };
+template <>
+struct EnumNames<ParticleMethod> {
+  static constexpr std::pair<const char*, ParticleMethod> list[] = {
+      {"billboards", ParticleMethod::kBillboards}, {"grid", ParticleMethod::kGrid}, {"slices", ParticleMethod::kSlices}};
+};
+
+// particles.smoothing: none (round metaballs) | anisotropic (smoothed ellipsoids, io/anisotropic_kernels.h).
+enum class Smoothing { kNone, kAnisotropic };
+template <>
+struct EnumNames<Smoothing> {
+  static constexpr std::pair<const char*, Smoothing> list[] = {{"none", Smoothing::kNone},
+                                                                {"anisotropic", Smoothing::kAnisotropic}};
+};
 
 struct ParticleDesc {
   std::string file;                 // empty: procedural (or none)
@@ -33,22 +51,19 @@ struct ParticleDesc {
   double threshold = 0.765625;  // T (the paper's)
   glm::dvec3 colour{0.85, 0.9, 1.0};
   // Metaball renderer settings.
-  // billboards (the paper's multi-pass method) | grid (one pass over a grid of cells of edge h) |
-  // slices (the field sampled on a lattice, render/particles/metaball_slices_renderer.h)
-  std::string method = "grid";
+  ParticleMethod method = ParticleMethod::kGrid;
   double slice_spacing = 0.25;  // slices: lattice spacing, in units of h
   double step = 0.125;        // sample step along rays, in units of h
   int max_samples = 96;       // cap on field samples per pixel (per brick)
   int refine_iterations = 3;  // refinement passes (4 probes around the secant of eq. 5)
   bool cull = true;           // min/max distance pyramid culling
   int samples_per_pass = 8;   // window of samples per pass: 4 (the paper) or 8 (half the passes)
-  // none (round metaballs) | anisotropic (smoothed ellipsoids, io/anisotropic_kernels.h)
-  std::string smoothing = "none";
+  Smoothing smoothing = Smoothing::kNone;
   AnisotropicParams anisotropic;
 
   bool enabled() const { return !file.empty() || procedural != "none"; }
   double influenceRadius() const { return influence ? *influence : radius / (1.0 - threshold); }
-  bool anisotropicOn() const { return smoothing == "anisotropic"; }
+  bool anisotropicOn() const { return smoothing == Smoothing::kAnisotropic; }
   // The furthest a particle's field reaches from its centre: h, or with anisotropic smoothing
   // the bound on the longest ellipsoid axis (anisotropicReachBound).
   double reach() const {
@@ -63,7 +78,7 @@ struct ParticleDesc {
   // of every particle within h of it.
   double ghostMargin() const {
     const double h = influenceRadius();
-    if (method == "slices") return h * (1.0 + step + 2.5 * slice_spacing);
+    if (method == ParticleMethod::kSlices) return h * (1.0 + step + 2.5 * slice_spacing);
     return reach() + (anisotropicOn() ? anisotropic.neighbourhood * h : 0.0);
   }
 };

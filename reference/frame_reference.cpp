@@ -37,7 +37,7 @@ void addGlowOnly(ImageF& img, const Camera& cam, const GlowRays& g, const Surfac
 // The tone map on the final frame's premultiplied rgb (alpha kept; the background goes behind
 // later, untouched).
 void applyToneMap(ImageF& img, const GlowSpec& g) {
-  if (g.tone_map == "none") return;
+  if (g.tone_map == ToneMap::kNone) return;
   for (size_t i = 0; i < img.px.size(); i += 4)
     for (int k = 0; k < 3; ++k) img.px[i + k] = float(toneMap(g, img.px[i + k]));
 }

@@ -62,9 +62,9 @@ void BrickRenderer::enableVolume(const TransferFunction& tf, int table_size, int
 }
 
 void BrickRenderer::enableParticles(const MetaballSettings& settings) {
-  if (settings.method == "grid")
+  if (settings.method == ParticleMethod::kGrid)
     metaballs_ = std::make_unique<MetaballGridRenderer>(*ctx_, width_, height_, settings);
-  else if (settings.method == "slices")
+  else if (settings.method == ParticleMethod::kSlices)
     metaballs_ = std::make_unique<MetaballSlicesRenderer>(*ctx_, width_, height_, settings);
   else
     metaballs_ = std::make_unique<MetaballRenderer>(*ctx_, width_, height_, settings);

@@ -69,7 +69,6 @@ std::vector<GlowEmitterSpec> parseGlowEmitters(const YAML::Node& list, int frame
         lineOf(list));
   static const std::set<std::string> known = {"center",   "direction", "a",      "b",     "color",
                                               "velocity", "turn",      "a_rate", "b_rate"};
-  const int last = std::max(0, frames - 1);
   for (size_t i = 0; i < list.size(); ++i) {
     const YAML::Node e = list[i];
     const std::string name = entryName(i);
@@ -106,18 +105,27 @@ std::vector<GlowEmitterSpec> parseGlowEmitters(const YAML::Node& list, int frame
     s.turn = vec3(e, "turn", name, {});
     s.a_rate = number(e, "a_rate", name, 0.0);
     s.b_rate = number(e, "b_rate", name, 0.0);
+    out.push_back(s);
+  }
+  checkGlowRates(out, frames);
+  return out;
+}
+
+void checkGlowRates(const std::vector<GlowEmitterSpec>& emitters, int frames) {
+  const int last = std::max(0, frames - 1);
+  for (size_t i = 0; i < emitters.size(); ++i) {
+    const GlowEmitterSpec& s = emitters[i];
+    const std::string name = entryName(i);
     // The last frame is where a linear rate goes furthest.
     if (s.at0.a + last * s.a_rate < 0.0 || s.at0.b + last * s.b_rate < 0.0)
       throw InputError("scene keys '" + name +
                        ".a_rate' / '.b_rate': a or b would be negative at frame " +
                        std::to_string(last) + " of " + std::to_string(frames));
     for (int f = 0; f <= last; ++f)
-      if (!(glm::length(d + double(f) * s.turn) >= kMinLength))
+      if (!(glm::length(s.at0.direction + double(f) * s.turn) >= kMinLength))
         throw InputError("scene key '" + name + ".turn': the direction becomes zero at frame " +
                          std::to_string(f));
-    out.push_back(s);
   }
-  return out;
 }
 
 std::vector<GlowEmitter> GlowSpec::emittersAt(int frame) const {
@@ -135,7 +143,7 @@ std::vector<GlowEmitter> GlowSpec::emittersAt(int frame) const {
 }
 
 double toneMap(const GlowSpec& g, double radiance) {
-  if (g.tone_map == "exponential") return -std::expm1(-g.exposure * radiance);
+  if (g.tone_map == ToneMap::kExponential) return -std::expm1(-g.exposure * radiance);
   return radiance;
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/box.h"
+#include "common/enum_names.h"
 #include "glow/glow_field.h"
 
 namespace YAML {
@@ -23,11 +24,19 @@ struct GlowEmitterSpec {
   double a_rate = 0.0, b_rate = 0.0;  // added to a and b per frame
 };
 
+// glow.tone_map: none (radiance clamped when written) | exponential (1 - exp(-exposure x radiance)).
+enum class ToneMap { kNone, kExponential };
+template <>
+struct EnumNames<ToneMap> {
+  static constexpr std::pair<const char*, ToneMap> list[] = {{"none", ToneMap::kNone},
+                                                              {"exponential", ToneMap::kExponential}};
+};
+
 struct GlowSpec {
   std::vector<GlowEmitterSpec> emitters;
   double core_radius = 0.01;      // eps, world units
   double intensity = 1.0;         // radiance = intensity * colour * integral of E
-  std::string tone_map = "none";  // none | exponential
+  ToneMap tone_map = ToneMap::kNone;
   double exposure = 1.0;          // exponential: 1 - exp(-exposure * radiance)
   std::optional<Box3> box;        // glow.box; unset: the scene's bounds
   // Frames before the first of this time step: the rates run on through a series (time.step s
@@ -44,6 +53,9 @@ struct GlowSpec {
 // the scene renders (its time steps times its orbit's frames, each at least 1), so a rate that
 // would make a or b negative or the direction zero in a later frame is refused now. Throws InputError naming the key and entry.
 std::vector<GlowEmitterSpec> parseGlowEmitters(const YAML::Node& list, int frames);
+// The rates' part of that check alone, for a frame count learnt later (the time steps inside one
+// data file: scene/file_steps.h).
+void checkGlowRates(const std::vector<GlowEmitterSpec>& emitters, int frames);
 
 // The tone map, applied once to the final composited radiance (premultiplied rgb; alpha kept).
 double toneMap(const GlowSpec& g, double radiance);

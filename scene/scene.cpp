@@ -13,6 +13,7 @@
 
 #include "transfer/colormap_presets.h"
 #include "common/error.h"
+#include "scene/file_steps.h"
 
 namespace sortlast {
 
@@ -244,9 +245,11 @@ void checkParticles(const Reader& r, ParticleDesc& p) {
     throw InputError("scene key 'particles.radius_dataset': per-particle radii (" + p.radius_dataset +
                      ") are not supported: every particle has particles.radius; remove the key");
   validateAnisotropic(p.anisotropic);
-  if (p.anisotropicOn() && p.method != "grid")
+  if (p.anisotropicOn() && p.method != ParticleMethod::kGrid) {
+    const std::string method(nameOf(p.method));
     throw InputError("scene key 'particles.smoothing': anisotropic needs particles.method: grid (the " +
-                     p.method + " method draws round particles only); got particles.method: " + p.method);
+                     method + " method draws round particles only); got particles.method: " + method);
+  }
 }
 
 // volume.files / particles.files: a list of files, or one glob pattern (sorted matches).
@@ -488,39 +491,23 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
     throw InputError("scene keys 'volume.files' and 'particles.files' name " +
                      std::to_string(s.time.volume_files.size()) + " and " +
                      std::to_string(s.time.particle_files.size()) + " steps: a series needs one of each per step");
-  // Steps inside one file: the records of a 4-D NetCDF variable (the file's metadata is read here,
-  // on every parse, so time.step is checked against it before any rank loads a step) ...
-  size_t records = 0;
-  if (!vol.file.empty() && s.time.volume_files.empty() && vol.formatOf() == VolumeFormat::kNetcdf) {
-    VolumeDesc probe = vol;
-    describeNetcdf(probe);
-    if (probe.records > 1) records = size_t(probe.records);
-    if (records > 0 && !s.time.particle_files.empty() && s.time.particle_files.size() != records)
-      throw InputError("volume.file " + vol.file + " holds " + std::to_string(records) +
-                       " time steps (records of " + probe.variable + ") and particles.files names " +
-                       std::to_string(s.time.particle_files.size()) + ": a series needs one of each per step");
-  }
-  // ... or an HDF5 volume.dataset with {step} (one dataset per step).
+  // Steps inside one file (the records of a 4-D NetCDF variable, an HDF5 volume.dataset with
+  // {step}) are the file's to say: parsing reads no data file, so those are counted, and time.step
+  // checked against them, by resolveFileSteps (scene/file_steps.h) when the scene is loaded. What
+  // needs no file is checked here.
   const bool hdf5_series = vol.dataset.find("{step}") != std::string::npos;
   if (hdf5_series && !s.time.volume_files.empty())
     throw InputError("volume.dataset " + vol.dataset + ": {step} makes one file a time series; with "
                      "volume.files (one file per step) name the dataset without {step}");
-  if (hdf5_series && !vol.file.empty()) {
-    if (vol.formatOf() != VolumeFormat::kHdf5)
-      throw InputError("volume.dataset " + vol.dataset + ": {step} needs an HDF5 volume.file, not " + vol.file);
-    records = size_t(countHdf5Steps(vol));
-    if (!s.time.particle_files.empty() && s.time.particle_files.size() != records)
-      throw InputError("volume.file " + vol.file + " holds " + std::to_string(records) + " time steps (datasets " +
-                       vol.dataset + ") and particles.files names " + std::to_string(s.time.particle_files.size()) +
-                       ": a series needs one of each per step");
-  }
-  s.time.steps = int(std::max({size_t(1), s.time.volume_files.size(), s.time.particle_files.size(), records}));
-  if (s.time.step < 0 || s.time.step >= s.time.steps)
+  if (hdf5_series && !vol.file.empty() && vol.formatOf() != VolumeFormat::kHdf5)
+    throw InputError("volume.dataset " + vol.dataset + ": {step} needs an HDF5 volume.file, not " + vol.file);
+  s.time.steps = int(std::max({size_t(1), s.time.volume_files.size(), s.time.particle_files.size()}));
+  // (With a particle series beside a file's steps, the two must agree: its length bounds the step.)
+  const bool steps_known = !hasFileSteps(s) || !s.time.particle_files.empty();
+  if (s.time.step < 0 || (steps_known && s.time.step >= s.time.steps))
     throw InputError("scene key 'time.step': " + std::to_string(s.time.step) + " is out of range: the scene has " +
                      std::to_string(s.time.steps) + " time step(s), 0 ... " + std::to_string(s.time.steps - 1));
   if (!s.time.volume_files.empty()) vol.file = s.time.volume_files[size_t(s.time.step)];
-  if (records > 0) vol.step = s.time.step;
-  if (hdf5_series && !vol.file.empty()) vol.dataset = hdf5StepPath(vol.dataset, s.time.step);
   if (!s.time.particle_files.empty()) s.particles.file = s.time.particle_files[size_t(s.time.step)];
   readGlow(r, s);
   s.surfaces = parseSurfaces(r.get("surfaces"), origin.base_dir);

@@ -17,6 +17,7 @@
 #include <variant>
 #include <vector>
 
+#include "common/enum_names.h"
 #include "io/volume_source.h"
 
 namespace sortlast {
@@ -101,20 +102,6 @@ struct Text {
   // A file name: relative to the scene file (to the working directory when given with --set).
   bool file = false;
 };
-// The names of an enum a Choice key takes, and --stats prints: a section that adds an enum
-// specialises EnumNames<E> with `static constexpr std::pair<const char*, E> list[]`.
-template <class E>
-struct EnumNames;
-template <class E>
-concept NamedEnum = std::is_enum_v<E> && requires { EnumNames<E>::list; };
-// An enum value's name (as the scene key takes it).
-template <NamedEnum E>
-std::string_view nameOf(E value) {
-  for (const auto& [name, v] : EnumNames<E>::list)
-    if (v == value) return name;
-  return "?";
-}
-
 // One of a list of names, each standing for a value of the field.
 struct Choice {
   static constexpr const char* kSays = "expected {names}, got '{text}'";

@@ -152,8 +152,8 @@ MemoryNeed imageNeed(const Scene& scene, int width, int height, int rank, int br
   n.add("image targets (" + std::to_string(width) + " x " + std::to_string(height) + ")",
         px * (16 + 16 + 4 + 4), px * 16);
   if (scene.particles.enabled())  // metaball state, hit, potential, colour and surface images
-    n.add("metaball image targets", px * (scene.particles.method == "grid" ? 16 : 6 * 16 + 4),
-          px * (scene.particles.method == "grid" ? 16 : 6 * 16 + 4));
+    n.add("metaball image targets", px * (scene.particles.method == ParticleMethod::kGrid ? 16 : 6 * 16 + 4),
+          px * (scene.particles.method == ParticleMethod::kGrid ? 16 : 6 * 16 + 4));
   // Glow scenes: the glow pass's own RGBA32F target and its float read-back.
   if (scene.glow.enabled()) n.add("glow image targets", px * (16 + 16), px * 16);
   // Compositing: the brick images this rank holds, a float frame, and on rank 0 the brick images
@@ -217,7 +217,7 @@ MemoryNeed sessionNeed(const Scene& scene, const SessionLayout& layout, long lon
       n.add("this rank's share of the particle set", std::ceil(double(particles) / ranks) * kParticle);
     else if (rank == 0)
       n.add("the particle set on rank 0", double(particles) * kParticle);
-    if (scene.particles.method == "grid") {
+    if (scene.particles.method == ParticleMethod::kGrid) {
       // Cells of edge h/2 (the influence radius) over a brick grown by the reach, at most 2^24;
       // each particle listed in every cell its ball of the reach touches (round: 84 cells;
       // anisotropic, by the reach bound: about 10 times as many).
@@ -231,7 +231,7 @@ MemoryNeed sessionNeed(const Scene& scene, const SessionLayout& layout, long lon
       if (anisotropic)
         n.add("anisotropic kernels (host and GPU)", held * kAnisotropicBytes, held * 3.0 * 16.0);
     }
-    if (scene.particles.method == "slices") {
+    if (scene.particles.method == ParticleMethod::kSlices) {
       // A particle's ball (radius h) meets on average (e^3 + 6 e^2 h + 3 pi e h^2 + 4/3 pi h^3) / e^3
       // voxels of edge e (the volume of the cube grown by h; measured 20.6 list entries per
       // particle at e = h). Slots: at most one per voxel of a brick grown by the ghost margin,

@@ -4,6 +4,8 @@
 // order.
 #include "session/render_session.h"
 
+#include "scene/file_steps.h"
+
 #include "session/auto_spacing.h"
 
 #include <algorithm>
@@ -119,7 +121,7 @@ void checkGlowScene(const Scene& sc, bool external) {
 // k + 1/2), so a level can differ from the double path only where a value lies within about 1e-7
 // of a rounding boundary. `f` keeps the tone-mapped colour (the float frame, an .exr).
 void finishGlowFrame(const GlowSpec& g, const glm::dvec3& background, ImageF& f, ImageRGBA8& out) {
-  const bool exponential = g.tone_map == "exponential";
+  const bool exponential = g.tone_map == ToneMap::kExponential;
   const float exposure = float(g.exposure);
   const float bg[3] = {float(background.x), float(background.y), float(background.z)};
   if (out.width != f.width || out.height != f.height) out = ImageRGBA8(f.width, f.height);  // every pixel written
@@ -160,7 +162,7 @@ struct GpuKey {
   RenderMethod method = RenderMethod::kRaycast;
   double h = -1;  // the particles' ghost margin (ParticleDesc::ghostMargin)
   // Kernels are per brick: new smoothing settings need the bricks again.
-  std::string smoothing;
+  Smoothing smoothing = Smoothing::kNone;
   AnisotropicParams anisotropic;
   bool operator==(const GpuKey&) const = default;
 };
@@ -233,6 +235,7 @@ RenderSession::RenderSession(SessionOptions options, MPI_Comm comm) : s_(std::ma
   // Scene and volume geometry: every rank parses the same input, so they agree.
   collectively(comm, [&] {
     S.base = parseScene(S.opts.scene, S.opts.overrides);
+    resolveFileSteps(S.base);
     S.adaptive = usesAdaptiveBlocks(S.base);
     if (S.base.hasVolume()) validateVolume(S.base.volume);
     checkGlowScene(S.base, false);
@@ -363,6 +366,7 @@ Scene RenderSession::State::resolve(const FrameRequest& request) const {
   std::vector<std::string> all = opts.overrides;
   all.insert(all.end(), request.overrides.begin(), request.overrides.end());
   Scene sc = parseScene(opts.scene, all);
+  resolveFileSteps(sc);
   if (external) {
     if (!ext) throw std::logic_error("RenderSession: no step published yet");
     // The data is the simulation's: the scene's own volume and particle sources do not apply.
@@ -748,7 +752,7 @@ nlohmann::json RenderSession::describe(const std::vector<std::string>& base) con
                    {"image.width", b.camera.width},
                    {"image.height", b.camera.height},
                    {"image.background", vec3Json(b.image.background)},
-                   {"render.method", b.render.method},
+                   {"render.method", std::string(nameOf(b.render.method))},
                    {"render.sample_spacing", b.render.sample_spacing_auto ? nlohmann::json("auto")
                                                                    : nlohmann::json(b.render.sample_spacing)},
                    {"render.ert_threshold", b.render.ert_threshold},
@@ -756,9 +760,9 @@ nlohmann::json RenderSession::describe(const std::vector<std::string>& base) con
                    {"transfer.preintegrated", b.transfer.preintegrated},  // as resolved (auto: on or off)
                    {"render.adaptive_step", b.render.adaptive_step},
                    {"render.adaptive_tolerance", b.render.adaptive_step_tolerance},
-                   {"compositing.strategy", b.compositing.strategy},
+                   {"compositing.strategy", std::string(nameOf(b.compositing.strategy))},
                    {"compositing.radix", b.compositing.radix},
-                   {"compositing.precision", b.compositing.precision},
+                   {"compositing.precision", std::string(nameOf(b.compositing.precision))},
                    {"camera.fov", b.camera.fov_deg},
                    {"time.step", b.time.step}};
   if (b.particles.enabled()) {

@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
   MetaballSettings s;
   s.h = h;
   s.step = h / 8;
-  s.method = "slices";
+  s.method = ParticleMethod::kSlices;
   s.slice_spacing = rel;
   auto ctx = createGlContext("osmesa");
   const GlApi& gl = ctx->gl();

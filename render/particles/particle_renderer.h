@@ -9,6 +9,7 @@
 #include "common/box.h"
 #include "common/camera.h"
 #include "io/anisotropic_kernels.h"
+#include "io/particles.h"
 #include "io/image.h"
 
 namespace sortlast {
@@ -25,7 +26,7 @@ struct MetaballSettings {
   // billboards (render/particles/metaball_renderer.h, the paper's) | grid
   // (render/particles/metaball_grid_renderer.h) | slices (render/particles/metaball_slices_renderer.h);
   // read by the caller that picks the renderer (render/brick_renderer.cpp)
-  std::string method = "grid";
+  ParticleMethod method = ParticleMethod::kGrid;
   // particles.smoothing: anisotropic (grid method only): kernels computed per brick
   // (io/anisotropic_kernels.h) from the brick's particles and ghosts.
   bool anisotropic = false;

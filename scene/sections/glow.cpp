@@ -34,7 +34,7 @@ std::vector<sortlast::SceneKey> sortlast::glowKeys() {
      "x radiance) per channel. Applied once to the final composited frame (volume included: "
      "after compositing, glow and volume light are one sum), never per brick: the map is not "
      "additive, so per-brick mapping would change with the decomposition.",
-     Choice{member<&Scene::glow, &GlowSpec::tone_map>, names({"none", "exponential"})}},
+     Choice{member<&Scene::glow, &GlowSpec::tone_map>}},
     {"glow.exposure", "1", "k of the exponential tone map.",
      Real{member<&Scene::glow, &GlowSpec::exposure>, {{"in (0, 1e30]"}}}},
     {"glow.box", "auto",

@@ -77,8 +77,7 @@ std::vector<sortlast::SceneKey> sortlast::particleKeys() {
      "spacing `particles.slice_spacing`, only in the coarse voxels a particle reaches, and each "
      "ray cast through its trilinear interpolation; a sampled field, so its surface is less "
      "exact (bounds in tests/mpi/particles_slices.sh).",
-     Choice{member<&Scene::particles, &ParticleDesc::method>,
-           names({"billboards", "grid", "slices"})}},
+     Choice{member<&Scene::particles, &ParticleDesc::method>}},
     // Below 1/20 h the lattice needs 8000 points per h^3 (memory and splat time grow as the
     // inverse cube); above h the lattice cannot even hold a lone particle's surface (0.23 h).
     {"particles.slice_spacing", "0.25",
@@ -123,7 +122,7 @@ std::vector<sortlast::SceneKey> sortlast::particleKeys() {
      "inside), and surface particles become ellipsoids along their neighbours' weighted "
      "covariance, normalised to the same mass (io/anisotropic_kernels.h). Only with "
      "`particles.method: grid` (the billboard method refuses it).",
-     Choice{member<&Scene::particles, &ParticleDesc::smoothing>, names({"none", "anisotropic"})}},
+     Choice{member<&Scene::particles, &ParticleDesc::smoothing>}},
     {"particles.anisotropic.splash_scale", "1",
      "R_splash / h: radius factor of splash particles (density at most `rho_splash`); a lone "
      "particle is the round metaball of radius h x this.",

@@ -14,6 +14,7 @@
 
 #include "tests/unit/input_error_of.h"
 #include "common/error.h"
+#include "scene/file_steps.h"
 #include "scene/scene.h"
 
 namespace sortlast {
@@ -192,6 +193,26 @@ TEST(Scene, OrbitStart) {
   EXPECT_EQ(loadScene("", {}).orbit.start, std::stod(tableDefault("camera.orbit.start")));
   EXPECT_EQ(inputErrorOf([] { loadScene("", {"camera.orbit.start=400"}); }),
             "scene key 'camera.orbit.start': must be in [-360, 360] degrees");
+}
+
+// Parsing reads no data file: a NetCDF volume's steps (its records) are counted, and time.step
+// checked against them, when the scene is loaded (resolveFileSteps), not when it is parsed.
+TEST(Scene, ParsingReadsNoDataFile) {
+  const std::string missing = "/nonexistent/sortlast-test/volume.nc";
+  Scene s = loadScene("", {"volume.file=" + missing, "time.step=5"});
+  EXPECT_TRUE(hasFileSteps(s));
+  const std::string msg = inputErrorOf([&] { resolveFileSteps(s); });
+  EXPECT_NE(msg.find(missing), std::string::npos) << msg;
+  // A scene without steps in a file is resolved as parsed, and time.step is checked at once.
+  Scene plain = loadScene("", {});
+  EXPECT_FALSE(hasFileSteps(plain));
+  resolveFileSteps(plain);
+  EXPECT_EQ(plain.time.steps, 1);
+  EXPECT_NE(inputErrorOf([] { loadScene("", {"time.step=1"}); }).find("time.step"), std::string::npos);
+  // What needs no file is still refused by the parser: {step} in the dataset of a file that is not HDF5.
+  EXPECT_NE(inputErrorOf([] { loadScene("", {"volume.file=x.raw", "volume.dataset=/s{step}/d"}); })
+                .find("needs an HDF5 volume.file"),
+            std::string::npos);
 }
 
 TEST(Scene, CompositingStrategies) {
