@@ -1,6 +1,6 @@
 #pragma once
 // Inside the service's front end (service/http_server.h): what every connection shares, and the
-// small helpers the HTTP and WebSocket sessions both use. Not for use outside master/http_*.cpp
+// small helpers the HTTP and WebSocket sessions both use. Not for use outside service/http_*.cpp
 // and service/ws_session.cpp.
 #include <atomic>
 #include <cstdint>

@@ -1,4 +1,4 @@
-// The GL side of bench/subdivision/run: frames per second of worker/subdiv_renderer for a
+// The GL side of bench/subdivision/run: frames per second of render/surfaces/subdiv_renderer for a
 // mesh at an image size, over an orbit of F frames (frame 0, the warm-up, left out), with the
 // seconds for setSurface (tables, coarse mesh, upload), the seconds of the draw alone (to
 // glFinish; the rest of a frame is the read-back) and the fragment shader invocations of one frame

@@ -19,8 +19,8 @@
 namespace sortlast {
 namespace {
 
-const GlslFile kA{"worker/x/a.glsl", "float a() { return 1.0; }\n"};
-const GlslFile kB{"worker/x/b.frag.glsl", "void main() {}"};  // no final newline
+const GlslFile kA{"render/x/a.glsl", "float a() { return 1.0; }\n"};
+const GlslFile kB{"render/x/b.frag.glsl", "void main() {}"};  // no final newline
 
 TEST(ShaderSource, VersionSortedDefinesThenChunksEachAfterALineDirective) {
   const std::string text = ShaderSource().define("ZED").add(kA).define("ALPHA", "3").add(kB).text();
@@ -59,13 +59,13 @@ TEST(ShaderSource, LocatesMesaAndNvidiaLogLines) {
                      "3:30001(1): error: no such chunk\n"
                      "error: linking failed\n"
                      "2(20012) : error C0000: syntax error"),
-            "worker/x/b.frag.glsl:1(14): error: syntax error, unexpected '}'\n"
-            "worker/x/a.glsl:7(3): warning: unused\n"
+            "render/x/b.frag.glsl:1(14): error: syntax error, unexpected '}'\n"
+            "render/x/a.glsl:7(3): warning: unused\n"
             "(version and defines):2(9): preprocessor error: bad define\n"
             "3:30001(1): error: no such chunk\n"
             "error: linking failed\n"
-            "worker/x/b.frag.glsl:12 : error C0000: syntax error");
-  EXPECT_EQ(s.paths(), "worker/x/a.glsl, worker/x/b.frag.glsl");
+            "render/x/b.frag.glsl:12 : error C0000: syntax error");
+  EXPECT_EQ(s.paths(), "render/x/a.glsl, render/x/b.frag.glsl");
 }
 
 // The embedded text is the file's, byte for byte: escapes_test.glsl holds what would end a raw
