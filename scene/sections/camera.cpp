@@ -1,5 +1,8 @@
 // The camera section's keys: the camera and its orbit.
 #include "scene/key_rows.h"
+#include "scene/scene_reader.h"
+#include <algorithm>
+#include <cmath>
 
 std::vector<sortlast::SceneKey> sortlast::cameraKeys() {
   const Check kLength = lengthCheck();
@@ -42,3 +45,52 @@ std::vector<sortlast::SceneKey> sortlast::cameraKeys() {
      OptionalReal{member<&Scene::orbit, &OrbitSpec::radius>, {{"> 0"}, kLength}}, AutoValue{}},
   };
 }
+
+namespace sortlast {
+
+// The image size (both in one message), and a fixed camera that has a view direction and an up.
+void checkCameraKeys(const Scene& s) {
+  const Camera& cam = s.camera;
+  const Allowed& size = sceneKeyChecks("image.width").front().allowed;
+  if (!size.admits(cam.width) || !size.admits(cam.height))
+    throw InputError("image size " + std::to_string(cam.width) + " x " + std::to_string(cam.height) +
+                     ": image.width and image.height must be " + size.phrase());
+  if (!s.camera_auto && s.orbit.frames == 0) {
+    if (glm::length(cam.look_at - cam.position) == 0.0)
+      throw InputError("camera.position equals camera.look_at: no view direction");
+    if (glm::length(glm::cross(cam.forward(), cam.up)) < 1e-9)
+      throw InputError("camera.up is parallel to the view direction");
+  }
+}
+
+std::vector<Camera> Scene::frameCameras(const Box3& bounds) const {
+  Camera base = camera;
+  // No volume and no particles leaves an empty box; one particle, a point: any camera that looks
+  // at where the (absent) data would be will do.
+  const bool empty = isEmpty(bounds);
+  glm::dvec3 e = bounds.extent();
+  double largest = glm::max(e.x, glm::max(e.y, e.z));
+  double extent = empty || !(largest > 0.0) ? 1.0 : largest;
+  if (look_at_auto) base.look_at = empty ? glm::dvec3(0.0) : bounds.centre();
+  if (camera_auto) {
+    // Far enough that the box's bounding sphere (about the look-at point) fits in the vertical
+    // and the horizontal field of view, with 2% to spare: the whole scene is in the frame
+    // whatever its shape and the image's aspect. (The viewer's reset, viewer/orbit.js
+    // frameBounds, frames the same way.)
+    glm::dvec3 centre = empty ? glm::dvec3(0.0) : bounds.centre();
+    double radius = empty || !(largest > 0.0) ? 0.5 * std::sqrt(3.0) : 0.5 * glm::length(e);
+    radius += glm::length(centre - base.look_at);
+    double vhalf = 0.5 * base.fov_deg * 3.14159265358979323846 / 180.0;
+    double hhalf = std::atan(std::tan(vhalf) * double(base.width) / base.height);
+    double dist = 1.02 * radius / std::sin(std::min(vhalf, hhalf));
+    base.position = base.look_at + dist * glm::normalize(glm::dvec3(0.55, 0.35, 1.0));
+  }
+  if (orbit.frames == 0) return {base};
+  std::vector<Camera> cams;
+  double radius = orbit.radius.value_or(2.0 * extent);
+  for (int i = 0; i < orbit.frames; ++i)
+    cams.push_back(orbitCamera(base, base.look_at, radius, orbit.elevation, i, orbit.frames, orbit.start));
+  return cams;
+}
+
+}  // namespace sortlast

@@ -1,5 +1,8 @@
 // The glow section's keys: glow emitters (docs/glow.md).
 #include "scene/key_rows.h"
+#include "scene/scene_reader.h"
+#include <algorithm>
+#include <cmath>
 
 std::vector<sortlast::SceneKey> sortlast::glowKeys() {
   const Check kLength = lengthCheck();
@@ -44,3 +47,40 @@ std::vector<sortlast::SceneKey> sortlast::glowKeys() {
      Structured{"`auto` or [[x0, y0, z0], [x1, y1, z1]]", {kCoordinate}}},
   };
 }
+
+namespace sortlast {
+
+// glow.emitters (scene/glow_scene.h has the emitters' own keys) and glow.box. The emitters'
+// rates run per frame of an orbit and on through the steps of a series.
+void readGlowKeys(const Reader& r, Scene& s) {
+  GlowSpec& g = s.glow;
+  const int per_step = std::max(1, s.orbit.frames);
+  g.emitters = parseGlowEmitters(r.get("glow.emitters"), s.time.steps * per_step);
+  g.first_frame = s.time.step * per_step;
+  if (!r.isAuto("glow.box")) {
+    YAML::Node n = r.get("glow.box");
+    if (!n.IsSequence() || n.size() != 2)
+      throw InputError("scene key 'glow.box': expected auto or [[x0, y0, z0], [x1, y1, z1]]" + where(n));
+    Box3 b;
+    for (int c = 0; c < 2; ++c) {
+      std::vector<double> v;
+      try {
+        for (const auto& x : n[c]) v.push_back(x.as<double>());
+      } catch (const YAML::Exception&) {
+        v.clear();
+      }
+      if (v.size() != 3)
+        throw InputError("scene key 'glow.box': each corner is a list of 3 numbers" + where(n));
+      for (double x : v)
+        if (!std::isfinite(x)) throw InputError("scene key 'glow.box': values must be finite" + where(n));
+      for (double x : v) requireTable("glow.box", x, "glow.box");
+      (c == 0 ? b.lo : b.hi) = glm::dvec3{v[0], v[1], v[2]};
+    }
+    for (int a = 0; a < 3; ++a)
+      if (!(b.hi[a] - b.lo[a] >= kMinLength))
+        throw InputError("scene key 'glow.box': needs lo < hi on every axis (by at least 1e-12)" + where(n));
+    g.box = b;
+  }
+}
+
+}  // namespace sortlast

@@ -1,6 +1,7 @@
 // The particles section's keys: the particles: their file or generator, and the metaball model and
 // methods (io/particles.h holds ParticleDesc).
 #include "scene/key_rows.h"
+#include "scene/scene_reader.h"
 
 std::vector<sortlast::SceneKey> sortlast::particleKeys() {
   const Check kLength = lengthCheck();
@@ -168,3 +169,28 @@ std::vector<sortlast::SceneKey> sortlast::particleKeys() {
           {{"in [0, 1]", "must be {allowed}, got {value}"}}}},
   };
 }
+
+namespace sortlast {
+
+constexpr long long kDefaultProceduralParticles = 4096;  // particles.count: auto, procedural
+
+// The particles.* rules between keys (each key's own range is the table's).
+void checkParticleKeys(const Reader& r, ParticleDesc& p) {
+  if (!p.file.empty() && p.procedural != "none")
+    throw InputError(
+        "scene keys 'particles.file' and 'particles.procedural' are both set: use one "
+        "(set particles.procedural to none to read the file)");
+  if (r.isAuto("particles.count") && p.file.empty() && p.procedural != "none")
+    p.count = kDefaultProceduralParticles;
+  if (!p.radius_dataset.empty())
+    throw InputError("scene key 'particles.radius_dataset': per-particle radii (" + p.radius_dataset +
+                     ") are not supported: every particle has particles.radius; remove the key");
+  validateAnisotropic(p.anisotropic);
+  if (p.anisotropicOn() && p.method != ParticleMethod::kGrid) {
+    const std::string method(nameOf(p.method));
+    throw InputError("scene key 'particles.smoothing': anisotropic needs particles.method: grid (the " +
+                     method + " method draws round particles only); got particles.method: " + method);
+  }
+}
+
+}  // namespace sortlast

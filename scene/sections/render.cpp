@@ -1,6 +1,7 @@
 // The render section's keys: how bricks are drawn: GL backend and device, volume renderer,
 // sampling, shading.
 #include "scene/key_rows.h"
+#include "scene/scene_reader.h"
 
 std::vector<sortlast::SceneKey> sortlast::renderKeys() {
   return {
@@ -87,3 +88,15 @@ std::vector<sortlast::SceneKey> sortlast::renderKeys() {
      Real{member<&Scene::render, &RenderSection::adaptive_step_tolerance>, {{"in (0, 1]"}}}},
   };
 }
+
+namespace sortlast {
+
+// A device index names an EGL device: with OSMesa it would be ignored without a word.
+void checkRenderKeys(const Scene& s) {
+  if (s.render.device >= 0 && s.render.backend != GlBackend::kEgl)
+    throw InputError("scene key 'render.device': device " + std::to_string(s.render.device) +
+                     " names an EGL device, but render.backend is " + std::string(nameOf(s.render.backend)) +
+                     " (set render.backend: egl, or render.device: auto)");
+}
+
+}  // namespace sortlast

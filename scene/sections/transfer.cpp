@@ -1,6 +1,10 @@
 // The transfer section's keys: the transfer function: control points or a preset, colour map,
 // range, table, pre-integration.
 #include "scene/key_rows.h"
+#include "scene/scene_reader.h"
+#include <algorithm>
+#include <cmath>
+#include "transfer/colormap_presets.h"
 
 std::vector<sortlast::SceneKey> sortlast::transferKeys() {
   const Check kLength = lengthCheck();
@@ -54,3 +58,69 @@ std::vector<sortlast::SceneKey> sortlast::transferKeys() {
      Flag{member<&Scene::transfer, &TransferSpec::preintegrated>}, AutoValue{}},
   };
 }
+
+namespace sortlast {
+
+// transfer.points (or transfer.preset), transfer.range and transfer.colormap.
+void readTransferKeys(const Reader& r, const Origin& o, TransferSpec& tf) {
+  YAML::Node pts = r.get("transfer.points");
+  if (pts.IsNull()) {
+    tf.points = TransferFunction::preset(r.as<std::string>("transfer.preset"));
+  } else {
+    if (!pts.IsSequence() || pts.size() == 0)
+      throw InputError("scene key 'transfer.points': expected a list of [value, r, g, b, a]" + where(pts));
+    for (const auto& p : pts) {
+      std::vector<double> v;
+      try {
+        for (const auto& e : p) v.push_back(e.as<double>());
+      } catch (const YAML::Exception&) {
+        v.clear();
+      }
+      if (v.size() != 5)
+        throw InputError("scene key 'transfer.points': each point is [value, r, g, b, a]" + where(p));
+      tf.points.push_back({v[0], v[1], v[2], v[3], v[4]});
+    }
+  }
+  if (!r.isAuto("transfer.range")) {
+    auto v = r.numbers("transfer.range", 2);
+    if (!(v[1] > v[0])) throw InputError("scene key 'transfer.range': needs lo < hi");
+    // Samples are floats on the GPU: the range must be one, and wide enough not to collapse there.
+    for (double x : v) requireTable("transfer.range", x, "transfer.range");
+    if (v[1] - v[0] < 1e-6 * std::max(std::abs(v[0]), std::abs(v[1])))
+      throw InputError("scene key 'transfer.range': [" + numText(v[0]) + ", " + numText(v[1]) +
+                       "] is narrower than float precision at that magnitude (hi - lo must be at "
+                       "least 1e-6 of |hi|)");
+    tf.range = std::make_pair(v[0], v[1]);
+  }
+  // Validate the points now (range and unit length are placeholders until the data is known).
+  TransferFunction(tf.points, 0.0, 1.0, tf.unit_length.value_or(1.0));
+  // A colour map replaces the points' colours (their opacity stays): resolved here, once per
+  // parse, so the rest of the program sees plain control points.
+  if (!r.get("transfer.colormap").IsNull()) tf.colormap = r.as<std::string>("transfer.colormap");
+  if (!tf.colormap.empty()) {
+    try {
+      const bool given = o.fromOverride("transfer.colormap");
+      ColourMap map =
+          loadColourMap(tf.colormap, given ? std::filesystem::current_path() : o.base_dir);
+      tf.points = applyColourMap(tf.points, map.sampled());
+    } catch (const InputError& e) {
+      throw InputError(std::string("scene key 'transfer.colormap': ") + e.what());
+    }
+  }
+}
+
+TransferFunction TransferSpec::build(double data_min, double data_max, double min_spacing) const {
+  double lo = range ? range->first : data_min, hi = range ? range->second : data_max;
+  if (!range && !(hi > lo)) hi = lo + 1.0;  // constant volume: any non-empty range will do
+  return TransferFunction(points, lo, hi, unit_length.value_or(min_spacing));
+}
+
+bool hasSteepOpacity(const std::vector<TfPoint>& points) {
+  for (size_t i = 1; i < points.size(); ++i) {
+    const double dx = points[i].value - points[i - 1].value, da = std::abs(points[i].a - points[i - 1].a);
+    if (da > 0.0 && da >= kSteepOpacitySlope * dx) return true;
+  }
+  return false;
+}
+
+}  // namespace sortlast

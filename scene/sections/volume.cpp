@@ -1,6 +1,7 @@
 // The volume section's keys: the volume: its file or procedural field, grid, sample type and layout
 // (io/volume_source.h holds VolumeDesc).
 #include "scene/key_rows.h"
+#include "scene/scene_reader.h"
 
 std::vector<sortlast::SceneKey> sortlast::volumeKeys() {
   const Check kLength = lengthCheck();
@@ -88,3 +89,15 @@ std::vector<sortlast::SceneKey> sortlast::volumeKeys() {
      Long{member<&Scene::volume, &VolumeDesc::header_bytes>, {{">= 0"}}}},
   };
 }
+
+namespace sortlast {
+
+// The volume's extent along each axis must be a length float math on the GPU can hold.
+void checkVolumeKeys(const Scene& s) {
+  const VolumeDesc& vol = s.volume;
+  for (int a = 0; a < 3; ++a)
+    requireTable("volume.spacing", vol.grid.spacing[a] * (vol.grid.dims[a] - 1),
+                 "volume.spacing (times volume.dims - 1: the volume's extent)");
+}
+
+}  // namespace sortlast
