@@ -140,7 +140,7 @@ void SurfaceReference::render(const Camera& cam, int threads, SurfaceImage& surf
             const double a = c == 0 ? nu : c == 1 ? nv : c == 2 ? 1.0 - nu : 1.0 - nv;
             const double b = c == 0 ? nv : c == 1 ? 1.0 - nu : c == 2 ? 1.0 - nv : nu;
             const ControlMesh& cm = e.surface.control();
-            const auto& twin = cm.topology.twin[size_t(cm.mesh.faceOffsets[h.face] + c)];
+            const auto& twin = cm.topology.twin[size_t(cm.mesh.face_offsets[h.face] + c)];
             // Across a boundary edge or into a hole there is no surface: stay, clamped.
             if (twin.face >= 0 && !e.surface.hole(twin.face)) {
               const double ga = 1.0 - a, gb = -b;  // the neighbour's edge runs the other way

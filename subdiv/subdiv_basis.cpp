@@ -152,10 +152,10 @@ ValenceBasis::ValenceBasis(int n) : valence(n), size(2 * n + 8) {
     i += m;
   }
   Vinv = V.partialPivLu().inverse();
-  reconstructionError = (V * lambda.asDiagonal() * Vinv - A).cwiseAbs().maxCoeff();
-  if (!(reconstructionError < 1e-9))
+  reconstruction_error = (V * lambda.asDiagonal() * Vinv - A).cwiseAbs().maxCoeff();
+  if (!(reconstruction_error < 1e-9))
     throw std::runtime_error("ValenceBasis: subdivision matrix of valence " + std::to_string(n) +
-                             " not diagonalisable to 1e-9 (error " + std::to_string(reconstructionError) + ")");
+                             " not diagonalisable to 1e-9 (error " + std::to_string(reconstruction_error) + ")");
   for (int k = 0; k < 3; ++k) X[k] = pick[k] * V;
 }
 

@@ -32,7 +32,7 @@ struct ValenceBasis {
   Eigen::VectorXd lambda;       // eigenvalues (real for Catmull-Clark), largest (1) first
   Eigen::MatrixXd V, Vinv;      // eigenvectors as columns, and the inverse
   std::array<Eigen::MatrixXd, 3> X;     // Pick_k V
-  double reconstructionError = 0;       // max |V Lambda V^-1 - A|
+  double reconstruction_error = 0;       // max |V Lambda V^-1 - A|
 
   explicit ValenceBasis(int n);  // throws std::runtime_error if A is not diagonalisable in reals
   // Label of grid point (i, j) in the layout above, or -1 where the layout has none.

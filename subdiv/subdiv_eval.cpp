@@ -29,7 +29,7 @@ namespace {
 // ValenceBasis's labels, found by walking the directed edges (see subdiv_basis.h for the layout).
 std::vector<int> gatherPatch(const PolyMesh& m, const MeshTopology& t, int face, int n) {
   auto at = [&](int f, int c) { return m.corner(f, c % 4); };
-  auto across = [&](int f, int c) { return t.twin[m.faceOffsets[f] + c % 4]; };
+  auto across = [&](int f, int c) { return t.twin[m.face_offsets[f] + c % 4]; };
   std::vector<int> label(2 * n + 8, -1);
   label[0] = at(face, 0);
   int g = face, c = 0;
@@ -142,7 +142,7 @@ void SubdivSurface::fillNode(int index, const LocalNet& net, int depth) {
   const int first = static_cast<int>(nodes_.size());
   nodes_.resize(nodes_.size() + 4);  // the four children side by side, their subtrees after them
   nodes_[index].type = NodeType::Split;
-  nodes_[index].firstChild = first;
+  nodes_[index].first_child = first;
   const std::array<LocalNet, 4> children = net.split();
   for (int q = 0; q < 4; ++q) fillNode(first + q, children[q], depth + 1);
 }
@@ -267,7 +267,7 @@ LimitPoint SubdivSurface::evaluate(int face, double u, double v) const {
       const int a = u >= 0.5 ? 1 : 0, b = v >= 0.5 ? 1 : 0;
       u = 2.0 * u - a;
       v = 2.0 * v - b;
-      node = nodes_[node].firstChild + (b == 0 ? a : 3 - a);
+      node = nodes_[node].first_child + (b == 0 ? a : 3 - a);
     }
     std::array<glm::dvec3, 16> points, tangents;
     double s = u, t = v;

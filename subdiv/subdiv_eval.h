@@ -90,7 +90,7 @@ class SubdivSurface {
   enum class NodeType { Regular, Irregular, Split };
   int rootNode(int face) const { return patches_[face].root; }
   NodeType nodeType(int node) const { return nodes_[node].type; }
-  int firstChild(int node) const { return nodes_[node].firstChild; }
+  int first_child(int node) const { return nodes_[node].first_child; }
   // A Regular node's grid (positions, and the tangent points: same patch, moved and scaled).
   void nodeGrid(int node, std::array<glm::dvec3, 16>& position, std::array<glm::dvec3, 16>& tangent) const;
   // An Irregular node's sub-patches (n, k), n = 1..levels, as subPatches lays them out.
@@ -108,7 +108,7 @@ class SubdivSurface {
   };
   struct Node {
     NodeType type = NodeType::Regular;
-    int firstChild = -1;                        // Split: children firstChild + q
+    int first_child = -1;                        // Split: children first_child + q
     std::array<glm::dvec3, 16> grid, tangent;   // Regular
     std::shared_ptr<const LocalNet> net;        // Irregular: level 0 of its local subdivision
   };

@@ -150,7 +150,7 @@ PolyMesh readObjMesh(const std::string& path) {
     }
   }
   mesh.boundary = tags.boundary;
-  mesh.creaseMethod = tags.method;
+  mesh.crease_method = tags.method;
   applyTags(mesh, tags.tags);
   return mesh;
 }
@@ -271,8 +271,8 @@ void deform(PolyMesh& m, double amount) {
 
 // The edges round face f of `m` as crease tags of sharpness s.
 void creaseFace(SubdivTags& tags, const PolyMesh& m, int f, double s) {
-  for (int c = 0; c < m.faceSizes[f]; ++c)
-    tags.creases.push_back({m.corner(f, c), m.corner(f, (c + 1) % m.faceSizes[f]), s, m.name});
+  for (int c = 0; c < m.face_sizes[f]; ++c)
+    tags.creases.push_back({m.corner(f, c), m.corner(f, (c + 1) % m.face_sizes[f]), s, m.name});
 }
 
 // The cube, deformed, its top face's edge loop creased at sharpness s.
@@ -304,7 +304,7 @@ PolyMesh cubeChaikin() {
   PolyMesh m = cube();
   m.name = "cube_chaikin";
   deform(m, 0.06);
-  m.creaseMethod = CreaseMethod::Chaikin;
+  m.crease_method = CreaseMethod::Chaikin;
   SubdivTags tags;
   tags.creases = {{7, 6, 0.5, m.name}, {7, 5, 1.5, m.name}, {7, 3, 2.5, m.name}};
   applyTags(m, tags);

@@ -19,20 +19,20 @@ std::vector<int> oneRing(const PolyMesh& mesh, const MeshTopology& t, int f) {
   auto add = [&](int g) {
     if (std::find(out.begin(), out.end(), g) == out.end()) out.push_back(g);
   };
-  for (int c = 0; c < mesh.faceSizes[f]; ++c) {
+  for (int c = 0; c < mesh.face_sizes[f]; ++c) {
     int g = f, d = c;
     for (int guard = 0; guard < 64; ++guard) {  // backwards: across the edge entering the corner
-      const int m = mesh.faceSizes[g];
-      const auto s = t.twin[mesh.faceOffsets[g] + (d + m - 1) % m];
+      const int m = mesh.face_sizes[g];
+      const auto s = t.twin[mesh.face_offsets[g] + (d + m - 1) % m];
       if (s.face < 0 || s.face == f) break;
       g = s.face, d = s.corner;
       add(g);
     }
     g = f, d = c;
     for (int guard = 0; guard < 64; ++guard) {  // forwards: across the edge leaving the corner
-      const auto s = t.twin[mesh.faceOffsets[g] + d];
+      const auto s = t.twin[mesh.face_offsets[g] + d];
       if (s.face < 0 || s.face == f) break;
-      g = s.face, d = (s.corner + 1) % mesh.faceSizes[s.face];
+      g = s.face, d = (s.corner + 1) % mesh.face_sizes[s.face];
       add(g);
     }
   }
@@ -45,11 +45,11 @@ PolyMesh extract(const PolyMesh& src, const std::vector<int>& faces, int start =
   PolyMesh out;
   out.name = src.name;
   out.boundary = src.boundary;
-  out.creaseMethod = src.creaseMethod;
+  out.crease_method = src.crease_method;
   std::unordered_map<int, int> index;
-  std::vector<double> vertexSharpness;
+  std::vector<double> vertex_sharpness;
   for (size_t i = 0; i < faces.size(); ++i) {
-    const int f = faces[i], m = src.faceSizes[f], turn = i == 0 ? start : 0;
+    const int f = faces[i], m = src.face_sizes[f], turn = i == 0 ? start : 0;
     std::vector<int> corners;
     for (int j = 0; j < m; ++j) {
       const int c = (j + turn) % m;
@@ -57,17 +57,17 @@ PolyMesh extract(const PolyMesh& src, const std::vector<int>& faces, int start =
       auto [it, added] = index.emplace(p, static_cast<int>(out.points.size()));
       if (added) {
         out.points.push_back(src.points[p]);
-        vertexSharpness.push_back(src.vertexSharp(p));
+        vertex_sharpness.push_back(src.vertexSharp(p));
       }
       corners.push_back(it->second);
     }
     out.addFace(corners);
-    if (!src.edgeSharpness.empty()) {
-      out.edgeSharpness.resize(out.faceCorners.size() - m);
-      for (int j = 0; j < m; ++j) out.edgeSharpness.push_back(src.edgeSharpness[src.faceOffsets[f] + (j + turn) % m]);
+    if (!src.edge_sharpness.empty()) {
+      out.edge_sharpness.resize(out.face_corners.size() - m);
+      for (int j = 0; j < m; ++j) out.edge_sharpness.push_back(src.edge_sharpness[src.face_offsets[f] + (j + turn) % m]);
     }
   }
-  if (!src.vertexSharpness.empty()) out.vertexSharpness = std::move(vertexSharpness);
+  if (!src.vertex_sharpness.empty()) out.vertex_sharpness = std::move(vertex_sharpness);
   return out;
 }
 
@@ -76,7 +76,7 @@ PolyMesh extract(const PolyMesh& src, const std::vector<int>& faces, int start =
 LocalNet::LocalNet(const PolyMesh& mesh, const MeshTopology& topology, int face) {
   // Chaikin's method needs a second ring (see keepOneRing): the one-rings of the first's faces.
   std::vector<int> faces = oneRing(mesh, topology, face);
-  if (mesh.creaseMethod == CreaseMethod::Chaikin) {
+  if (mesh.crease_method == CreaseMethod::Chaikin) {
     const std::vector<int> first = faces;
     for (int g : first)
       for (int h : oneRing(mesh, topology, g))
@@ -127,16 +127,16 @@ void LocalNet::keepOneRing(const PolyMesh& refined, int face, int start) {
   // which averages the sharpness round that end's vertex (a one-ring vertex), so every edge at a
   // one-ring vertex must be kept with its true sharpness. (Points of the second ring may be
   // wrong; no kept face of the next level uses them.)
-  const int rings = refined.creaseMethod == CreaseMethod::Chaikin ? 2 : 1;
+  const int rings = refined.crease_method == CreaseMethod::Chaikin ? 2 : 1;
   std::vector<char> vertexIn(refined.points.size(), 0), faceIn(refined.faceCount(), 0);
   std::vector<int> faces{face};
   faceIn[face] = 1;
   for (int ring = 0; ring < rings; ++ring) {
     for (int g : faces)
-      for (int c = 0; c < refined.faceSizes[g]; ++c) vertexIn[refined.corner(g, c)] = 1;
+      for (int c = 0; c < refined.face_sizes[g]; ++c) vertexIn[refined.corner(g, c)] = 1;
     for (int f = 0; f < refined.faceCount(); ++f) {
       if (faceIn[f]) continue;
-      for (int c = 0; c < refined.faceSizes[f]; ++c)
+      for (int c = 0; c < refined.face_sizes[f]; ++c)
         if (vertexIn[refined.corner(f, c)]) {
           faceIn[f] = 1;
           faces.push_back(f);
@@ -208,9 +208,9 @@ LocalNet::Grid LocalNet::gridOf(const PolyMesh& mesh, int f, int start) {
     const int g = queue.back();
     queue.pop_back();
     for (int e = 0; e < 4; ++e) {
-      const auto s = t.twin[mesh.faceOffsets[g] + e];
+      const auto s = t.twin[mesh.face_offsets[g] + e];
       // An infinitely sharp edge is a boundary for the faces on each side: beyond it, phantoms.
-      if (s.face < 0 || placed[s.face] || isSharp(mesh.edgeSharp(mesh.faceOffsets[g] + e))) continue;
+      if (s.face < 0 || placed[s.face] || isSharp(mesh.edgeSharp(mesh.face_offsets[g] + e))) continue;
       place(s.face, s.corner, pos[g][(e + 1) % 4], pos[g][e]);
     }
   }

@@ -14,26 +14,26 @@
 namespace sortlast {
 
 void PolyMesh::addFace(const std::vector<int>& corners) {
-  faceOffsets.push_back(static_cast<int>(faceCorners.size()));
-  faceSizes.push_back(static_cast<int>(corners.size()));
-  faceCorners.insert(faceCorners.end(), corners.begin(), corners.end());
-  if (!edgeSharpness.empty()) edgeSharpness.resize(faceCorners.size(), 0.0);
+  face_offsets.push_back(static_cast<int>(face_corners.size()));
+  face_sizes.push_back(static_cast<int>(corners.size()));
+  face_corners.insert(face_corners.end(), corners.begin(), corners.end());
+  if (!edge_sharpness.empty()) edge_sharpness.resize(face_corners.size(), 0.0);
   if (!holes.empty()) holes.push_back(0);
 }
 
 void PolyMesh::reverseFaces() {
   for (int f = 0; f < faceCount(); ++f) {
-    const int o = faceOffsets[f], m = faceSizes[f];
-    std::reverse(faceCorners.begin() + o, faceCorners.begin() + o + m);
-    if (edgeSharpness.empty()) continue;
+    const int o = face_offsets[f], m = face_sizes[f];
+    std::reverse(face_corners.begin() + o, face_corners.begin() + o + m);
+    if (edge_sharpness.empty()) continue;
     // Reversed, corner j is the old corner m - 1 - j, and its edge the old edge m - 2 - j.
-    std::vector<double> old(edgeSharpness.begin() + o, edgeSharpness.begin() + o + m);
-    for (int j = 0; j < m; ++j) edgeSharpness[o + j] = old[((m - 2 - j) % m + m) % m];
+    std::vector<double> old(edge_sharpness.begin() + o, edge_sharpness.begin() + o + m);
+    for (int j = 0; j < m; ++j) edge_sharpness[o + j] = old[((m - 2 - j) % m + m) % m];
   }
 }
 
 bool PolyMesh::allQuads() const {
-  return std::all_of(faceSizes.begin(), faceSizes.end(), [](int s) { return s == 4; });
+  return std::all_of(face_sizes.begin(), face_sizes.end(), [](int s) { return s == 4; });
 }
 
 double PolyMesh::size() const {
@@ -65,7 +65,7 @@ void checkFaces(const PolyMesh& mesh) {
   }
   const int n = static_cast<int>(mesh.points.size());
   for (int f = 0; f < mesh.faceCount(); ++f) {
-    const int m = mesh.faceSizes[f];
+    const int m = mesh.face_sizes[f];
     if (m < 3) fail(mesh, "face " + std::to_string(f) + " has " + std::to_string(m) + " corners (at least 3 needed)");
     for (int i = 0; i < m; ++i) {
       const int p = mesh.corner(f, i);
@@ -89,19 +89,19 @@ bool MeshTopology::open() const {
 
 MeshTopology MeshTopology::build(const PolyMesh& mesh) {
   MeshTopology t;
-  t.twin.assign(mesh.faceCorners.size(), {});
+  t.twin.assign(mesh.face_corners.size(), {});
   t.valence.assign(mesh.points.size(), 0);
   std::unordered_map<std::uint64_t, int> directed;  // edge a -> b: its corner slot
   std::unordered_map<std::uint64_t, int> uses;      // undirected edge: faces using it
-  directed.reserve(mesh.faceCorners.size());
+  directed.reserve(mesh.face_corners.size());
   for (int f = 0; f < mesh.faceCount(); ++f)
-    for (int c = 0; c < mesh.faceSizes[f]; ++c) {
-      const int a = mesh.corner(f, c), b = mesh.corner(f, (c + 1) % mesh.faceSizes[f]);
+    for (int c = 0; c < mesh.face_sizes[f]; ++c) {
+      const int a = mesh.corner(f, c), b = mesh.corner(f, (c + 1) % mesh.face_sizes[f]);
       const int k = ++uses[edgeKey(std::min(a, b), std::max(a, b))];
       if (k > 2)
         fail(mesh, "edge (" + std::to_string(a) + ", " + std::to_string(b) +
                        ") is non-manifold: shared by more than two faces (face " + std::to_string(f) + " is the third)");
-      if (!directed.emplace(edgeKey(a, b), mesh.faceOffsets[f] + c).second)
+      if (!directed.emplace(edgeKey(a, b), mesh.face_offsets[f] + c).second)
         fail(mesh, "edge (" + std::to_string(a) + ", " + std::to_string(b) +
                        ") is used twice in the same direction (face " + std::to_string(f) +
                        "): faces are not consistently oriented");
@@ -109,17 +109,17 @@ MeshTopology MeshTopology::build(const PolyMesh& mesh) {
     }
   t.boundary.assign(mesh.points.size(), 0);
   for (int f = 0; f < mesh.faceCount(); ++f)
-    for (int c = 0; c < mesh.faceSizes[f]; ++c) {
-      const int a = mesh.corner(f, c), b = mesh.corner(f, (c + 1) % mesh.faceSizes[f]);
+    for (int c = 0; c < mesh.face_sizes[f]; ++c) {
+      const int a = mesh.corner(f, c), b = mesh.corner(f, (c + 1) % mesh.face_sizes[f]);
       const auto it = directed.find(edgeKey(b, a));
       if (it == directed.end()) {  // a boundary edge: no face on the other side
         t.boundary[a] = t.boundary[b] = 1;
         continue;
       }
       const int slot = it->second;
-      const int g = static_cast<int>(std::upper_bound(mesh.faceOffsets.begin(), mesh.faceOffsets.end(), slot) -
-                                     mesh.faceOffsets.begin()) - 1;
-      t.twin[mesh.faceOffsets[f] + c] = {g, slot - mesh.faceOffsets[g]};
+      const int g = static_cast<int>(std::upper_bound(mesh.face_offsets.begin(), mesh.face_offsets.end(), slot) -
+                                     mesh.face_offsets.begin()) - 1;
+      t.twin[mesh.face_offsets[f] + c] = {g, slot - mesh.face_offsets[g]};
     }
   // Valence counts edges: a boundary vertex of m faces has m + 1 (a manifold one; checkMesh
   // refuses the others).
@@ -136,8 +136,8 @@ MeshTopology checkMesh(const PolyMesh& mesh) {
   // one, is non-manifold.
   std::vector<int> faces(mesh.points.size(), 0), start(mesh.points.size(), -1), fans(mesh.points.size(), 0);
   for (int f = 0; f < mesh.faceCount(); ++f)
-    for (int c = 0; c < mesh.faceSizes[f]; ++c) {
-      const int p = mesh.corner(f, c), slot = mesh.faceOffsets[f] + c;
+    for (int c = 0; c < mesh.face_sizes[f]; ++c) {
+      const int p = mesh.corner(f, c), slot = mesh.face_offsets[f] + c;
       ++faces[p];
       if (t.twin[slot].face < 0) {  // the boundary edge leaving p: its face starts p's fan
         ++fans[p];
@@ -152,13 +152,13 @@ MeshTopology checkMesh(const PolyMesh& mesh) {
       fail(mesh, "vertex " + std::to_string(p) + " is non-manifold: its faces form more than one fan");
     if (start[p] < 0) fail(mesh, "vertex " + std::to_string(p) + " is non-manifold: its faces form more than one fan");
     int slot = start[p], count = 0;
-    int g = static_cast<int>(std::upper_bound(mesh.faceOffsets.begin(), mesh.faceOffsets.end(), slot) -
-                             mesh.faceOffsets.begin()) - 1;
-    int d = slot - mesh.faceOffsets[g];
+    int g = static_cast<int>(std::upper_bound(mesh.face_offsets.begin(), mesh.face_offsets.end(), slot) -
+                             mesh.face_offsets.begin()) - 1;
+    int d = slot - mesh.face_offsets[g];
     const int f0 = g, c0 = d;
     do {
       ++count;
-      const auto& s = t.twin[mesh.faceOffsets[g] + (d + mesh.faceSizes[g] - 1) % mesh.faceSizes[g]];
+      const auto& s = t.twin[mesh.face_offsets[g] + (d + mesh.face_sizes[g] - 1) % mesh.face_sizes[g]];
       if (s.face < 0) break;  // the boundary edge entering p: the fan's other end
       g = s.face;
       d = s.corner;
@@ -178,11 +178,11 @@ void applyTags(PolyMesh& mesh, const SubdivTags& tags) {
   if (!tags.creases.empty()) {
     std::unordered_map<std::uint64_t, std::vector<int>> slots;  // undirected edge -> its corner slots
     for (int f = 0; f < mesh.faceCount(); ++f)
-      for (int c = 0; c < mesh.faceSizes[f]; ++c) {
-        const int a = mesh.corner(f, c), b = mesh.corner(f, (c + 1) % mesh.faceSizes[f]);
-        slots[edgeKey(std::min(a, b), std::max(a, b))].push_back(mesh.faceOffsets[f] + c);
+      for (int c = 0; c < mesh.face_sizes[f]; ++c) {
+        const int a = mesh.corner(f, c), b = mesh.corner(f, (c + 1) % mesh.face_sizes[f]);
+        slots[edgeKey(std::min(a, b), std::max(a, b))].push_back(mesh.face_offsets[f] + c);
       }
-    mesh.edgeSharpness.resize(mesh.faceCorners.size(), 0.0);
+    mesh.edge_sharpness.resize(mesh.face_corners.size(), 0.0);
     for (const CreaseTag& t : tags.creases) {
       checkSharpness(t.sharpness, t.where);
       for (int v : {t.a, t.b})
@@ -193,7 +193,7 @@ void applyTags(PolyMesh& mesh, const SubdivTags& tags) {
       if (t.a == t.b || it == slots.end())
         throw InputError(t.where + ": crease (" + std::to_string(t.a) + ", " + std::to_string(t.b) +
                          ") is not an edge of the mesh");
-      for (int slot : it->second) mesh.edgeSharpness[slot] = std::min(t.sharpness, kInfinitelySharp);
+      for (int slot : it->second) mesh.edge_sharpness[slot] = std::min(t.sharpness, kInfinitelySharp);
     }
   }
   for (const CornerTag& t : tags.corners) {
@@ -201,8 +201,8 @@ void applyTags(PolyMesh& mesh, const SubdivTags& tags) {
     if (t.vertex < 0 || t.vertex >= np)
       throw InputError(t.where + ": corner vertex " + std::to_string(t.vertex) + " is out of range (the mesh has " +
                        std::to_string(np) + " vertices)");
-    mesh.vertexSharpness.resize(np, 0.0);
-    mesh.vertexSharpness[t.vertex] = std::min(t.sharpness, kInfinitelySharp);
+    mesh.vertex_sharpness.resize(np, 0.0);
+    mesh.vertex_sharpness[t.vertex] = std::min(t.sharpness, kInfinitelySharp);
   }
   for (const HoleTag& t : tags.holes) {
     if (t.face < 0 || t.face >= mesh.faceCount())
@@ -223,26 +223,26 @@ void prepareBoundary(PolyMesh& mesh, const MeshTopology& topology) {
   if (mesh.boundary == BoundaryInterpolation::None) {
     std::vector<char> softBoundary(mesh.points.size(), 0);
     for (int f = 0; f < mesh.faceCount(); ++f)
-      for (int c = 0; c < mesh.faceSizes[f]; ++c) {
-        const int slot = mesh.faceOffsets[f] + c;
+      for (int c = 0; c < mesh.face_sizes[f]; ++c) {
+        const int slot = mesh.face_offsets[f] + c;
         if (topology.twin[slot].face < 0 && !isInfinite(mesh.edgeSharp(slot)))
-          softBoundary[mesh.corner(f, c)] = softBoundary[mesh.corner(f, (c + 1) % mesh.faceSizes[f])] = 1;
+          softBoundary[mesh.corner(f, c)] = softBoundary[mesh.corner(f, (c + 1) % mesh.face_sizes[f])] = 1;
       }
     for (int f = 0; f < mesh.faceCount(); ++f)
-      for (int c = 0; c < mesh.faceSizes[f]; ++c)
+      for (int c = 0; c < mesh.face_sizes[f]; ++c)
         if (softBoundary[mesh.corner(f, c)]) {
           mesh.holes.resize(mesh.faceCount(), 0);
           mesh.holes[f] = 1;
         }
   }
-  mesh.edgeSharpness.resize(mesh.faceCorners.size(), 0.0);
-  for (size_t slot = 0; slot < mesh.faceCorners.size(); ++slot)
-    if (topology.twin[slot].face < 0) mesh.edgeSharpness[slot] = kInfinitelySharp;
+  mesh.edge_sharpness.resize(mesh.face_corners.size(), 0.0);
+  for (size_t slot = 0; slot < mesh.face_corners.size(); ++slot)
+    if (topology.twin[slot].face < 0) mesh.edge_sharpness[slot] = kInfinitelySharp;
   if (mesh.boundary == BoundaryInterpolation::EdgeAndCorner)
     for (size_t p = 0; p < mesh.points.size(); ++p)
       if (topology.boundary[p] && topology.valence[p] == 2) {
-        mesh.vertexSharpness.resize(mesh.points.size(), 0.0);
-        mesh.vertexSharpness[p] = kInfinitelySharp;
+        mesh.vertex_sharpness.resize(mesh.points.size(), 0.0);
+        mesh.vertex_sharpness[p] = kInfinitelySharp;
       }
 }
 
@@ -258,7 +258,7 @@ struct Fan {
 
 Fan fanAt(const PolyMesh& mesh, const MeshTopology& t, int f, int c) {
   const int v = mesh.corner(f, c);
-  auto size = [&](int g) { return mesh.faceSizes[g]; };
+  auto size = [&](int g) { return mesh.face_sizes[g]; };
   auto cornerOf = [&](int g) {
     for (int d = 0; d < size(g); ++d)
       if (mesh.corner(g, d) == v) return d;
@@ -269,7 +269,7 @@ Fan fanAt(const PolyMesh& mesh, const MeshTopology& t, int f, int c) {
   int first = f;
   for (int guard = 0; guard < 4096; ++guard) {
     const int d = cornerOf(first);
-    const auto tw = t.twin[mesh.faceOffsets[first] + (d + size(first) - 1) % size(first)];
+    const auto tw = t.twin[mesh.face_offsets[first] + (d + size(first) - 1) % size(first)];
     if (tw.face < 0 || tw.face == f) break;
     first = tw.face;
   }
@@ -279,7 +279,7 @@ Fan fanAt(const PolyMesh& mesh, const MeshTopology& t, int f, int c) {
   int g = first;
   bool closed = false;
   for (int guard = 0; guard < 4096; ++guard) {
-    const int slot = mesh.faceOffsets[g] + cornerOf(g);
+    const int slot = mesh.face_offsets[g] + cornerOf(g);
     faces.push_back(g);
     out.push_back(slotSharpness(mesh, t, slot));
     const auto tw = t.twin[slot];
@@ -292,7 +292,7 @@ Fan fanAt(const PolyMesh& mesh, const MeshTopology& t, int f, int c) {
   }
   const int m = static_cast<int>(faces.size());
   const int d0 = cornerOf(first);
-  const double in0 = closed ? out[m - 1] : slotSharpness(mesh, t, mesh.faceOffsets[first] + (d0 + size(first) - 1) % size(first));
+  const double in0 = closed ? out[m - 1] : slotSharpness(mesh, t, mesh.face_offsets[first] + (d0 + size(first) - 1) % size(first));
   Fan fan;
   fan.edges = out;
   if (!closed) fan.edges.push_back(in0);
@@ -338,11 +338,11 @@ RefinedMesh catmullClarkStep(const PolyMesh& mesh, const MeshTopology& topology)
   RefinedMesh out;
   out.mesh.name = mesh.name;
   out.mesh.boundary = mesh.boundary;
-  out.mesh.creaseMethod = mesh.creaseMethod;
+  out.mesh.crease_method = mesh.crease_method;
   const int nf = mesh.faceCount();
-  const size_t slots = mesh.faceCorners.size();
+  const size_t slots = mesh.face_corners.size();
   // Sharp: some edge or vertex tagged, or a boundary (whose edges are infinitely sharp).
-  const bool sharp = !mesh.edgeSharpness.empty() || !mesh.vertexSharpness.empty() || topology.open();
+  const bool sharp = !mesh.edge_sharpness.empty() || !mesh.vertex_sharpness.empty() || topology.open();
   // New points: vertex points (used points only), then edge points, then face points.
   std::vector<int> vertexIndex(mesh.points.size(), -1);
   int nv = 0;
@@ -351,19 +351,19 @@ RefinedMesh catmullClarkStep(const PolyMesh& mesh, const MeshTopology& topology)
   std::vector<glm::dvec3> facePoint(nf);
   for (int f = 0; f < nf; ++f) {
     glm::dvec3 s(0.0);
-    for (int c = 0; c < mesh.faceSizes[f]; ++c) s += mesh.points[mesh.corner(f, c)];
-    facePoint[f] = s / double(mesh.faceSizes[f]);
+    for (int c = 0; c < mesh.face_sizes[f]; ++c) s += mesh.points[mesh.corner(f, c)];
+    facePoint[f] = s / double(mesh.face_sizes[f]);
   }
   // Each undirected edge once: owned by the corner slot with the smaller index.
   std::vector<int> edgeOf(slots, -1), edgeSlot;
   for (int f = 0; f < nf; ++f)
-    for (int c = 0; c < mesh.faceSizes[f]; ++c) {
-      const int slot = mesh.faceOffsets[f] + c;
+    for (int c = 0; c < mesh.face_sizes[f]; ++c) {
+      const int slot = mesh.face_offsets[f] + c;
       if (edgeOf[slot] >= 0) continue;
       edgeOf[slot] = static_cast<int>(edgeSlot.size());
       edgeSlot.push_back(slot);
       const auto& tw = topology.twin[slot];
-      if (tw.face >= 0) edgeOf[mesh.faceOffsets[tw.face] + tw.corner] = edgeOf[slot];
+      if (tw.face >= 0) edgeOf[mesh.face_offsets[tw.face] + tw.corner] = edgeOf[slot];
     }
   // Round each vertex: its edges (id, other end, sharpness) and, with tags, each edge's child
   // sharpness at this end. Every edge at p leaves p in exactly one face, except a boundary edge
@@ -377,9 +377,9 @@ RefinedMesh catmullClarkStep(const PolyMesh& mesh, const MeshTopology& topology)
   if (sharp) {
     around.resize(mesh.points.size());
     for (int f = 0; f < nf; ++f)
-      for (int c = 0; c < mesh.faceSizes[f]; ++c) {
-        const int slot = mesh.faceOffsets[f] + c;
-        const int a = mesh.corner(f, c), b = mesh.corner(f, (c + 1) % mesh.faceSizes[f]);
+      for (int c = 0; c < mesh.face_sizes[f]; ++c) {
+        const int slot = mesh.face_offsets[f] + c;
+        const int a = mesh.corner(f, c), b = mesh.corner(f, (c + 1) % mesh.face_sizes[f]);
         const double s = slotSharpness(mesh, topology, slot);
         around[a].push_back({edgeOf[slot], b, s});
         if (topology.twin[slot].face < 0) around[b].push_back({edgeOf[slot], a, s});
@@ -388,7 +388,7 @@ RefinedMesh catmullClarkStep(const PolyMesh& mesh, const MeshTopology& topology)
     for (size_t p = 0; p < mesh.points.size(); ++p) {
       std::vector<double> s;
       for (const auto& e : around[p]) s.push_back(e.sharpness);
-      childAt[p] = childEdgeSharpness(mesh.creaseMethod, s);
+      childAt[p] = childEdgeSharpness(mesh.crease_method, s);
     }
   }
   auto childSharpness = [&](int p, int edge) {
@@ -399,10 +399,10 @@ RefinedMesh catmullClarkStep(const PolyMesh& mesh, const MeshTopology& topology)
   std::vector<glm::dvec3> edgePoint(edgeSlot.size());
   for (size_t e = 0; e < edgeSlot.size(); ++e) {
     const int slot = edgeSlot[e];
-    const int f = static_cast<int>(std::upper_bound(mesh.faceOffsets.begin(), mesh.faceOffsets.end(), slot) -
-                                   mesh.faceOffsets.begin()) - 1;
-    const int c = slot - mesh.faceOffsets[f];
-    const int a = mesh.corner(f, c), b = mesh.corner(f, (c + 1) % mesh.faceSizes[f]);
+    const int f = static_cast<int>(std::upper_bound(mesh.face_offsets.begin(), mesh.face_offsets.end(), slot) -
+                                   mesh.face_offsets.begin()) - 1;
+    const int c = slot - mesh.face_offsets[f];
+    const int a = mesh.corner(f, c), b = mesh.corner(f, (c + 1) % mesh.face_sizes[f]);
     const glm::dvec3 mid = (mesh.points[a] + mesh.points[b]) * 0.5;
     const auto& tw = topology.twin[slot];
     const double s = sharp ? slotSharpness(mesh, topology, slot) : 0.0;
@@ -419,7 +419,7 @@ RefinedMesh catmullClarkStep(const PolyMesh& mesh, const MeshTopology& topology)
     // smooth rules blended by s. This is what OpenSubdiv computes (Far::PrimvarRefiner takes the
     // edge point's own rule from its child edges): under Chaikin's method the halves can differ,
     // and then s is the weight even above 1.
-    const bool halvesSharp = mesh.creaseMethod == CreaseMethod::Uniform
+    const bool halvesSharp = mesh.crease_method == CreaseMethod::Uniform
                                  ? isSharp(decrementSharpness(s))
                                  : isSharp(childSharpness(a, static_cast<int>(e))) && isSharp(childSharpness(b, static_cast<int>(e)));
     edgePoint[e] = halvesSharp ? mid : s * mid + (1.0 - s) * smooth;
@@ -428,8 +428,8 @@ RefinedMesh catmullClarkStep(const PolyMesh& mesh, const MeshTopology& topology)
   // edge after p in exactly one face, so one pass over the corners visits each face and edge once.
   std::vector<glm::dvec3> q(mesh.points.size(), glm::dvec3(0.0)), r(mesh.points.size(), glm::dvec3(0.0));
   for (int f = 0; f < nf; ++f)
-    for (int c = 0; c < mesh.faceSizes[f]; ++c) {
-      const int m = mesh.faceSizes[f];
+    for (int c = 0; c < mesh.face_sizes[f]; ++c) {
+      const int m = mesh.face_sizes[f];
       const int a = mesh.corner(f, c), b = mesh.corner(f, (c + 1) % m);
       q[a] += facePoint[f];
       r[a] += (mesh.points[a] + mesh.points[b]) * 0.5;
@@ -469,25 +469,25 @@ RefinedMesh catmullClarkStep(const PolyMesh& mesh, const MeshTopology& topology)
     const VertexRule childRule = vertexRule(childSv, childEdges);
     if (childRule == rule) continue;
     // A sharpness decays in this step: the parent's rule blended with the child's.
-    const double w = fractionalWeight(mesh.creaseMethod, sv, childSv, edges, childEdges);
+    const double w = fractionalWeight(mesh.crease_method, sv, childSv, edges, childEdges);
     result = w * result + (1.0 - w) * apply(childRule, childEdges);
   }
   std::copy(edgePoint.begin(), edgePoint.end(), out.mesh.points.begin() + nv);
   std::copy(facePoint.begin(), facePoint.end(), out.mesh.points.begin() + nv + edgePoint.size());
   const int edgeBase = nv, faceBase = nv + static_cast<int>(edgePoint.size());
   const bool childEdgesTagged = sharp;
-  if (childEdgesTagged) out.mesh.edgeSharpness.reserve(4 * slots);
+  if (childEdgesTagged) out.mesh.edge_sharpness.reserve(4 * slots);
   for (int f = 0; f < nf; ++f) {
-    const int m = mesh.faceSizes[f];
+    const int m = mesh.face_sizes[f];
     for (int c = 0; c < m; ++c) {
       const int a = mesh.corner(f, c);
-      const int e0 = edgeOf[mesh.faceOffsets[f] + c], e1 = edgeOf[mesh.faceOffsets[f] + (c + m - 1) % m];
+      const int e0 = edgeOf[mesh.face_offsets[f] + c], e1 = edgeOf[mesh.face_offsets[f] + (c + m - 1) % m];
       out.mesh.addFace({vertexIndex[a], edgeBase + e0, faceBase + f, edgeBase + e1});
       if (childEdgesTagged) {
         // vertex -> edge point: the half of edge c at a; the two edges to the face point are
         // smooth; edge point -> vertex: the half of edge c - 1 at a.
-        out.mesh.edgeSharpness.resize(out.mesh.faceCorners.size() - 4);
-        out.mesh.edgeSharpness.insert(out.mesh.edgeSharpness.end(),
+        out.mesh.edge_sharpness.resize(out.mesh.face_corners.size() - 4);
+        out.mesh.edge_sharpness.insert(out.mesh.edge_sharpness.end(),
                                       {childSharpness(a, e0), 0.0, 0.0, childSharpness(a, e1)});
       }
       if (!mesh.holes.empty()) {
@@ -495,13 +495,13 @@ RefinedMesh catmullClarkStep(const PolyMesh& mesh, const MeshTopology& topology)
         out.mesh.holes.back() = mesh.holes[f];
       }
       out.parent.push_back(f);
-      out.parentCorner.push_back(c);
+      out.parent_corner.push_back(c);
     }
   }
-  if (!mesh.vertexSharpness.empty()) {
-    out.mesh.vertexSharpness.assign(out.mesh.points.size(), 0.0);
+  if (!mesh.vertex_sharpness.empty()) {
+    out.mesh.vertex_sharpness.assign(out.mesh.points.size(), 0.0);
     for (size_t p = 0; p < mesh.points.size(); ++p)
-      if (vertexIndex[p] >= 0) out.mesh.vertexSharpness[vertexIndex[p]] = decrementSharpness(mesh.vertexSharpness[p]);
+      if (vertexIndex[p] >= 0) out.mesh.vertex_sharpness[vertexIndex[p]] = decrementSharpness(mesh.vertex_sharpness[p]);
   }
   return out;
 }
@@ -534,20 +534,20 @@ ControlMesh buildControlMesh(const PolyMesh& input) {
   PolyMesh mesh = input;
   prepareBoundary(mesh, topology);
   cm.levels = input.allQuads() ? 1 : 2;
-  cm.inputFace.resize(input.faceCount());
-  cm.cornerChain.assign(input.faceCount(), {});
-  for (int f = 0; f < input.faceCount(); ++f) cm.inputFace[f] = f;
+  cm.input_face.resize(input.faceCount());
+  cm.corner_chain.assign(input.faceCount(), {});
+  for (int f = 0; f < input.faceCount(); ++f) cm.input_face[f] = f;
   for (int level = 0; level < cm.levels; ++level) {
     RefinedMesh r = catmullClarkStep(mesh, topology);
-    std::vector<int> inputFace(r.parent.size());
+    std::vector<int> input_face(r.parent.size());
     std::vector<std::vector<int>> chain(r.parent.size());
     for (size_t f = 0; f < r.parent.size(); ++f) {
-      inputFace[f] = cm.inputFace[r.parent[f]];
-      chain[f] = cm.cornerChain[r.parent[f]];
-      chain[f].push_back(r.parentCorner[f]);
+      input_face[f] = cm.input_face[r.parent[f]];
+      chain[f] = cm.corner_chain[r.parent[f]];
+      chain[f].push_back(r.parent_corner[f]);
     }
-    cm.inputFace = std::move(inputFace);
-    cm.cornerChain = std::move(chain);
+    cm.input_face = std::move(input_face);
+    cm.corner_chain = std::move(chain);
     mesh = std::move(r.mesh);
     topology = MeshTopology::build(mesh);
   }

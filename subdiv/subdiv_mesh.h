@@ -18,24 +18,24 @@ namespace sortlast {
 struct PolyMesh {
   std::string name;
   std::vector<glm::dvec3> points;
-  std::vector<int> faceSizes;    // corners per face
-  std::vector<int> faceOffsets;  // first corner of each face in faceCorners
-  std::vector<int> faceCorners;  // point index per corner
+  std::vector<int> face_sizes;    // corners per face
+  std::vector<int> face_offsets;  // first corner of each face in face_corners
+  std::vector<int> face_corners;  // point index per corner
 
-  // Tags (subdiv_tags.h). Per corner slot, as faceCorners: the sharpness of the edge from that
+  // Tags (subdiv_tags.h). Per corner slot, as face_corners: the sharpness of the edge from that
   // corner to the next, the same in both faces of an edge; empty while no edge is sharp. Per
   // point: the vertex sharpness; empty while none is. Per face: a hole (refined with the rest,
   // but no part of the limit surface); empty while there is none.
-  std::vector<double> edgeSharpness;
-  std::vector<double> vertexSharpness;
+  std::vector<double> edge_sharpness;
+  std::vector<double> vertex_sharpness;
   std::vector<char> holes;
   BoundaryInterpolation boundary = BoundaryInterpolation::EdgeAndCorner;
-  CreaseMethod creaseMethod = CreaseMethod::Uniform;
+  CreaseMethod crease_method = CreaseMethod::Uniform;
 
-  int faceCount() const { return static_cast<int>(faceSizes.size()); }
-  int corner(int face, int i) const { return faceCorners[faceOffsets[face] + i]; }
-  double edgeSharp(int slot) const { return edgeSharpness.empty() ? 0.0 : edgeSharpness[slot]; }
-  double vertexSharp(int p) const { return vertexSharpness.empty() ? 0.0 : vertexSharpness[p]; }
+  int faceCount() const { return static_cast<int>(face_sizes.size()); }
+  int corner(int face, int i) const { return face_corners[face_offsets[face] + i]; }
+  double edgeSharp(int slot) const { return edge_sharpness.empty() ? 0.0 : edge_sharpness[slot]; }
+  double vertexSharp(int p) const { return vertex_sharpness.empty() ? 0.0 : vertex_sharpness[p]; }
   bool hole(int f) const { return !holes.empty() && holes[f]; }
   void addFace(const std::vector<int>& corners);
   // Every face's corners in reverse order (a mirroring transform), the edge sharpness with them.
@@ -51,7 +51,7 @@ struct MeshTopology {
   struct Side {
     int face = -1, corner = -1;
   };
-  std::vector<Side> twin;    // indexed by faceOffsets[f] + c; face -1 across a boundary edge
+  std::vector<Side> twin;    // indexed by face_offsets[f] + c; face -1 across a boundary edge
   std::vector<int> valence;  // edges per point (0 for points no face uses)
   std::vector<char> boundary;  // per point: on a boundary edge
   static MeshTopology build(const PolyMesh& mesh);
@@ -77,10 +77,10 @@ void applyTags(PolyMesh& mesh, const SubdivTags& tags);
 // One Catmull-Clark step of a checked mesh: every face of m corners becomes m quads. Child i of
 // face f is (vertex point of corner i, edge point of edge i -> i+1, face point, edge point of edge
 // i-1 -> i), so its local u runs from corner i along edge i and v along edge i-1 backwards.
-// `parent` and `parentCorner` of the result say which face and corner each child came from.
+// `parent` and `parent_corner` of the result say which face and corner each child came from.
 struct RefinedMesh {
   PolyMesh mesh;
-  std::vector<int> parent, parentCorner;
+  std::vector<int> parent, parent_corner;
 };
 // OpenSubdiv's Catmark rules with its tags: an edge of sharpness s >= 1 (or a boundary edge) gets
 // its midpoint, s in (0, 1) blends midpoint and smooth rule by s; a vertex takes the smooth, crease
@@ -134,8 +134,8 @@ struct ControlMesh {
   PolyMesh mesh;
   MeshTopology topology;
   int levels = 0;                          // Catmull-Clark steps from the input
-  std::vector<int> inputFace;              // per control face
-  std::vector<std::vector<int>> cornerChain;  // per control face: child corner at each step
+  std::vector<int> input_face;              // per control face
+  std::vector<std::vector<int>> corner_chain;  // per control face: child corner at each step
 };
 ControlMesh buildControlMesh(const PolyMesh& input);
 

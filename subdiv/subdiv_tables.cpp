@@ -41,7 +41,7 @@ SubdivTables buildTables(const SubdivSurface& surface) {
         const int first = static_cast<int>(t.faces.size());
         t.faces.resize(t.faces.size() + 4);
         t.faces[entry] = {first, SubdivTables::kSplit};
-        for (int q = 0; q < 4; ++q) emitNode(first + q, surface.firstChild(node) + q);
+        for (int q = 0; q < 4; ++q) emitNode(first + q, surface.first_child(node) + q);
         return;
       }
     }
@@ -73,9 +73,9 @@ FloatLimitPoint evaluateTables(const SubdivTables& tables, int face, float u, fl
     const int a = u >= 0.5f ? 1 : 0, b = v >= 0.5f ? 1 : 0;
     u = 2.0f * u - float(a);
     v = 2.0f * v - float(b);
-    e = tables.faces[e.firstSet + (b == 0 ? a : 3 - a)];
+    e = tables.faces[e.first_set + (b == 0 ? a : 3 - a)];
   }
-  int set = e.firstSet;
+  int set = e.first_set;
   float s = u, t = v;
   if (e.type == SubdivTables::kIrregular) {
     const float m = std::max(u, v);

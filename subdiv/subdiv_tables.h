@@ -3,7 +3,7 @@
 // single precision as a GL buffer holds them, and the same evaluation on the CPU in float, which
 // is what the GL pass computes and what the tests hold against the exact double evaluation.
 //
-// Layout: per control face one FaceEntry; its control-point sets start at `firstSet`, 16 points
+// Layout: per control face one FaceEntry; its control-point sets start at `first_set`, 16 points
 // each. A regular face has one set; a face with an extraordinary vertex has kTableLevels x 3 sets,
 // set (n - 1) * 3 + (k - 1) for sub-patch (n, k). A face near semi-sharp tags is a tree of such
 // entries (SubdivSurface's patch tree). Positions and tangent points (see
@@ -19,11 +19,11 @@ namespace sortlast {
 
 struct SubdivTables {
   // Entry types: a regular patch (one set), an irregular one (kTableLevels x 3 sets), or a split
-  // at semi-sharp tags whose four children's entries start at firstSet (quadrants (0,0), (1,0),
+  // at semi-sharp tags whose four children's entries start at first_set (quadrants (0,0), (1,0),
   // (1,1), (0,1) of its (u, v) square, each in its own square's parameters).
   static constexpr int kIrregular = 0, kRegular = 1, kSplit = 2;
   struct FaceEntry {
-    int firstSet = 0;
+    int first_set = 0;
     int type = kRegular;  // (no rotation: every face's extraordinary corner is its corner 0)
   };
   // Entries 0 .. faces - 1 are the control faces'; the splits' children follow.

@@ -15,10 +15,10 @@ const char* boundaryName(BoundaryInterpolation b) {
 
 const char* creaseMethodName(CreaseMethod m) { return m == CreaseMethod::Chaikin ? "chaikin" : "uniform"; }
 
-VertexRule vertexRule(double vertexSharpness, const std::vector<double>& edgeSharpness) {
-  if (isSharp(vertexSharpness)) return VertexRule::Corner;
+VertexRule vertexRule(double vertex_sharpness, const std::vector<double>& edge_sharpness) {
+  if (isSharp(vertex_sharpness)) return VertexRule::Corner;
   int sharp = 0;
-  for (double s : edgeSharpness) sharp += isSharp(s);
+  for (double s : edge_sharpness) sharp += isSharp(s);
   return sharp == 0 ? VertexRule::Smooth : sharp == 1 ? VertexRule::Dart : sharp == 2 ? VertexRule::Crease : VertexRule::Corner;
 }
 
@@ -54,11 +54,11 @@ std::vector<double> childEdgeSharpness(CreaseMethod method, const std::vector<do
   return out;
 }
 
-double fractionalWeight(CreaseMethod method, double vertexSharpness, double childVertexSharpness,
+double fractionalWeight(CreaseMethod method, double vertex_sharpness, double childVertexSharpness,
                         const std::vector<double>& edges, const std::vector<double>& childEdges) {
   int count = 0;
   double sum = 0;
-  if (isSharp(vertexSharpness) && !isSharp(childVertexSharpness)) count = 1, sum = vertexSharpness;
+  if (isSharp(vertex_sharpness) && !isSharp(childVertexSharpness)) count = 1, sum = vertex_sharpness;
   for (size_t i = 0; i < edges.size(); ++i) {
     // Uniform: a value in (0, 1] is the one that decays this step; Chaikin: whichever did.
     const bool decays = method == CreaseMethod::Uniform ? isSharp(edges[i]) && edges[i] <= 1.0

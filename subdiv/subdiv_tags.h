@@ -31,18 +31,18 @@ const char* creaseMethodName(CreaseMethod m);
 // A vertex's subdivision rule (Sdc::Crease::Rule): from its own sharpness and how many of its
 // edges are sharp (> 0): 0 smooth, 1 dart, 2 crease, more (or a sharp vertex) corner.
 enum class VertexRule { Smooth, Dart, Crease, Corner };
-VertexRule vertexRule(double vertexSharpness, const std::vector<double>& edgeSharpness);
+VertexRule vertexRule(double vertex_sharpness, const std::vector<double>& edge_sharpness);
 
 // One level's subdivided sharpness of a vertex, and of a vertex's incident edges at that vertex
 // (each edge's child at this end), by `method`.
 double decrementSharpness(double s);
-std::vector<double> childEdgeSharpness(CreaseMethod method, const std::vector<double>& edgeSharpness);
+std::vector<double> childEdgeSharpness(CreaseMethod method, const std::vector<double>& edge_sharpness);
 
 // Weight of the parent's rule when the parent's and child's rules differ
 // (Sdc::Crease::ComputeFractionalWeightAtVertex): the mean of the sharpness values that decayed to
 // zero in this step, clamped to 1.
-double fractionalWeight(CreaseMethod method, double vertexSharpness, double childVertexSharpness,
-                        const std::vector<double>& edgeSharpness, const std::vector<double>& childEdges);
+double fractionalWeight(CreaseMethod method, double vertex_sharpness, double childVertexSharpness,
+                        const std::vector<double>& edge_sharpness, const std::vector<double>& childEdges);
 
 // A tag as the input names it, before it is checked against the mesh: `where` names its source
 // (file and line, or the procedural mesh) for error messages.

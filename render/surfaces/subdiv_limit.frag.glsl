@@ -2,7 +2,7 @@
 // fullscreen triangle, render/gl/fullscreen.vert.glsl, scissored to the region) starts from pass
 // 1's nearest coarse (u, v, face) and finds the exact limit point on its ray. The evaluation is
 // subdiv/subdiv_tables.cpp's evaluateTables, line for line.
-layout(std430, binding = 0) readonly buffer Faces { ivec2 faces[]; };      // firstSet, type (0 irregular, 1 regular, 2 split)
+layout(std430, binding = 0) readonly buffer Faces { ivec2 faces[]; };      // first_set, type (0 irregular, 1 regular, 2 split)
 layout(std430, binding = 1) readonly buffer Positions { vec4 positions[]; };
 layout(std430, binding = 2) readonly buffer Tangents { vec4 tangents[]; };
 layout(std430, binding = 3) readonly buffer Neighbours { ivec4 neighbours[]; };  // across edge c: face * 4 + its edge

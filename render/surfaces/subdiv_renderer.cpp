@@ -152,7 +152,7 @@ void SubdivRenderer::addSurface(const SubdivSurface& surface, int level,
   for (int f = 0; f < cm.mesh.faceCount(); ++f)
     for (int c = 0; c < 4; ++c) {
       // Across a boundary edge or into a hole: no face (-1), the Newton steps stay on this one.
-      const auto& t = cm.topology.twin[cm.mesh.faceOffsets[f] + c];
+      const auto& t = cm.topology.twin[cm.mesh.face_offsets[f] + c];
       neighbours[size_t(f) * 4 + c] = t.face < 0 || surface.hole(t.face) ? -1 : t.face * 4 + t.corner;
     }
   upload(g.ssbo[3], neighbours.data(), neighbours.size() * sizeof(int));

@@ -27,7 +27,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const PolyMesh mesh = readObjMesh(path);
     // Small meshes only: the evaluation's cost grows with faces and sharpness, not its branches.
     if (mesh.faceCount() > 24 || mesh.points.size() > 48) return 0;
-    for (int s : mesh.faceSizes)
+    for (int s : mesh.face_sizes)
       if (s > 8) return 0;
     const SubdivSurface surface(mesh);
     const SubdivTables tables = buildTables(surface);

@@ -28,17 +28,17 @@ std::unique_ptr<Far::TopologyRefiner> makeRefiner(const PolyMesh& input) {
   Far::TopologyDescriptor desc;
   desc.numVertices = static_cast<int>(input.points.size());
   desc.numFaces = input.faceCount();
-  desc.numVertsPerFace = input.faceSizes.data();
-  desc.vertIndicesPerFace = input.faceCorners.data();
+  desc.numVertsPerFace = input.face_sizes.data();
+  desc.vertIndicesPerFace = input.face_corners.data();
   // The tags, as OpenSubdiv takes them: creases by vertex pair (each edge once), corners, holes.
   // (Static: the descriptor keeps pointers until Create has run; one refiner is made at a time.)
   static std::vector<int> creasePairs, cornerVertices, holes;
   static std::vector<float> creaseWeights, cornerWeights;
   creasePairs.clear(), cornerVertices.clear(), holes.clear(), creaseWeights.clear(), cornerWeights.clear();
   for (int f = 0; f < input.faceCount(); ++f)
-    for (int c = 0; c < input.faceSizes[f]; ++c) {
-      const int a = input.corner(f, c), b = input.corner(f, (c + 1) % input.faceSizes[f]);
-      const double sh = input.edgeSharp(input.faceOffsets[f] + c);
+    for (int c = 0; c < input.face_sizes[f]; ++c) {
+      const int a = input.corner(f, c), b = input.corner(f, (c + 1) % input.face_sizes[f]);
+      const double sh = input.edgeSharp(input.face_offsets[f] + c);
       if (sh <= 0) continue;
       bool seen = false;  // the edge's other face gave it already
       for (size_t i = 0; i < creasePairs.size(); i += 2) seen |= creasePairs[i] == b && creasePairs[i + 1] == a;
@@ -62,7 +62,7 @@ std::unique_ptr<Far::TopologyRefiner> makeRefiner(const PolyMesh& input) {
   sdc.SetVtxBoundaryInterpolation(input.boundary == BoundaryInterpolation::None       ? Sdc::Options::VTX_BOUNDARY_NONE
                                   : input.boundary == BoundaryInterpolation::EdgeOnly ? Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
                                                                                       : Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
-  sdc.SetCreasingMethod(input.creaseMethod == CreaseMethod::Chaikin ? Sdc::Options::CREASE_CHAIKIN
+  sdc.SetCreasingMethod(input.crease_method == CreaseMethod::Chaikin ? Sdc::Options::CREASE_CHAIKIN
                                                                      : Sdc::Options::CREASE_UNIFORM);
   using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
   std::unique_ptr<Far::TopologyRefiner> r(Factory::Create(desc, Factory::Options(Sdc::SCHEME_CATMARK, sdc)));
@@ -105,7 +105,7 @@ struct OsdReference::Impl {
   std::unique_ptr<Far::PatchMap> map;
   std::unique_ptr<Far::PtexIndices> ptex;
   std::vector<Point> points;  // refined points, then the patch table's local (end cap) points
-  std::vector<int> faceSizes;
+  std::vector<int> face_sizes;
 };
 
 OsdReference::OsdReference(const PolyMesh& input, int isolation) : impl_(std::make_unique<Impl>()) {
@@ -120,7 +120,7 @@ OsdReference::OsdReference(const PolyMesh& input, int isolation) : impl_(std::ma
   impl_->patches.reset(Far::PatchTableFactory::Create(*impl_->refiner, options));
   impl_->map = std::make_unique<Far::PatchMap>(*impl_->patches);
   impl_->ptex = std::make_unique<Far::PtexIndices>(*impl_->refiner);
-  impl_->faceSizes = input.faceSizes;
+  impl_->face_sizes = input.face_sizes;
 
   const int refined = impl_->refiner->GetNumVerticesTotal();
   impl_->points.resize(refined + impl_->patches->GetNumLocalPoints());
@@ -141,13 +141,13 @@ OsdReference::OsdReference(const PolyMesh& input, int isolation) : impl_(std::ma
 OsdReference::~OsdReference() = default;
 
 LimitPoint OsdReference::evaluate(const ControlMesh& control, int face, double u, double v) const {
-  const auto& chain = control.cornerChain[face];
+  const auto& chain = control.corner_chain[face];
   // Up the chain to the input face's children: each step halves into the parent quad's (u, v).
   double s = u, t = v;
   for (size_t i = chain.size(); i-- > 1;) childToParentQuad(chain[i], s, t, s, t);
-  const int inputFace = control.inputFace[face];
-  int ptexFace = impl_->ptex->GetFaceId(inputFace);
-  if (impl_->faceSizes[inputFace] == 4) {
+  const int input_face = control.input_face[face];
+  int ptexFace = impl_->ptex->GetFaceId(input_face);
+  if (impl_->face_sizes[input_face] == 4) {
     childToParentQuad(chain[0], s, t, s, t);
   } else {
     ptexFace += chain[0];

@@ -50,11 +50,11 @@ TEST(SubdivMesh, ChecksNameTheProblem) {
   EXPECT_NE(inputErrorOf([&] { checkMesh(nan); }).find("vertex 2 is not a finite number"), std::string::npos);
 
   PolyMesh range = twoFaces();
-  range.faceCorners[4] = 7;
+  range.face_corners[4] = 7;
   EXPECT_NE(inputErrorOf([&] { checkMesh(range); }).find("face 1 uses vertex index 7, out of range"), std::string::npos);
 
   PolyMesh flipped = twoFaces();
-  std::swap(flipped.faceCorners[1], flipped.faceCorners[2]);
+  std::swap(flipped.face_corners[1], flipped.face_corners[2]);
   EXPECT_NE(inputErrorOf([&] { checkMesh(flipped); }).find("not consistently oriented"), std::string::npos);
 
   PolyMesh fin = twoFaces();  // a fifth face on edge (0, 1): three faces share it
@@ -112,12 +112,12 @@ TEST(SubdivMesh, ObjFilesAndTheirErrors) {
                                        << "t interpolateboundary 1/0/0 2\nt creasemethod 0/0/1 chaikin\nt hole 1/0/0 5\n";
     const PolyMesh m = readObjMesh(dir + "/tagged.obj");
     EXPECT_EQ(m.boundary, BoundaryInterpolation::EdgeOnly);
-    EXPECT_EQ(m.creaseMethod, CreaseMethod::Chaikin);
+    EXPECT_EQ(m.crease_method, CreaseMethod::Chaikin);
     EXPECT_TRUE(m.hole(5));
     EXPECT_FALSE(m.hole(4));
     EXPECT_EQ(m.vertexSharp(7), kInfinitelySharp);
     int sharp = 0;
-    for (double x : m.edgeSharpness) sharp += x == 2.5;
+    for (double x : m.edge_sharpness) sharp += x == 2.5;
     EXPECT_EQ(sharp, 4);  // two edges, each in two faces
     // Bad tags: each refused naming its line.
     const std::vector<std::pair<std::string, std::string>> bad = {
@@ -150,9 +150,9 @@ TEST(SubdivMesh, RefinementCountsAndSeparatesExtraordinaryVertices) {
     const PolyMesh m = proceduralMesh(name);
     const MeshTopology t = checkMesh(m);
     const RefinedMesh r = catmullClarkStep(m, t);
-    const int edges = static_cast<int>(m.faceCorners.size()) / 2;
+    const int edges = static_cast<int>(m.face_corners.size()) / 2;
     EXPECT_EQ(r.mesh.points.size(), m.points.size() + edges + m.faceCount()) << name;
-    EXPECT_EQ(r.mesh.faceCorners.size(), 4 * m.faceCorners.size()) << name;
+    EXPECT_EQ(r.mesh.face_corners.size(), 4 * m.face_corners.size()) << name;
     EXPECT_NO_THROW(checkMesh(r.mesh)) << name;
     // buildControlMesh throws a logic_error if a face keeps two extraordinary corners.
     const ControlMesh c = buildControlMesh(m);
@@ -174,8 +174,8 @@ TEST(SubdivMesh, ExtraordinaryVertexIsCornerZeroOfItsFaces) {
     PolyMesh out = m;
     out.name += " turned";
     for (int f = 0; f < m.faceCount(); ++f)
-      for (int c = 0; c < m.faceSizes[f]; ++c)
-        out.faceCorners[m.faceOffsets[f] + c] = m.corner(f, (c + f) % m.faceSizes[f]);
+      for (int c = 0; c < m.face_sizes[f]; ++c)
+        out.face_corners[m.face_offsets[f] + c] = m.corner(f, (c + f) % m.face_sizes[f]);
     return out;
   };
   std::vector<PolyMesh> meshes;
@@ -201,7 +201,7 @@ TEST(SubdivMesh, ExtraordinaryVertexIsCornerZeroOfItsFaces) {
 TEST(SubdivBasis, EigenstructureMatchesCatmullClark) {
   for (int n : {3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 16, 25, 32}) {
     const ValenceBasis b(n);
-    EXPECT_LT(b.reconstructionError, 1e-9) << n;
+    EXPECT_LT(b.reconstruction_error, 1e-9) << n;
     // Rows of A are affine combinations, so 1 is an eigenvalue and the largest; the subdominant
     // eigenvalue of Catmull-Clark is known in closed form (Stam 1998, Doo-Sabin analysis).
     std::vector<double> l(b.lambda.data(), b.lambda.data() + b.size);
@@ -259,7 +259,7 @@ TEST(SubdivBasis, ValenceFourReducesToTheBicubicBSpline) {
 // ---- Exact evaluation against OpenSubdiv ----
 
 struct Errors {
-  double position = 0, normalDegrees = 0;  // position relative to the mesh size
+  double position = 0, normal_degrees = 0;  // position relative to the mesh size
   int points = 0;
 };
 
@@ -301,11 +301,11 @@ Errors compare(const std::string& name, bool tagged = false) {
       if (surface.hole(f)) continue;
       const LimitPoint ours = surface.evaluate(f, u, v), theirs = reference.evaluate(surface.control(), f, u, v);
       e.position = std::max(e.position, glm::length(ours.position - theirs.position) / size);
-      e.normalDegrees = std::max(e.normalDegrees, degreesBetween(ours.normal, theirs.normal));
+      e.normal_degrees = std::max(e.normal_degrees, degreesBetween(ours.normal, theirs.normal));
       ++e.points;
     }
   std::printf("  %-10s %6d points to 2^-%d: position %.2e of the size, normal %.2e deg\n", name.c_str(), e.points,
-              deepest, e.position, e.normalDegrees);
+              deepest, e.position, e.normal_degrees);
   return e;
 }
 
@@ -318,7 +318,7 @@ TEST(SubdivEval, MatchesOpenSubdivOnEveryProceduralMesh) {
   for (const auto& name : meshes) {
     const Errors e = compare(name);
     EXPECT_LE(e.position, 1e-5) << name;
-    EXPECT_LE(e.normalDegrees, 0.05) << name;
+    EXPECT_LE(e.normal_degrees, 0.05) << name;
   }
 }
 
@@ -364,7 +364,7 @@ TEST(SubdivTags, MatchesOpenSubdivOnTaggedMeshes) {
   for (const auto& name : meshes) {
     const Errors e = compare(name, true);
     EXPECT_LE(e.position, 1e-6) << name;
-    EXPECT_LE(e.normalDegrees, 0.05) << name;
+    EXPECT_LE(e.normal_degrees, 0.05) << name;
   }
 }
 
@@ -403,7 +403,7 @@ TEST(SubdivEval, CornersAndTheLimitAtExtraordinaryVertices) {
         int sharpEdges = 0;
         for (int g = 0; g < m.faceCount(); ++g)
           for (int d = 0; d < 4; ++d)
-            sharpEdges += m.corner(g, d) == m.corner(f, c) && m.edgeSharp(m.faceOffsets[g] + d) > 0;
+            sharpEdges += m.corner(g, d) == m.corner(f, c) && m.edgeSharp(m.face_offsets[g] + d) > 0;
         const bool dart = sharpEdges == 1 && m.vertexSharp(m.corner(f, c)) == 0 && !surface.control().topology.boundary[m.corner(f, c)];
         if (!dart) position = std::max(position, glm::length(ours.position - ref.position) / input.size());
         // A boundary vertex of 4 or more faces has no limit normal to compare with: the normal of
@@ -414,7 +414,7 @@ TEST(SubdivEval, CornersAndTheLimitAtExtraordinaryVertices) {
         bool sharpEdge = false;
         for (int g = 0; g < m.faceCount(); ++g)
           for (int d = 0; d < 4; ++d)
-            sharpEdge |= (m.corner(g, d) == p || m.corner(g, (d + 1) % 4) == p) && m.edgeSharp(m.faceOffsets[g] + d) > 0;
+            sharpEdge |= (m.corner(g, d) == p || m.corner(g, (d + 1) % 4) == p) && m.edgeSharp(m.face_offsets[g] + d) > 0;
         const bool noNormal = (surface.control().topology.boundary[p] && surface.control().topology.valence[p] >= 5) ||
                               (name.find('_') != std::string::npos && (sharpEdge || m.vertexSharp(p) > 0));
         (noNormal ? skipped : normal) = std::max(noNormal ? skipped : normal, degreesBetween(ours.normal, ref.normal));
@@ -435,7 +435,7 @@ namespace {
 // ---- The float tables a per-fragment evaluator reads ----
 
 struct TableErrors {
-  double position = 0, normalDegrees = 0;
+  double position = 0, normal_degrees = 0;
 };
 
 TableErrors compareTables(const SubdivSurface& surface, const SubdivTables& tables, double size, int fromLevel,
@@ -459,7 +459,7 @@ TableErrors compareTables(const SubdivSurface& surface, const SubdivTables& tabl
       // The table sees (u, v) rounded to float: compare with the exact point there.
       const LimitPoint there = surface.evaluate(f, double(float(u)), double(float(v)));
       e.position = std::max(e.position, glm::length(glm::dvec3(table.position) - there.position) / size);
-      e.normalDegrees = std::max(e.normalDegrees, degreesBetween(glm::dvec3(table.normal), there.normal));
+      e.normal_degrees = std::max(e.normal_degrees, degreesBetween(glm::dvec3(table.normal), there.normal));
     }
   return e;
 }
@@ -479,9 +479,9 @@ TEST(SubdivTables, FloatTablesMatchTheExactEvaluation) {
     // Down to 2^-15 of a control face the tables hold the exact sub-patches.
     const TableErrors e = compareTables(surface, tables, input.size(), 1, kTableLevels, true);
     EXPECT_LE(e.position, 1e-5) << name;
-    EXPECT_LE(e.normalDegrees, 0.05) << name;
+    EXPECT_LE(e.normal_degrees, 0.05) << name;
     worstPosition = std::max(worstPosition, e.position);
-    worstNormal = std::max(worstNormal, e.normalDegrees);
+    worstNormal = std::max(worstNormal, e.normal_degrees);
     // Nearer, and at the extraordinary vertex itself, the level-15 sub-patch is extrapolated (the
     // paper's cap): bounded loosely, by what it measured (3.4e-5 and 0.79 degrees at valence 12).
     const TableErrors deep = compareTables(surface, tables, input.size(), kTableLevels + 1, 24, false);
@@ -497,11 +497,11 @@ TEST(SubdivTables, FloatTablesMatchTheExactEvaluation) {
                            : name == "cube_creaseinf"           ? 3.0
                            : name.rfind("open_grid_", 0) == 0   ? 40.0
                                                                 : 1.0;
-    EXPECT_LE(deep.normalDegrees, turning) << name;
+    EXPECT_LE(deep.normal_degrees, turning) << name;
     deepPosition = std::max(deepPosition, deep.position);
-    deepNormal = std::max(deepNormal, deep.normalDegrees);
+    deepNormal = std::max(deepNormal, deep.normal_degrees);
     std::printf("  %-20s to 2^-15: %.2e, %.2e deg; deeper: %.2e, %.2e deg; %zu entries for %d faces\n", name.c_str(),
-                e.position, e.normalDegrees, deep.position, deep.normalDegrees, tables.faces.size(), surface.patchCount());
+                e.position, e.normal_degrees, deep.position, deep.normal_degrees, tables.faces.size(), surface.patchCount());
   }
   std::printf("  tables in float, to 2^-15: position %.2e of the size, normal %.2e deg; 2^-16..0: %.2e, %.2e deg\n",
               worstPosition, worstNormal, deepPosition, deepNormal);
@@ -522,7 +522,7 @@ TEST(SubdivTables, PrecomputationLayoutAndTime) {
   EXPECT_EQ(tables.tangents.size(), tables.positions.size());
   const auto& e = tables.faces.back();
   const auto direct = surface.controlPoints(surface.patchCount() - 1, e.type == SubdivTables::kRegular ? 0 : 7, e.type == SubdivTables::kRegular ? 0 : 2);
-  const int set = e.firstSet + (e.type == SubdivTables::kRegular ? 0 : 6 * 3 + 1);
+  const int set = e.first_set + (e.type == SubdivTables::kRegular ? 0 : 6 * 3 + 1);
   for (int i = 0; i < 16; ++i)
     EXPECT_LT(glm::length(glm::dvec3(glm::vec3(tables.positions[set * 16 + i])) - direct[i]), 1e-6);
   std::printf("  precomputation: %d control faces (%d irregular), %.3f ms, %.3f ms per 1000 faces (tables alone %.3f ms)\n",
