@@ -29,7 +29,7 @@ std::unique_ptr<Compositor> makeCompositor(Strategy strategy, int radix, const C
 
 std::unique_ptr<Compositor> makeCompositor(const std::string& strategy, int radix,
                                            const CompositeOptions& options) {
-  for (const auto& [name, value] : EnumNames<Strategy>::list)
+  for (const auto& [name, value] : enumNamesAndValues<Strategy>())
     if (strategy == name) return makeCompositor(value, radix, options);
   throw std::invalid_argument("unknown compositing strategy '" + strategy + "'");
 }

@@ -20,18 +20,12 @@ namespace sortlast {
 // cells of edge h) | slices (the field sampled on a lattice, render/particles/metaball_slices_renderer.h).
 enum class ParticleMethod { kBillboards, kGrid, kSlices };
 template <>
-struct EnumNames<ParticleMethod> {
-  static constexpr std::pair<const char*, ParticleMethod> list[] = {
-      {"billboards", ParticleMethod::kBillboards}, {"grid", ParticleMethod::kGrid}, {"slices", ParticleMethod::kSlices}};
-};
+inline constexpr std::array kEnumNames<ParticleMethod>{"billboards", "grid", "slices"};
 
 // particles.smoothing: none (round metaballs) | anisotropic (smoothed ellipsoids, io/anisotropic_kernels.h).
 enum class Smoothing { kNone, kAnisotropic };
 template <>
-struct EnumNames<Smoothing> {
-  static constexpr std::pair<const char*, Smoothing> list[] = {{"none", Smoothing::kNone},
-                                                                {"anisotropic", Smoothing::kAnisotropic}};
-};
+inline constexpr std::array kEnumNames<Smoothing>{"none", "anisotropic"};
 
 struct ParticleDesc {
   std::string file;                 // empty: procedural (or none)

@@ -27,10 +27,7 @@ struct GlowEmitterSpec {
 // glow.tone_map: none (radiance clamped when written) | exponential (1 - exp(-exposure x radiance)).
 enum class ToneMap { kNone, kExponential };
 template <>
-struct EnumNames<ToneMap> {
-  static constexpr std::pair<const char*, ToneMap> list[] = {{"none", ToneMap::kNone},
-                                                              {"exponential", ToneMap::kExponential}};
-};
+inline constexpr std::array kEnumNames<ToneMap>{"none", "exponential"};
 
 struct GlowSpec {
   std::vector<GlowEmitterSpec> emitters;

@@ -120,12 +120,9 @@ struct Choice {
     }
     set = [field, values = std::move(values)](Scene& s, size_t i) { field(s) = values[i]; };
   }
-  // An enum's names (EnumNames).
+  // An enum's names (kEnumNames, common/enum_names.h).
   template <NamedEnum E>
-  Choice(Field<E> field, const char* says_ = kSays)
-      : Choice(field, std::vector<std::pair<const char*, E>>(std::begin(EnumNames<E>::list),
-                                                             std::end(EnumNames<E>::list)),
-               says_) {}
+  Choice(Field<E> field, const char* says_ = kSays) : Choice(field, enumNamesAndValues<E>(), says_) {}
 };
 // A list of 3 numbers (glm::ivec3: integers; say so with an "integers ..." check).
 template <class T>

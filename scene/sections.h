@@ -1,8 +1,8 @@
 #pragma once
 // The scene's sections, one struct each (Scene, scene/scene.h, is made of them with the volume,
 // particles, glow and surfaces, whose structs live beside their readers), and the enums their keys
-// take, each with its names (EnumNames, scene/scene_keys.h: the parser reads them, nameOf prints
-// them). A section's rows of the key table, with their defaults, checks and docs, are in
+// take, each with its names (kEnumNames, common/enum_names.h: the parser reads them, nameOf
+// prints them). A section's rows of the key table, with their defaults, checks and docs, are in
 // scene/sections/<section>.cpp.
 #include <glm/glm.hpp>
 #include <optional>
@@ -19,18 +19,12 @@ namespace sortlast {
 // render.method: the volume renderer.
 enum class RenderMethod { kSlicing, kRaycast };
 template <>
-struct EnumNames<RenderMethod> {
-  static constexpr std::pair<const char*, RenderMethod> list[] = {{"slicing", RenderMethod::kSlicing},
-                                                                   {"raycast", RenderMethod::kRaycast}};
-};
+inline constexpr std::array kEnumNames<RenderMethod>{"slicing", "raycast"};
 
 // render.backend: where the GL context comes from.
 enum class GlBackend { kOsmesa, kEgl };
 template <>
-struct EnumNames<GlBackend> {
-  static constexpr std::pair<const char*, GlBackend> list[] = {{"osmesa", GlBackend::kOsmesa},
-                                                                {"egl", GlBackend::kEgl}};
-};
+inline constexpr std::array kEnumNames<GlBackend>{"osmesa", "egl"};
 
 struct RenderSection {
   GlBackend backend = GlBackend::kOsmesa;
@@ -53,12 +47,7 @@ struct RenderSection {
 // compositing.strategy
 enum class Strategy { kDirect, kBinarySwap, kRadixK, kAuto };
 template <>
-struct EnumNames<Strategy> {
-  static constexpr std::pair<const char*, Strategy> list[] = {{"direct", Strategy::kDirect},
-                                                               {"binary-swap", Strategy::kBinarySwap},
-                                                               {"radix-k", Strategy::kRadixK},
-                                                               {"auto", Strategy::kAuto}};
-};
+inline constexpr std::array kEnumNames<Strategy>{"direct", "binary-swap", "radix-k", "auto"};
 
 // compositing.precision: how partial results are held. kFloat: blend in float, round to RGBA8
 // once per frame (partial composites travel at 16 bits), so every strategy and rank count gives
@@ -67,10 +56,7 @@ struct EnumNames<Strategy> {
 // half a step of error per round).
 enum class Precision { kFloat, kRgba8 };
 template <>
-struct EnumNames<Precision> {
-  static constexpr std::pair<const char*, Precision> list[] = {{"float", Precision::kFloat},
-                                                                {"rgba8", Precision::kRgba8}};
-};
+inline constexpr std::array kEnumNames<Precision>{"float", "rgba8"};
 
 struct CompositingSection {
   Strategy strategy = Strategy::kDirect;
@@ -85,10 +71,7 @@ struct CompositingSection {
 // adaptive.steps: how a block's samples are taken along the rays.
 enum class AdaptiveSteps { kOwn, kFine };
 template <>
-struct EnumNames<AdaptiveSteps> {
-  static constexpr std::pair<const char*, AdaptiveSteps> list[] = {{"own", AdaptiveSteps::kOwn},
-                                                                    {"fine", AdaptiveSteps::kFine}};
-};
+inline constexpr std::array kEnumNames<AdaptiveSteps>{"own", "fine"};
 
 struct AdaptiveSection {
   double tolerance = 0.0;  // relative L2 error per block, a fraction (the key is in percent); 0: off
@@ -101,10 +84,7 @@ struct AdaptiveSection {
 // reference.field: what the reference integrates.
 enum class ReferenceField { kOriginal, kAdaptive };
 template <>
-struct EnumNames<ReferenceField> {
-  static constexpr std::pair<const char*, ReferenceField> list[] = {{"original", ReferenceField::kOriginal},
-                                                                     {"adaptive", ReferenceField::kAdaptive}};
-};
+inline constexpr std::array kEnumNames<ReferenceField>{"original", "adaptive"};
 
 struct ReferenceSection {
   double step = 0.0625;  // in units of the smallest voxel spacing
