@@ -48,7 +48,8 @@ BrickRenderer::BrickRenderer(const std::string& backend, int width, int height,
     : ctx_(createGlContext(backend, device)),
       textures_(std::make_unique<VolumeTexturePool>(ctx_->gl())),
       width_(width),
-      height_(height) {}
+      height_(height),
+      timer_(std::make_unique<GpuTimer>(ctx_->gl())) {}
 
 void BrickRenderer::enableVolume(const TransferFunction& tf, int table_size, int block_cells,
                                  const VolumeMethod& method, bool preintegrated) {
@@ -59,6 +60,12 @@ void BrickRenderer::enableVolume(const TransferFunction& tf, int table_size, int
     volume_ = std::make_unique<SlicingRenderer>(*ctx_, width_, height_, block_cells);
   volume_->setTransferFunction(tf, table_size, preintegrated);
   volume_->setShading(method.shading);
+  volume_->setDeferredReadback(overlapped_readback_);
+}
+
+void BrickRenderer::setOverlappedReadback(bool on) {
+  overlapped_readback_ = on;
+  if (volume_) volume_->setDeferredReadback(on);
 }
 
 void BrickRenderer::enableParticles(const MetaballSettings& settings) {
@@ -212,6 +219,13 @@ void recutSurface(std::vector<float>& surface, const Rect& from, const Rect& to)
 BrickFrame BrickRenderer::render(int handle, const Camera& cam, double slice_spacing,
                                  double near_plane, double far_plane, bool want_surface) {
   const Handles& h = bricks_.at(size_t(handle));
+  // The GL work of this brick, up to (not including) its read-back: draw_s.
+  struct TimedScope {
+    GpuTimer& t;
+    explicit TimedScope(GpuTimer& timer) : t(timer) { t.begin(); }
+    ~TimedScope() { t.end(); }
+  };
+  std::optional<TimedScope> timed(std::in_place, *timer_);
   BrickFrame out;
   SurfaceBrick surface;
   if (h.particles >= 0) {
@@ -262,6 +276,8 @@ BrickFrame BrickRenderer::render(int handle, const Camera& cam, double slice_spa
   out.rect = rb.rect;
   out.pixels = std::move(rb.pixels);
   out.pixels_f = std::move(rb.pixels_f);
+  timed.reset();
+  if (rb.unread) out.pending = rb.unread->readAsync(rb.rect);
   return out;
 }
 

@@ -16,6 +16,8 @@
 #include "scene/surface_scene.h"
 #include "transfer/transfer_function.h"
 #include "render/gl/gl_context.h"
+#include "render/gl/gpu_timer.h"
+#include "render/gl/pixel_readback.h"
 #include "render/glow/glow_renderer.h"
 #include "render/particles/metaball_grid_renderer.h"
 #include "render/particles/metaball_renderer.h"
@@ -47,6 +49,9 @@ struct BrickFrame {
   std::vector<float> pixels_f;
   std::vector<float> surface;  // (t, nx, ny, nz) per pixel of rect, when asked for and there are particles or surfaces
   int particle_rounds = 0;
+  // Overlapped read-back (setOverlappedReadback): the RGBA8 pixels on their way, `pixels` empty;
+  // the caller maps them (pending.ring->map) and releases them.
+  PendingPixels pending;
 };
 
 class BrickRenderer {
@@ -103,8 +108,16 @@ class BrickRenderer {
   // A brick with particles only.
   int addParticleBrick(const Box3& particle_clip, const std::vector<glm::vec3>& particles);
 
+  // Draws a brick. Its GL work is timed (drawSeconds); with overlapped read-back a volume brick's
+  // RGBA8 pixels are converted on the GPU and left on their way (BrickFrame::pending), so the next
+  // brick's draw can be issued before this one's pixels are waited for.
   BrickFrame render(int handle, const Camera& cam, double slice_spacing, double near_plane,
                     double far_plane, bool want_surface);
+  // Volume bricks read back through the pixel-buffer ring with the GPU's conversion (true), or
+  // synchronously as floats converted on the CPU (false: the serial pipeline, for comparison).
+  void setOverlappedReadback(bool on);
+  // The GL time of the bricks drawn since the last call (GpuTimer: timer queries), in seconds.
+  double drawSeconds() { return timer_->collect(); }
 
  private:
   struct Handles {
@@ -132,6 +145,8 @@ class BrickRenderer {
   Box3 surface_bounds_;
   std::unique_ptr<GlowRenderer> glow_;
   std::vector<Handles> bricks_;
+  std::unique_ptr<GpuTimer> timer_;
+  bool overlapped_readback_ = false;
 };
 
 // The metaball renderer's settings for a scene's particle keys.

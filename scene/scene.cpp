@@ -149,7 +149,7 @@ bool isFrameKey(const std::string& path) {
   for (const char* key : {"render.sample_spacing", "render.method", "render.ert_threshold",
                           "render.shading", "render.shading_ambient", "render.shading_diffuse",
                           "render.shading_specular", "render.shading_shininess",
-                          "render.adaptive_step", "render.adaptive_tolerance",
+                          "render.adaptive_step", "render.adaptive_tolerance", "render.pipeline",
                           "particles.radius", "particles.influence", "particles.threshold",
                           "particles.color", "particles.step", "particles.max_samples",
                           "particles.refine_iterations", "particles.cull", "particles.samples_per_pass",

@@ -26,6 +26,11 @@ enum class GlBackend { kOsmesa, kEgl };
 template <>
 inline constexpr std::array kEnumNames<GlBackend>{"osmesa", "egl"};
 
+// render.pipeline: how a frame's bricks go from GL to the compositor (session/brick_stages.h).
+enum class Pipeline { kOverlapped, kSerial };
+template <>
+inline constexpr std::array kEnumNames<Pipeline>{"overlapped", "serial"};
+
 struct RenderSection {
   GlBackend backend = GlBackend::kOsmesa;
   int device = -1;              // a hardware EGL device index; -1: auto
@@ -40,6 +45,7 @@ struct RenderSection {
   Shading shading;                        // gradient shading of the volume (render.shading*)
   bool adaptive_step = false;             // ray casting: a block takes every m-th lattice sample
   double adaptive_step_tolerance = 0.02;  // the step rule's bound (render/volume/step_rule.h)
+  Pipeline pipeline = Pipeline::kOverlapped;
 
   bool raycast() const { return method == RenderMethod::kRaycast; }
 };

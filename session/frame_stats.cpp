@@ -2,6 +2,7 @@
 
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <cstdio>
 
 namespace sortlast {
@@ -33,6 +34,48 @@ double currentRssMiB() {
     if (std::sscanf(line, "VmRSS: %lld kB", &kib) == 1) break;
   std::fclose(f);
   return kib / 1024.0;
+}
+
+nlohmann::json stagesJson(const std::vector<RankFrameStats>& ranks, double total_s) {
+  struct Stage {
+    const char* name;
+    double RankFrameStats::*seconds;
+  };
+  // render_s is the CPU's time in the draw calls ("issue"); on llvmpipe it holds the drawing itself.
+  const Stage stages[] = {{"draw", &RankFrameStats::draw_s},         {"issue", &RankFrameStats::render_s},
+                          {"readback", &RankFrameStats::readback_s}, {"encode", &RankFrameStats::encode_s},
+                          {"exchange", &RankFrameStats::exchange_s}, {"composite", &RankFrameStats::composite_s}};
+  nlohmann::json j;
+  for (const Stage& st : stages) {
+    nlohmann::json a = nlohmann::json::array();
+    for (const RankFrameStats& r : ranks) a.push_back(r.*st.seconds);
+    j[std::string(st.name) + "_s"] = a;
+  }
+  j["wall_s"] = nlohmann::json::array();
+  for (const RankFrameStats& r : ranks) j["wall_s"].push_back(r.wall_s);
+  if (ranks.empty()) return j;
+  double draw = 0;
+  size_t slowest = 0;
+  for (size_t i = 0; i < ranks.size(); ++i) {
+    draw = std::max(draw, ranks[i].draw_s);
+    if (ranks[i].wall_s > ranks[slowest].wall_s) slowest = i;
+  }
+  const RankFrameStats& r = ranks[slowest];
+  const Stage* critical = &stages[0];
+  double busy = 0;
+  for (const Stage& st : stages) {
+    if (r.*st.seconds > r.*critical->seconds) critical = &st;
+    // The GPU's draw runs beside the CPU's issue of it: counted once, as the larger.
+    if (st.seconds != &RankFrameStats::render_s) busy += r.*st.seconds;
+  }
+  busy += std::max(0.0, r.render_s - r.draw_s);
+  j["frame_draw_s"] = draw;
+  j["outside_draw_s"] = std::max(0.0, total_s - draw);
+  j["outside_draw_share"] = total_s > 0 ? std::max(0.0, total_s - draw) / total_s : 0.0;
+  j["critical"] = critical->name;
+  j["slowest_rank"] = int(slowest);
+  j["overlap_s"] = std::max(0.0, busy - r.wall_s);
+  return j;
 }
 
 nlohmann::json frameJson(int frame, const std::vector<RankFrameStats>& ranks, double composite_s,

@@ -20,6 +20,14 @@ struct RankFrameStats {
   double particle_rounds = 0;  // most sample windows (rounds of passes) any of its bricks needed
   double bytes_sent = 0;       // compositing: bytes this rank sent, message headers included
   double strategy_code = 0;    // compositing.strategy auto: k of the radix-k it chose, 1 direct
+  // The frame's stages on this rank (session/brick_stages.h): busy seconds of each; they may
+  // overlap (the GPU draws while this core reads back and encodes), so they need not add up to
+  // wall_s. render_s above is the CPU's time in the draw calls (serial: with the read-back).
+  double draw_s = 0;      // GL work of the bricks (timer queries), read-back excluded
+  double readback_s = 0;  // waiting for and mapping the bricks' pixels
+  double exchange_s = 0;  // handing images to the compositor (direct send: sending them)
+  double composite_s = 0; // the compositor's decode, blend and gather (CompositeStats)
+  double wall_s = 0;      // this rank's frame, first brick to composited frame
 };
 
 // Gathers every rank's stats to rank 0 (empty vector elsewhere). Collective.
@@ -29,6 +37,12 @@ std::vector<RankFrameStats> gatherStats(const RankFrameStats& mine, MPI_Comm com
 double peakRssMiB();
 // Resident memory of this process now (VmRSS of /proc/self/status), in MiB; 0 if unreadable.
 double currentRssMiB();
+
+// The frame's `stages` object: per rank each stage's busy seconds (arrays, as the other per-rank
+// fields) and, for the frame: draw_s (the slowest rank's: the frame's GL time), the time outside
+// it (total_s - draw_s) and its share, the stage that kept the slowest rank busy longest
+// (`critical`), and how much its stages overlapped (their busy time beyond its wall time).
+nlohmann::json stagesJson(const std::vector<RankFrameStats>& ranks, double total_s);
 
 nlohmann::json frameJson(int frame, const std::vector<RankFrameStats>& ranks, double composite_s,
                          double total_s);

@@ -7,6 +7,8 @@
 #include "scene/file_steps.h"
 
 #include "session/auto_spacing.h"
+#include "session/brick_stages.h"
+#include "session/fault_injection.h"
 
 #include <algorithm>
 #include <cmath>
@@ -48,32 +50,6 @@ void shareBlockRanges(BrickRenderer& renderer, const GridGeometry& grid, MPI_Com
   renderer.setBlockRanges(std::move(*part));
 }
 
-// Fault injection for the tests: a rank that throws (the others must stop cleanly), dies (mpirun
-// must end the job) or meets an MPI error (session/mpi_errors.h must name it), before its first
-// brick, or after its first brick's image has gone to the compositor (direct send has then
-// started sending it). Inert unless the variables are set.
-bool isTestFaultRank(const char* var, int rank) {
-  const char* v = std::getenv(var);
-  return v && std::atoi(v) == rank;
-}
-
-void injectTestFault(int rank) {
-  if (isTestFaultRank("SORTLAST_TEST_FAIL_RANK", rank))
-    throw std::runtime_error("injected failure (SORTLAST_TEST_FAIL_RANK)");
-  if (isTestFaultRank("SORTLAST_TEST_CRASH_RANK", rank)) std::abort();
-  // A send to a rank that does not exist: an MPI error.
-  if (isTestFaultRank("SORTLAST_TEST_MPI_ERROR_RANK", rank)) {
-    int size = 1, unused = 0;
-    MPI_Comm_size(MPI_COMM_WORLD, &size);
-    MPI_Send(&unused, 1, MPI_INT, size + 7, 0, MPI_COMM_WORLD);
-  }
-}
-
-void injectLateTestFault(int rank) {
-  if (isTestFaultRank("SORTLAST_TEST_FAIL_RANK_AFTER_BRICK", rank))
-    throw std::runtime_error("injected failure after a brick (SORTLAST_TEST_FAIL_RANK_AFTER_BRICK)");
-}
-
 // bench_compositing --layers input: the frame size and brick order (order.txt) and each brick's
 // packed image (brick_ID.bin).
 void dumpOrder(const std::string& dir, const Camera& cam, const VisibilityOrder& order) {
@@ -82,13 +58,6 @@ void dumpOrder(const std::string& dir, const Camera& cam, const VisibilityOrder&
   out << cam.width << " " << cam.height << "\n";
   for (int id : order.bricks) out << id << "\n";
   if (!out) throw InputError("cannot write " + dir + "/order.txt");
-}
-
-void dumpLayer(const std::string& dir, const BrickImage& img) {
-  std::vector<uint8_t> bytes = packBrickImage(img);
-  std::ofstream out(dir + "/brick_" + std::to_string(img.brick_id) + ".bin", std::ios::binary);
-  out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
-  if (!out) throw InputError("cannot write brick image into " + dir);
 }
 
 // What the GL path draws with glow emitters (docs/glow.md), checked at start and per request.
@@ -223,6 +192,18 @@ struct RenderSession::State {
   void meetDevices();
   void bringGpuTo(const Scene& scene);
   void uploadBricks(const Scene& scene, StepData& d);
+  // The frame's stages (RenderSession::render).
+  void applyFrameSettings(const Scene& sc, const FrameRequest& request, const Camera& cam);
+  void drawBricks(const Scene& sc, const FrameRequest& request, const Camera& cam, bool want_surface,
+                  RankFrameStats& st, std::vector<SurfacePiece>& surfaces);
+  nlohmann::json frameStats(const Scene& sc, const FrameRequest& request, const Camera& cam,
+                            RankFrameStats& st, const CompositeStats& cs, double total_s,
+                            const nlohmann::json& spacing_info);
+  FrameFaults faults;  // the robustness tests' (fault_injection.h); inert unless asked for
+  // This frame's visibility order and auto's footprint: the compositor holds pointers to them
+  // from begin() to finish().
+  VisibilityOrder frame_order;
+  FrameFootprint frame_footprint;
   std::vector<double> spacingKey(const Scene& sc, std::pair<int, int> probe) const;
 };
 
@@ -232,6 +213,7 @@ RenderSession::RenderSession(SessionOptions options, MPI_Comm comm) : s_(std::ma
   S.comm = comm;
   MPI_Comm_rank(comm, &S.rank);
   MPI_Comm_size(comm, &S.size);
+  S.faults = FrameFaults::fromEnvironment(S.rank);
   // Scene and volume geometry: every rank parses the same input, so they agree.
   collectively(comm, [&] {
     S.base = parseScene(S.opts.scene, S.opts.overrides);
@@ -305,6 +287,7 @@ std::unique_ptr<RenderSession> RenderSession::external(SessionOptions options, M
   S->external = true;
   MPI_Comm_rank(comm, &S->rank);
   MPI_Comm_size(comm, &S->size);
+  S->faults = FrameFaults::fromEnvironment(S->rank);
   const int local_rank = nodeLocalRank(comm);
   collectively(comm, [&] {
     S->base = parseScene(S->opts.scene, S->opts.overrides);
@@ -561,16 +544,119 @@ double RenderSession::autoSpacing(const Scene& sc, const FrameRequest& request, 
   return S.spacing.choice.spacing;
 }
 
+// Settings: what changes in place for a request (image size, transfer function, renderer
+// settings, glow emitters) and the compositor (a new one only when its settings change).
+void RenderSession::State::applyFrameSettings(const Scene& sc, const FrameRequest& request, const Camera& cam) {
+  const auto [data_min, data_max] = dataRange();
+  renderer->setImageSize(cam.width, cam.height);
+  if (sc.hasVolume()) {
+    renderer->setTransferFunction(sc.transfer.build(data_min, data_max, layout.grid.minSpacing()),
+                                  sc.transfer.table_size, sc.transfer.preintegrated);
+    renderer->setVolumeMethodSettings(volumeMethod(sc));
+  }
+  if (sc.particles.enabled()) renderer->setMetaballSettings(metaballSettings(sc.particles));
+  const bool glow = sc.glow.enabled();
+  // An orbit moves the emitters: this frame's (the renderer uploads them when they change).
+  if (glow)
+    renderer->setGlowEmitters(sc.glow.emittersAt(std::max(0, request.orbit_frame)), sc.glow.core_radius,
+                              sc.glow.intensity);
+  // Glow: the frame comes back in float for the tone map.
+  const bool float_frame = request.float_frame || glow;
+  const CompositingSection& c = sc.compositing;
+  CompositorKey key{c.strategy, c.radix, c.precision, c.overlap, c.rle, float_frame, glow, c.latency_us, c.bandwidth_gbps};
+  if (compositor && key == compositor_key) return;
+  CompositeOptions copts;
+  copts.precision = c.precision;
+  copts.overlap = c.overlap;
+  copts.rle = c.rle;
+  copts.float_frame = float_frame;
+  copts.emission = glow;
+  copts.network_latency_s = c.latency_us * 1e-6;
+  copts.network_bandwidth_Bps = c.bandwidth_gbps * 1e9 / 8;
+  copts.ranks_per_core = ranks_per_core;
+  compositor = makeCompositor(c.strategy, c.radix, copts);
+  compositor_key = key;
+}
+
+// Bricks: every brick of this rank drawn, read back, encoded and handed to the compositor, which
+// was told the frame first (visibility order; auto's footprint). On any rank's error the frame is
+// abandoned on every rank (no send left unmatched) and JobFailed thrown.
+void RenderSession::State::drawBricks(const Scene& sc, const FrameRequest& request, const Camera& cam,
+                                      bool want_surface, RankFrameStats& st,
+                                      std::vector<SurfacePiece>& surfaces) {
+  const bool has_particles = sc.particles.enabled();
+  const double h = has_particles ? sc.particles.reach() : 0.0;
+  // Billboards reach sqrt(3) h beyond a particle: the depth range holds them too.
+  const auto [near_plane, far_plane] = depthRange(cam, has_particles ? grow(layout.bounds, h) : layout.bounds);
+  // The compositor reads the order and footprint until finish(): kept in the state.
+  frame_order = orderFor(cam.position);
+  const VisibilityOrder& order = frame_order;
+  // auto chooses from every rank's bricks on the screen: the same numbers on every rank.
+  const bool choose = sc.compositing.strategy == Strategy::kAuto;
+  frame_footprint = choose ? forecastFootprint(layout, cam, size) : FrameFootprint{};
+  compositor->begin(FrameSetup{&order, int(layout.mine.size()), cam.width, cam.height, comm,
+                               choose ? &frame_footprint : nullptr});
+  if (!request.dump_layers.empty())  // rank 0 makes the directory first
+    collectively(comm, [&] { if (rank == 0) dumpOrder(request.dump_layers, cam, order); });
+  const BrickStages stages{*renderer, *compositor, faults, layout.mine, handles, cam,
+                           sc.sampleSpacingWorld(), near_plane, far_plane, want_surface,
+                           sc.glow.enabled(), sc.compositing.rle,
+                           sc.render.pipeline == Pipeline::kOverlapped, request.dump_layers};
+  try {
+    collectively(comm, [&] {
+      faults.beforeBricks();
+      runBrickStages(stages, st, surfaces);
+    }, [&] { compositor->progress(); });
+  } catch (const JobFailed&) {
+    compositor->abandon();  // so no rank is left with a send nobody receives
+    throw;
+  }
+}
+
+// Stats: every rank's stages and counts gathered to rank 0, as the frame's --stats object.
+nlohmann::json RenderSession::State::frameStats(const Scene& sc, const FrameRequest& request, const Camera& cam,
+                                                RankFrameStats& st, const CompositeStats& cs, double total_s,
+                                                const nlohmann::json& spacing_info) {
+  const StrategyChoice* choice = compositor->choice();
+  if (choice) st.strategy_code = choice->radix ? choice->radix : 1;
+  st.peak_rss_mb = peakRssMiB();
+  st.rss_mb = currentRssMiB();
+  auto all = gatherStats(st, comm);
+  if (rank != 0) return nullptr;
+  nlohmann::json j = frameJson(request.orbit_frame >= 0 ? request.orbit_frame : frames_rendered, all,
+                               cs.composite_s, total_s);
+  j["stages"] = stagesJson(all, total_s);
+  j["camera"] = cameraJson(cam);
+  j["width"] = cam.width;
+  j["height"] = cam.height;
+  j["step"] = sc.time.step;
+  j["ranks"] = size;
+  if (sc.hasVolume()) j["sample_spacing"] = sc.render.sample_spacing;
+  if (!spacing_info.is_null()) j["sample_spacing_auto"] = spacing_info;
+  if (choice) {
+    // Every rank forecast the same footprint; a rank that chose otherwise is a bug to see.
+    bool same = true;
+    for (const RankFrameStats& r : all) same = same && r.strategy_code == all[0].strategy_code;
+    j["compositing"] = {{"strategy", "auto"},
+                        {"chose", choice->label},
+                        {"forecast_s", choice->forecast_s},
+                        {"why", choice->why},
+                        {"same_on_every_rank", same}};
+  }
+  return j;
+}
+
+// A frame, top-down as its stages: settings (the request resolved, the GPU and the compositor
+// brought to it), bricks (draw, read-back, encode, exchange: session/brick_stages.h), composite
+// (blend and gather: the compositor), stats.
 FrameResult RenderSession::render(const FrameRequest& request) {
   State& S = *s_;
-  const int rank = S.rank;
-  Scene sc;
   PhaseScope phase("rendering a frame");
+  Scene sc;
   collectively(S.comm, [&] { sc = S.resolve(request); });
   S.bringGpuTo(sc);
   // render.sample_spacing: auto: the step from probe frames of the scene's automatic view
-  // (auto_spacing.h).
-  // Its probe frames count in this frame's total_s (they are what auto costs).
+  // (auto_spacing.h). Its probe frames count in this frame's total_s (they are what auto costs).
   nlohmann::json spacing_info;
   double probe_s = 0.0;
   if (sc.render.sample_spacing_auto && sc.hasVolume() && !request.probe) {
@@ -578,131 +664,30 @@ FrameResult RenderSession::render(const FrameRequest& request) {
     sc.render.sample_spacing = autoSpacing(sc, request, spacing_info);
     probe_s = MPI_Wtime() - t0;
   }
-  const auto [data_min, data_max] = S.dataRange();
   const Camera cam = sc.frameCameras(S.layout.bounds)[size_t(std::max(0, request.orbit_frame))];
-  const bool has_particles = sc.particles.enabled();
-  const bool want_surface = (has_particles || !sc.surfaces.empty()) && request.surface;
-  const bool glow = sc.glow.enabled();
-  // What changes in place: image size, transfer function, renderer settings, compositor.
-  collectively(S.comm, [&] {
-    S.renderer->setImageSize(cam.width, cam.height);
-    if (sc.hasVolume()) {
-      S.renderer->setTransferFunction(sc.transfer.build(data_min, data_max, S.layout.grid.minSpacing()),
-                                      sc.transfer.table_size, sc.transfer.preintegrated);
-      S.renderer->setVolumeMethodSettings(volumeMethod(sc));
-    }
-    if (has_particles) S.renderer->setMetaballSettings(metaballSettings(sc.particles));
-    // An orbit moves the emitters: this frame's (the renderer uploads them when they change).
-    if (glow)
-      S.renderer->setGlowEmitters(sc.glow.emittersAt(std::max(0, request.orbit_frame)),
-                                  sc.glow.core_radius, sc.glow.intensity);
-    // Glow: the frame comes back in float for the tone map.
-    const bool float_frame = request.float_frame || glow;
-    CompositorKey key{sc.compositing.strategy, sc.compositing.radix, sc.compositing.precision, sc.compositing.overlap, sc.compositing.rle, float_frame, glow,
-                      sc.compositing.latency_us, sc.compositing.bandwidth_gbps};
-    if (!S.compositor || !(key == S.compositor_key)) {
-      CompositeOptions copts;
-      copts.precision = sc.compositing.precision;
-      copts.overlap = sc.compositing.overlap;
-      copts.rle = sc.compositing.rle;
-      copts.float_frame = float_frame;
-      copts.emission = glow;
-      copts.network_latency_s = sc.compositing.latency_us * 1e-6;
-      copts.network_bandwidth_Bps = sc.compositing.bandwidth_gbps * 1e9 / 8;
-      copts.ranks_per_core = S.ranks_per_core;
-      S.compositor = makeCompositor(sc.compositing.strategy, sc.compositing.radix, copts);
-      S.compositor_key = key;
-    }
-  });
+  collectively(S.comm, [&] { S.applyFrameSettings(sc, request, cam); });
 
-  double t_frame = MPI_Wtime();
-  const double h = has_particles ? sc.particles.reach() : 0.0;
-  // Billboards reach sqrt(3) h beyond a particle: the depth range holds them too.
-  auto [near_plane, far_plane] = depthRange(cam, has_particles ? grow(S.layout.bounds, h) : S.layout.bounds);
+  const double t_frame = MPI_Wtime();
   RankFrameStats st;
   st.particles_held = S.particles_held;
   std::vector<SurfacePiece> surfaces;
-  const std::vector<int>& mine = S.layout.mine;
-  const VisibilityOrder order = S.orderFor(cam.position);
-  // Each brick image goes to the compositor as soon as it is encoded: direct send starts sending
-  // it while the next brick renders.
-  // auto chooses from every rank's bricks on the screen: the same numbers on every rank.
-  const FrameFootprint footprint =
-      sc.compositing.strategy == Strategy::kAuto ? forecastFootprint(S.layout, cam, S.size) : FrameFootprint{};
-  S.compositor->begin(FrameSetup{&order, int(mine.size()), cam.width, cam.height, S.comm,
-                                 sc.compositing.strategy == Strategy::kAuto ? &footprint : nullptr});
-  if (!request.dump_layers.empty())  // rank 0 makes the directory first
-    collectively(S.comm, [&] { if (rank == 0) dumpOrder(request.dump_layers, cam, order); });
-  try {
-    collectively(S.comm, [&] {
-      injectTestFault(rank);
-      for (size_t i = 0; i < mine.size(); ++i) {
-        double t0 = MPI_Wtime();
-        BrickFrame bf = S.renderer->render(S.handles[i], cam, sc.sampleSpacingWorld(), near_plane,
-                                           far_plane, want_surface);
-        double t1 = MPI_Wtime();
-        BrickImage img{mine[i], bf.rect, {}};
-        const int pixel_bytes = glow ? 8 : 4;  // glow: WireFormat::Emission
-        const bool local = glow && S.compositor->takesLocalEmission() && request.dump_layers.empty();
-        if (!bf.rect.empty() && local) {
-          img.emission = std::move(bf.pixels_f);  // blended on this rank: not encoded
-        } else if (!bf.rect.empty() && glow) {
-          encodeEmission(bf.pixels_f, img.rle, sc.compositing.rle ? kMaxRun : 1);
-        } else if (!bf.rect.empty()) {
-          rleEncode(bf.pixels.px, img.rle, 4, sc.compositing.rle ? kMaxRun : 1);
-        }
-        st.render_s += t1 - t0;
-        st.encode_s += MPI_Wtime() - t1;
-        st.bytes_raw += double(bf.rect.area()) * pixel_bytes;
-        st.bytes_rle += local ? double(bf.rect.area()) * pixel_bytes : double(img.rle.size());
-        st.particle_rounds = std::max(st.particle_rounds, double(bf.particle_rounds));
-        (bf.rect.empty() ? st.bricks_skipped : st.bricks_rendered) += 1;
-        if (!request.dump_layers.empty()) dumpLayer(request.dump_layers, img);
-        S.compositor->add(std::move(img));
-        if (want_surface) surfaces.push_back({bf.rect, std::move(bf.surface)});
-        injectLateTestFault(rank);
-      }
-    }, [&] { S.compositor->progress(); });
-  } catch (const JobFailed&) {
-    S.compositor->abandon();  // so no rank is left with a send nobody receives
-    throw;
-  }
+  const bool want_surface = (sc.particles.enabled() || !sc.surfaces.empty()) && request.surface;
+  S.drawBricks(sc, request, cam, want_surface, st, surfaces);
+
   FrameResult out;
   CompositeStats cs;
+  const bool glow = sc.glow.enabled();
   collectively(S.comm, [&] {
     ImageF* float_frame = request.float_frame ? &out.image_f : glow ? &S.glow_frame : nullptr;
     out.image = S.compositor->finish(cs, float_frame);
-    if (glow && rank == 0) finishGlowFrame(sc.glow, sc.image.background, *float_frame, out.image);
+    if (glow && S.rank == 0) finishGlowFrame(sc.glow, sc.image.background, *float_frame, out.image);
   });
   if (want_surface) out.surface = gatherSurface(surfaces, cam.width, cam.height, S.comm);
   st.transfer_s = cs.transfer_s;
+  st.composite_s = cs.composite_s;
   st.bytes_sent = cs.bytes_sent;
-  const StrategyChoice* choice = S.compositor->choice();
-  if (choice) st.strategy_code = choice->radix ? choice->radix : 1;
-  st.peak_rss_mb = peakRssMiB();
-  st.rss_mb = currentRssMiB();
-  auto all = gatherStats(st, S.comm);
-  if (rank == 0) {
-    out.stats = frameJson(request.orbit_frame >= 0 ? request.orbit_frame : S.frames_rendered, all,
-                          cs.composite_s, MPI_Wtime() - t_frame + probe_s);
-    out.stats["camera"] = cameraJson(cam);
-    out.stats["width"] = cam.width;
-    out.stats["height"] = cam.height;
-    out.stats["step"] = sc.time.step;
-    out.stats["ranks"] = S.size;
-    if (sc.hasVolume()) out.stats["sample_spacing"] = sc.render.sample_spacing;
-    if (!spacing_info.is_null()) out.stats["sample_spacing_auto"] = spacing_info;
-    if (choice) {
-      // Every rank forecast the same footprint; a rank that chose otherwise is a bug to see.
-      bool same = true;
-      for (const RankFrameStats& r : all) same = same && r.strategy_code == all[0].strategy_code;
-      out.stats["compositing"] = {{"strategy", "auto"},
-                                  {"chose", choice->label},
-                                  {"forecast_s", choice->forecast_s},
-                                  {"why", choice->why},
-                                  {"same_on_every_rank", same}};
-    }
-  }
+  st.wall_s = MPI_Wtime() - t_frame;
+  out.stats = S.frameStats(sc, request, cam, st, cs, MPI_Wtime() - t_frame + probe_s, spacing_info);
   out.scene = std::move(sc);
   if (!request.probe) ++S.frames_rendered;
   return out;

@@ -7,9 +7,15 @@
 
 namespace sortlast {
 
+class FloatTarget;
+
 struct RenderedBrick {
   Rect rect;  // empty: nothing to draw (invisible under the transfer function, or off screen)
   ImageRGBA8 pixels;  // rect.w x rect.h
+  // Deferred read-back (FloatTarget::setDeferred): `pixels` stays empty and this target still
+  // holds the brick's image, for the caller to start reading (FloatTarget::readAsync) once the
+  // brick's GL work is issued and timed.
+  FloatTarget* unread = nullptr;
   std::vector<float> pixels_f;  // instead, with a GlowPass: premultiplied RGBA floats, unrounded
 };
 

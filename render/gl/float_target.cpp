@@ -48,6 +48,24 @@ void FloatTarget::begin(const Rect& r, const SurfaceLayer* surface) {
   }
 }
 
+void FloatTarget::finish(const Rect& r, RenderedBrick& out) {
+  if (!deferred_) {
+    out.pixels = finish(r);
+    return;
+  }
+  gl_.Disable(GL_SCISSOR_TEST);
+  out.unread = this;
+}
+
+PendingPixels FloatTarget::readAsync(const Rect& r) {
+  if (!rgba8_) {
+    rgba8_ = std::make_unique<Rgba8Pass>(gl_);
+    ring_ = std::make_unique<PixelReadback>(gl_);
+  }
+  rgba8_->run(colour_, width_, height_, r);  // leaves its RGBA8UI target bound for reading
+  return ring_->start(r, GL_RGBA_INTEGER, GL_UNSIGNED_BYTE, 4);
+}
+
 std::vector<float> FloatTarget::finishFloat(const Rect& r) {
   std::vector<float> out(size_t(r.area()) * 4);
   gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);

@@ -6,6 +6,10 @@
 #include "io/image.h"
 #include "render/gl/brick_output.h"
 #include "render/gl/gl_api.h"
+#include "render/gl/pixel_readback.h"
+#include "render/gl/rgba8_pass.h"
+
+#include <memory>
 
 namespace sortlast {
 
@@ -28,6 +32,13 @@ class FloatTarget {
   void begin(const Rect& r, const SurfaceLayer* surface);
   // Reads `r` back as premultiplied RGBA8 (top row first) and ends the scissor.
   ImageRGBA8 finish(const Rect& r);
+  // The renderer's finish: `out.pixels` = finish(r), or, deferred, the scissor ended and
+  // `out.unread` = this (the caller reads it with readAsync).
+  void finish(const Rect& r, RenderedBrick& out);
+  void setDeferred(bool on) { deferred_ = on; }
+  // Converts `r` to RGBA8 on the GPU (Rgba8Pass, bit for bit toRGBA8's) and starts reading it
+  // into the ring of pixel-buffer objects; returns at once (pixel_readback.h).
+  PendingPixels readAsync(const Rect& r);
   // The same unrounded (glow scenes: light without opacity, above 1): 4 floats a pixel.
   std::vector<float> finishFloat(const Rect& r);
 
@@ -36,6 +47,9 @@ class FloatTarget {
   int width_, height_;
   unsigned fbo_ = 0, colour_ = 0;
   std::vector<float> readback_;
+  bool deferred_ = false;
+  std::unique_ptr<Rgba8Pass> rgba8_;       // made on the first deferred read
+  std::unique_ptr<PixelReadback> ring_;
 };
 
 }  // namespace sortlast

@@ -105,7 +105,14 @@ using PfnDrawArrays = void(APIENTRYP)(GLenum, GLint, GLsizei);
   X(Uniform4f, PFNGLUNIFORM4FPROC)                              \
   X(GetUniformfv, PFNGLGETUNIFORMFVPROC)                        \
   X(GetUniformiv, PFNGLGETUNIFORMIVPROC)                        \
-  X(GetUniformuiv, PFNGLGETUNIFORMUIVPROC)
+  X(GetUniformuiv, PFNGLGETUNIFORMUIVPROC)                      \
+  X(GetQueryObjectui64v, PFNGLGETQUERYOBJECTUI64VPROC)          \
+  X(FenceSync, PFNGLFENCESYNCPROC)                              \
+  X(ClientWaitSync, PFNGLCLIENTWAITSYNCPROC)                    \
+  X(DeleteSync, PFNGLDELETESYNCPROC)                            \
+  X(MapBufferRange, PFNGLMAPBUFFERRANGEPROC)                    \
+  X(UnmapBuffer, PFNGLUNMAPBUFFERPROC)                          \
+  X(Flush, PFNGLFLUSHPROC)
 
 struct GlApi {
 #define SORTLAST_GL_MEMBER(name, type) type name = nullptr;

@@ -323,7 +323,7 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
   if (glow)
     out.pixels_f = target_.finishFloat(r);
   else
-    out.pixels = target_.finish(r);
+    target_.finish(r, out);
   return out;
 }
 

@@ -69,6 +69,7 @@ class RaycastRenderer : public VolumeRenderer {
   void setTransferFunction(const TransferFunction& tf, int table_size, bool preintegrated = false) override;
   // A new image size for the next frames (the bricks' textures stay).
   void resize(int width, int height) override { target_.resize(width, height); }
+  void setDeferredReadback(bool on) override { target_.setDeferred(on); }
   // Early ray termination and adaptive stepping can change between frames.
   void setSettings(const RaycastSettings& settings) { settings_ = settings; }
   // Gradient shading (transfer/shading.h) for the next frames; not for adaptive bricks.

@@ -134,7 +134,7 @@ RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spac
     gl_.Disable(GL_BLEND);
   }
   out.rect = r;
-  out.pixels = target_.finish(r);
+  target_.finish(r, out);
   return out;
 }
 

@@ -37,6 +37,7 @@ class SlicingRenderer : public VolumeRenderer {
   void setTransferFunction(const TransferFunction& tf, int table_size, bool preintegrated = false) override;
   // A new image size for the next frames (the bricks' textures stay).
   void resize(int width, int height) override { target_.resize(width, height); }
+  void setDeferredReadback(bool on) override { target_.setDeferred(on); }
   // Gradient shading (transfer/shading.h) for the next frames.
   void setShading(const Shading& shading) override { shading_ = shading; }
   // Uploads a brick's stored samples (x fastest); returns a handle for render(). The samples'

@@ -38,6 +38,10 @@ class VolumeRenderer {
   virtual RenderedBrick render(int handle, const Camera& cam, double spacing, double near_plane,
                                double far_plane, const SurfaceLayer* surface = nullptr) = 0;
 
+  // Deferred read-back (FloatTarget::setDeferred): render() leaves an RGBA8 brick image in its
+  // target (RenderedBrick::unread) for the caller to read asynchronously.
+  virtual void setDeferredReadback(bool on) = 0;
+
   // The ray caster behind this interface, or null (slicing). What only ray casting has (its
   // settings, the block ranges adaptive steps need, adaptive bricks, glow) is reached through it
   // rather than as virtuals with do-nothing defaults: slicing must not silently drop an adaptive

@@ -46,6 +46,14 @@ std::vector<sortlast::SceneKey> sortlast::renderKeys() {
      "per brick, front to back on samples `render.sample_spacing` apart along each ray, with "
      "early ray termination and empty blocks jumped along the ray).",
      Choice{member<&Scene::render, &RenderSection::method>}},
+    {"render.pipeline", "overlapped",
+     "How each brick's pixels travel from GL to the compositor. `overlapped`: converted to RGBA8 "
+     "on the GPU (rounded as the CPU rounds, bit for bit), read through a ring of pixel-buffer "
+     "objects with fences, and the next brick drawn before this one's pixels are waited for. "
+     "`serial`: each brick drawn, read back as floats and converted on the CPU before the next "
+     "(the pipeline before; for measuring what overlap gains, as `compositing.overlap: false`). "
+     "The images are the same; `--stats` gives each stage's time (`stages`).",
+     Choice{member<&Scene::render, &RenderSection::pipeline>}},
     {"render.ert_threshold", "0.99",
      "Ray casting: a ray stops once its opacity reaches this; 1: never early. It "
      "stops only inside a brick (bricks behind still render), and changes a pixel by at most "
