@@ -25,6 +25,8 @@ class FloatTarget {
   // contents are cleared per brick anyway); nothing else depends on the size.
   void resize(int width, int height);
   int width() const { return width_; }
+  unsigned colourTexture() const { return colour_; }  // RGBA32F (tests fill it directly)
+  unsigned framebuffer() const { return fbo_; }
   int height() const { return height_; }
 
   // Binds the framebuffer, scissors to `r` and clears it to transparent; then copies the
