@@ -1,6 +1,6 @@
 #pragma once
-// Image codecs, one library each: PNG (libpng reads and the service's frames; libdeflate writes
-// files), JPEG (libjpeg-turbo), OpenEXR (OpenEXR) and binary PPM (ours: no library). The one
+// Image codecs, one library each: PNG (libpng reads; libdeflate writes, io/png_deflate.cpp;
+// libpng's encodePng is kept for the benchmark that compares them), JPEG (libjpeg-turbo), OpenEXR (OpenEXR) and binary PPM (ours: no library). The one
 // place that knows file formats; io/image.h (frames), io/surface_image.h (surface images)
 // and io/image_encode.h (the service's in-memory frames) call it.
 //
@@ -26,8 +26,9 @@ struct Pixels8 {
   std::vector<uint8_t> px;
 };
 
-// PNG with zlib `level` (0-9; 6 is zlib's and libpng's default) and, with `sub_filter`, only the
-// cheap "sub" row filter instead of libpng's adaptive choice (the service's fast frames).
+// PNG through libpng with zlib `level` (0-9; 6 is zlib's and libpng's default) and, with
+// `sub_filter`, only the cheap "sub" row filter instead of libpng's adaptive choice: how files and
+// served frames were written before encodePngDeflate (bench/output compares them).
 std::string encodePng(const Pixels8& img, int level = 6, bool sub_filter = false);
 // PNG through libdeflate at `level` (0-12, its scale), every row with one filter (io/png_deflate.cpp
 // has the measurements that chose level 2 and "up" for files).
