@@ -38,6 +38,9 @@ std::vector<float> overBackground(const ImageF& img, const glm::dvec3& backgroun
 // Opaque RGB floats (overBackground's) rounded to 8 bits as every PNG and served frame is: round
 // half away from zero after scaling by 255, then clamp (NaN: 0).
 std::vector<uint8_t> toRGB8(const std::vector<float>& rgb);
+// toRGB8(overBackground(toFloat(img), background)) bit for bit, in one pass without the float
+// frame: what an 8-bit frame file and a served frame hold.
+std::vector<uint8_t> opaqueRGB8(const ImageRGBA8& img, const glm::dvec3& background);
 
 // Writes PNG, JPEG (quality kJpegFileQuality), binary PPM (8-bit) or EXR (float) by extension
 // (io/image_files.h). The premultiplied image is composited over `background` and written opaque.

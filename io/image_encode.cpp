@@ -26,7 +26,7 @@ std::string encodeImage(const ImageRGBA8& img, const glm::dvec3& background,
 
   // Same compositing and the same rounding as writeImage, so a PNG served equals the PNG file
   // `sortlast render` writes.
-  files::Pixels8 rgb{img.width, img.height, 3, toRGB8(overBackground(toFloat(img), background))};
+  files::Pixels8 rgb{img.width, img.height, 3, opaqueRGB8(img, background)};
   try {
     // The frame is on the interactive path: libdeflate at level 2 (timings at the top).
     return png ? files::encodePngDeflate(rgb) : files::encodeJpeg(rgb, quality);

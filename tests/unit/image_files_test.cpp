@@ -131,6 +131,22 @@ TEST(ImageFiles, FramesWrittenAndReadThroughImageH) {
             std::string::npos);
 }
 
+// The one-pass conversion of 8-bit frames equals the float path it replaced, bit for bit, for
+// every (value, alpha) pair over backgrounds whose products round differently.
+TEST(ImageFiles, OpaqueRGB8EqualsTheFloatPath) {
+  ImageRGBA8 img(256, 256);
+  for (int v = 0; v < 256; ++v)
+    for (int a = 0; a < 256; ++a) {
+      uint8_t* p = img.at(v, a);
+      p[0] = p[1] = p[2] = uint8_t(v);
+      p[3] = uint8_t(a);
+    }
+  for (const glm::dvec3 bg : {glm::dvec3(0.0), glm::dvec3(0.3, 0.77, 1.0), glm::dvec3(0.1, 0.5, 0.999)}) {
+    const std::vector<uint8_t> want = toRGB8(overBackground(toFloat(img), bg));
+    ASSERT_EQ(opaqueRGB8(img, bg), want) << bg.x << " " << bg.y << " " << bg.z;
+  }
+}
+
 TEST(ImageFiles, BadFilesAreNamed) {
   const std::string missing = tempPath("missing.png");
   std::string msg = inputErrorOf([&] { readImageRGBA8(missing); });
