@@ -44,17 +44,36 @@ std::vector<uint8_t> toRGB8(const std::vector<float>& rgb) {
   return out;
 }
 
+namespace {
+
+// One channel of an 8-bit premultiplied pixel over the background, rounded: the operations of
+// toFloat, overBackground and toRGB8, in their order.
+uint8_t overBackground8(uint8_t value, uint8_t alpha, float background) {
+  const float v = value / 255.0f + (1.0f - alpha / 255.0f) * background;
+  return std::isnan(v) ? 0 : uint8_t(std::clamp(std::roundf(v * 255.0f), 0.0f, 255.0f));
+}
+
+}  // namespace
+
 std::vector<uint8_t> opaqueRGB8(const ImageRGBA8& img, const glm::dvec3& bg) {
-  // The same float operations, in the same order, as toRGB8(overBackground(toFloat(img), bg)),
-  // per pixel: no 16-byte-a-pixel float frame in between (48 MiB of memory traffic at 1024²).
+  const size_t n = size_t(img.width) * img.height;
+  std::vector<uint8_t> out(n * 3);
   const float b[3] = {float(bg[0]), float(bg[1]), float(bg[2])};
-  std::vector<uint8_t> out(size_t(img.width) * img.height * 3);
-  for (size_t i = 0; i < size_t(img.width) * img.height; ++i) {
-    const float a = img.px[4 * i + 3] / 255.0f;
-    for (int c = 0; c < 3; ++c) {
-      const float v = img.px[4 * i + c] / 255.0f + (1.0f - a) * b[c];
-      out[3 * i + c] = std::isnan(v) ? 0 : uint8_t(std::clamp(std::roundf(v * 255.0f), 0.0f, 255.0f));
-    }
+  // A channel's result depends on its (value, alpha) pair alone: from 64 Ki pixels on, a table of
+  // every pair per channel (196,608 conversions) is cheaper than converting each pixel (at 1024²,
+  // 3.1 million; the direct loop took ~20 ms there, bench/output).
+  if (n < 65536) {
+    for (size_t i = 0; i < n; ++i)
+      for (int c = 0; c < 3; ++c) out[3 * i + c] = overBackground8(img.px[4 * i + c], img.px[4 * i + 3], b[c]);
+    return out;
+  }
+  std::vector<uint8_t> table(3 * 65536);
+  for (int c = 0; c < 3; ++c)
+    for (int a = 0; a < 256; ++a)
+      for (int v = 0; v < 256; ++v) table[size_t(c) * 65536 + size_t(a) * 256 + size_t(v)] = overBackground8(uint8_t(v), uint8_t(a), b[c]);
+  for (size_t i = 0; i < n; ++i) {
+    const size_t a = size_t(img.px[4 * i + 3]) * 256;
+    for (int c = 0; c < 3; ++c) out[3 * i + c] = table[size_t(c) * 65536 + a + img.px[4 * i + c]];
   }
   return out;
 }

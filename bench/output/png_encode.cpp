@@ -4,7 +4,7 @@
 // again and checked pixel for pixel. The settings: libpng with zlib's default (level 6, adaptive
 // filters: what files were written with before), zlib level 1 with the "sub" filter (the
 // service's frames) and with "up"; libdeflate at levels 1, 2, 4 and 6 with "up" and "paeth"; JPEG
-// quality 95 and 90; PPM.
+// quality 95 and 90; PPM; and the whole 8-bit frame write but the file, before and now.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -18,6 +18,9 @@
 #include "io/image_files.h"
 
 using namespace sortlast;
+
+// The frame read back is opaque, so any background leaves its pixels as they are.
+const glm::dvec3 kBackground(0.2, 0.3, 0.4);
 
 int main(int argc, char** argv) {
   if (argc < 2) {
@@ -51,6 +54,13 @@ int main(int argc, char** argv) {
         {"jpeg 95 (files)", [&] { return files::encodeJpeg(rgb, 95); }, false, {}},
         {"jpeg 90 (service)", [&] { return files::encodeJpeg(rgb, 90); }, false, {}},
         {"ppm", [&] { return files::encodePpm(rgb); }, true, {}},
+        // The whole write of an 8-bit frame but the file: the conversion over the background and
+        // the encode, before (through a float frame, libpng at zlib's defaults) and now.
+        {"old frame write (float path + libpng 6)",
+         [&] { return files::encodePng({rgba.width, rgba.height, 3, toRGB8(overBackground(toFloat(rgba), kBackground))}); },
+         true, {}},
+        {"new frame write (opaqueRGB8 + libdeflate 2)",
+         [&] { return files::encodePngDeflate({rgba.width, rgba.height, 3, opaqueRGB8(rgba, kBackground)}); }, true, {}},
     };
     for (Setting& s : settings) {
       const std::string bytes = s.encode();

@@ -141,10 +141,14 @@ TEST(ImageFiles, OpaqueRGB8EqualsTheFloatPath) {
       p[0] = p[1] = p[2] = uint8_t(v);
       p[3] = uint8_t(a);
     }
-  for (const glm::dvec3 bg : {glm::dvec3(0.0), glm::dvec3(0.3, 0.77, 1.0), glm::dvec3(0.1, 0.5, 0.999)}) {
-    const std::vector<uint8_t> want = toRGB8(overBackground(toFloat(img), bg));
-    ASSERT_EQ(opaqueRGB8(img, bg), want) << bg.x << " " << bg.y << " " << bg.z;
-  }
+  // 64 Ki pixels: the table path; a 16-row strip of it (4 Ki pixels): the direct one.
+  ImageRGBA8 strip(256, 16);
+  std::copy(img.px.begin() + 120 * 256 * 4, img.px.begin() + 136 * 256 * 4, strip.px.begin());
+  for (const glm::dvec3 bg : {glm::dvec3(0.0), glm::dvec3(0.3, 0.77, 1.0), glm::dvec3(0.1, 0.5, 0.999)})
+    for (const ImageRGBA8* im : {&img, &strip}) {
+      const std::vector<uint8_t> want = toRGB8(overBackground(toFloat(*im), bg));
+      ASSERT_EQ(opaqueRGB8(*im, bg), want) << bg.x << " " << bg.y << " " << bg.z << " height " << im->height;
+    }
 }
 
 TEST(ImageFiles, BadFilesAreNamed) {
