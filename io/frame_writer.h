@@ -34,9 +34,9 @@ class FrameWriter {
   void finish();
 
   struct Stats {
-    int files = 0;        // written
-    double write_s = 0;   // spent encoding and writing (on the writer thread, or in push)
-    double wait_s = 0;    // the caller waited for the writer: a full queue, and finish()
+    int files = 0;       // written
+    double write_s = 0;  // spent encoding and writing (on the writer thread, or in push)
+    double wait_s = 0;   // the caller waited for the writer: a full queue, and finish()
   };
   Stats stats() const;
 

@@ -38,8 +38,12 @@ uint8_t paethPredictor(int a, int b, int c) {
 
 // One row filtered (PNG spec 9.2): its type byte, then the bytes. `prev` is the row above (zeros
 // for the first row), `bpp` bytes per pixel. One loop per type, so each vectorises.
-void filterRow(PngFilter f, const uint8_t* row, const uint8_t* prev, size_t n, size_t bpp, uint8_t* out) {
-  out[0] = uint8_t(f == PngFilter::kNone ? 0 : f == PngFilter::kSub ? 1 : f == PngFilter::kUp ? 2 : 4);
+void filterRow(PngFilter f, const uint8_t* row, const uint8_t* prev, size_t n, size_t bpp,
+               uint8_t* out) {
+  out[0] = uint8_t(f == PngFilter::kNone  ? 0
+                   : f == PngFilter::kSub ? 1
+                   : f == PngFilter::kUp  ? 2
+                                          : 4);
   uint8_t* d = out + 1;
   switch (f) {
     case PngFilter::kNone:
@@ -54,7 +58,8 @@ void filterRow(PngFilter f, const uint8_t* row, const uint8_t* prev, size_t n, s
       break;
     case PngFilter::kPaeth:
       for (size_t i = 0; i < bpp; ++i) d[i] = uint8_t(row[i] - prev[i]);
-      for (size_t i = bpp; i < n; ++i) d[i] = uint8_t(row[i] - paethPredictor(row[i - bpp], prev[i], prev[i - bpp]));
+      for (size_t i = bpp; i < n; ++i)
+        d[i] = uint8_t(row[i] - paethPredictor(row[i - bpp], prev[i], prev[i - bpp]));
       break;
   }
 }
@@ -66,19 +71,21 @@ std::string encodePngDeflate(const Pixels8& img, int level, PngFilter filter) {
       img.px.size() != size_t(img.width) * img.height * img.channels)
     throw InputError("empty or inconsistent image (" + std::to_string(img.width) + "x" +
                      std::to_string(img.height) + "x" + std::to_string(img.channels) + ")");
-  if (level < 0 || level > 12) throw InputError("PNG: libdeflate level " + std::to_string(level) + ": expected 0 to 12");
+  if (level < 0 || level > 12)
+    throw InputError("PNG: libdeflate level " + std::to_string(level) + ": expected 0 to 12");
   const size_t bpp = size_t(img.channels), stride = size_t(img.width) * bpp;
   std::vector<uint8_t> filtered((stride + 1) * size_t(img.height));
   const std::vector<uint8_t> zeros(stride, 0);
   for (size_t y = 0; y < size_t(img.height); ++y)
-    filterRow(filter, &img.px[y * stride], y ? &img.px[(y - 1) * stride] : zeros.data(), stride, bpp,
-              &filtered[y * (stride + 1)]);
+    filterRow(filter, &img.px[y * stride], y ? &img.px[(y - 1) * stride] : zeros.data(), stride,
+              bpp, &filtered[y * (stride + 1)]);
 
   std::unique_ptr<libdeflate_compressor, decltype(&libdeflate_free_compressor)> compressor(
       libdeflate_alloc_compressor(level), libdeflate_free_compressor);
   if (!compressor) throw InputError("PNG: out of memory (libdeflate)");
   std::vector<uint8_t> z(libdeflate_zlib_compress_bound(compressor.get(), filtered.size()));
-  const size_t zn = libdeflate_zlib_compress(compressor.get(), filtered.data(), filtered.size(), z.data(), z.size());
+  const size_t zn = libdeflate_zlib_compress(compressor.get(), filtered.data(), filtered.size(),
+                                             z.data(), z.size());
   if (zn == 0) throw InputError("PNG: libdeflate could not compress the image");
 
   std::string out("\x89PNG\r\n\x1a\n", 8);

@@ -13,7 +13,8 @@ std::string encodePpm(const Pixels8& rgb) {
       rgb.px.size() != size_t(rgb.width) * rgb.height * 3)
     throw InputError("PPM: empty or inconsistent RGB image (" + std::to_string(rgb.width) + "x" +
                      std::to_string(rgb.height) + "x" + std::to_string(rgb.channels) + ")");
-  std::string out = "P6\n" + std::to_string(rgb.width) + " " + std::to_string(rgb.height) + "\n255\n";
+  std::string out =
+      "P6\n" + std::to_string(rgb.width) + " " + std::to_string(rgb.height) + "\n255\n";
   out.append(reinterpret_cast<const char*>(rgb.px.data()), rgb.px.size());
   return out;
 }
@@ -44,7 +45,8 @@ Pixels8 decodePpm(const std::string& bytes) {
   img.width = number("width");
   img.height = number("height");
   const int maxval = number("maxval");
-  if (maxval != 255) throw InputError("PPM: maxval " + std::to_string(maxval) + ": only 8-bit (255) is read");
+  if (maxval != 255)
+    throw InputError("PPM: maxval " + std::to_string(maxval) + ": only 8-bit (255) is read");
   if (at >= bytes.size() || !std::isspace(static_cast<unsigned char>(bytes[at])))
     throw InputError("PPM: no whitespace after the header");
   ++at;

@@ -30,7 +30,8 @@ int main(int argc, char** argv) {
   const int repeats = argc > 2 ? std::max(1, std::atoi(argv[2])) : 9;
   try {
     const ImageRGBA8 rgba = readImageRGBA8(argv[1]);
-    files::Pixels8 rgb{rgba.width, rgba.height, 3, std::vector<uint8_t>(size_t(rgba.width) * rgba.height * 3)};
+    files::Pixels8 rgb{rgba.width, rgba.height, 3,
+                       std::vector<uint8_t>(size_t(rgba.width) * rgba.height * 3)};
     for (size_t i = 0; i < size_t(rgba.width) * rgba.height; ++i)
       for (int c = 0; c < 3; ++c) rgb.px[3 * i + c] = rgba.px[4 * i + c];
 
@@ -43,11 +44,20 @@ int main(int argc, char** argv) {
     };
     using F = files::PngFilter;
     std::vector<Setting> settings = {
-        {"libpng zlib 6 adaptive (old files)", [&] { return files::encodePng(rgb, 6, false); }, true, {}},
+        {"libpng zlib 6 adaptive (old files)",
+         [&] { return files::encodePng(rgb, 6, false); },
+         true,
+         {}},
         {"libpng zlib 1 sub (service)", [&] { return files::encodePng(rgb, 1, true); }, true, {}},
         {"libdeflate 1 up", [&] { return files::encodePngDeflate(rgb, 1, F::kUp); }, true, {}},
-        {"libdeflate 2 up (files)", [&] { return files::encodePngDeflate(rgb, 2, F::kUp); }, true, {}},
-        {"libdeflate 2 paeth", [&] { return files::encodePngDeflate(rgb, 2, F::kPaeth); }, true, {}},
+        {"libdeflate 2 up (files)",
+         [&] { return files::encodePngDeflate(rgb, 2, F::kUp); },
+         true,
+         {}},
+        {"libdeflate 2 paeth",
+         [&] { return files::encodePngDeflate(rgb, 2, F::kPaeth); },
+         true,
+         {}},
         {"libdeflate 2 sub", [&] { return files::encodePngDeflate(rgb, 2, F::kSub); }, true, {}},
         {"libdeflate 4 up", [&] { return files::encodePngDeflate(rgb, 4, F::kUp); }, true, {}},
         {"libdeflate 6 up", [&] { return files::encodePngDeflate(rgb, 6, F::kUp); }, true, {}},
@@ -57,10 +67,19 @@ int main(int argc, char** argv) {
         // The whole write of an 8-bit frame but the file: the conversion over the background and
         // the encode, before (through a float frame, libpng at zlib's defaults) and now.
         {"old frame write (float path + libpng 6)",
-         [&] { return files::encodePng({rgba.width, rgba.height, 3, toRGB8(overBackground(toFloat(rgba), kBackground))}); },
-         true, {}},
+         [&] {
+           return files::encodePng(
+               {rgba.width, rgba.height, 3, toRGB8(overBackground(toFloat(rgba), kBackground))});
+         },
+         true,
+         {}},
         {"new frame write (opaqueRGB8 + libdeflate 2)",
-         [&] { return files::encodePngDeflate({rgba.width, rgba.height, 3, opaqueRGB8(rgba, kBackground)}); }, true, {}},
+         [&] {
+           return files::encodePngDeflate(
+               {rgba.width, rgba.height, 3, opaqueRGB8(rgba, kBackground)});
+         },
+         true,
+         {}},
     };
     for (Setting& s : settings) {
       const std::string bytes = s.encode();
@@ -79,13 +98,16 @@ int main(int argc, char** argv) {
       for (Setting& s : settings) {
         const auto t0 = std::chrono::steady_clock::now();
         const std::string bytes = s.encode();
-        s.ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        s.ms.push_back(
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                .count());
       }
-    std::printf("%s: %dx%d, %d repeats\n%-36s %9s %9s %10s\n", argv[1], rgb.width, rgb.height, repeats,
-                "setting", "median_ms", "min_ms", "bytes");
+    std::printf("%s: %dx%d, %d repeats\n%-36s %9s %9s %10s\n", argv[1], rgb.width, rgb.height,
+                repeats, "setting", "median_ms", "min_ms", "bytes");
     for (Setting& s : settings) {
       std::sort(s.ms.begin(), s.ms.end());
-      std::printf("%-36s %9.1f %9.1f %10zu\n", s.name.c_str(), s.ms[s.ms.size() / 2], s.ms.front(), s.bytes);
+      std::printf("%-36s %9.1f %9.1f %10zu\n", s.name.c_str(), s.ms[s.ms.size() / 2], s.ms.front(),
+                  s.bytes);
     }
   } catch (const InputError& e) {
     std::fprintf(stderr, "bench_png_encode: %s\n", e.what());

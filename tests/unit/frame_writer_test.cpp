@@ -1,6 +1,8 @@
 // The batch render's writer thread (io/frame_writer.h): files written in the order handed over,
 // no more than the queue's worth waiting, a failed write thrown with its file's name at the next
 // hand-off or at the end, and nothing written after it.
+#include "io/frame_writer.h"
+
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -10,7 +12,6 @@
 #include <vector>
 
 #include "common/error.h"
-#include "io/frame_writer.h"
 #include "tests/unit/input_error_of.h"
 
 namespace sortlast {
@@ -69,7 +70,8 @@ TEST(FrameWriter, AFailedWriteIsThrownWithItsFileAndStopsTheWrites) {
 TEST(FrameWriter, AMessageNamingTheFileIsKeptAsItIs) {
   FrameWriter writer(1);
   writer.push("x.png", [] { throw InputError("output x.png: cannot create (Not a directory)"); });
-  EXPECT_EQ(inputErrorOf([&] { writer.finish(); }), "output x.png: cannot create (Not a directory)");
+  EXPECT_EQ(inputErrorOf([&] { writer.finish(); }),
+            "output x.png: cannot create (Not a directory)");
 }
 
 TEST(FrameWriter, SyncWritesInPushOnTheCallersThread) {
@@ -77,8 +79,9 @@ TEST(FrameWriter, SyncWritesInPushOnTheCallersThread) {
   std::thread::id where;
   writer.push("a.png", [&] { where = std::this_thread::get_id(); });
   EXPECT_EQ(where, std::this_thread::get_id());
-  EXPECT_EQ(inputErrorOf([&] { writer.push("b.png", [] { throw std::runtime_error("encoder"); }); }),
-            "output b.png: encoder");
+  EXPECT_EQ(
+      inputErrorOf([&] { writer.push("b.png", [] { throw std::runtime_error("encoder"); }); }),
+      "output b.png: encoder");
   EXPECT_EQ(writer.stats().files, 1);
 }
 
