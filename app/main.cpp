@@ -25,7 +25,9 @@ namespace {
 
 void addSceneOptions(CLI::App* cmd, RenderOptions& o) {
   cmd->add_option("scene", o.scene, "Scene file (YAML); omitted: the built-in default scene");
-  cmd->add_option("-o,--output", o.output, "Output image (.png or .exr); a series gets _0000 ...");
+  cmd->add_option("-o,--output", o.output,
+                  "Output image (.png, .jpg (quality 95), .ppm (binary, raw RGB) or .exr (float)); a "
+                  "series gets _0000 ...");
   cmd->add_option("--set", o.overrides, "Override a scene key: key.path=value (repeatable)")
       ->allow_extra_args(false);
   cmd->add_flag("-q,--quiet", o.quiet, "No progress lines");
@@ -188,6 +190,9 @@ int main(int argc, char** argv) {
   render->add_flag("--psnr", render_opts.psnr,
                    "Also measure each frame against the CPU reference (rank 0 loads the whole "
                    "scene; slow): --stats then holds psnr_db, max_diff and reference_s per frame");
+  render->add_flag("--sync-output", render_opts.sync_output,
+                   "Encode and write each frame before the next one renders, as before the writer "
+                   "thread (for benchmarks comparing the two; the default overlaps them)");
   render->add_option("--dump-layers", render_opts.dump_layers,
                      "Write the first frame's brick images (packed, RLE) and their visibility "
                      "order into this directory, for bench_compositing --layers");

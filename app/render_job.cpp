@@ -1,6 +1,7 @@
 // `sortlast render`: the simplest client of the resident session. Every rank opens the session on
-// the scene, then asks it for each camera of the orbit in turn; rank 0 writes the frames, the
-// stats and (--psnr) their distance from the CPU reference.
+// the scene, then asks it for each camera of the orbit in turn; rank 0 writes the frames (on its
+// writer thread, io/frame_writer.h, while the next frame renders), the stats and (--psnr) their
+// distance from the CPU reference.
 #include "app/render_job.h"
 
 #include <cmath>
@@ -8,6 +9,7 @@
 #include <fstream>
 #include <memory>
 
+#include "io/frame_writer.h"
 #include "scene/scene.h"
 #include "session/collective.h"
 #include "app/compare.h"
@@ -60,7 +62,10 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
     SessionOptions so;
     so.overrides = opts.overrides;
     so.quiet = opts.quiet;
-    collectively(comm, [&] { so.scene = readSceneText(opts.scene); });
+    collectively(comm, [&] {
+      checkOutputFormat(opts.output);
+      so.scene = readSceneText(opts.scene);
+    });
     RenderSession session(std::move(so), comm);
     const Scene& scene = session.baseScene();
     const int frames = std::min(session.orbitFrames(), opts.max_frames > 0 ? opts.max_frames : 1 << 30);
@@ -80,6 +85,10 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
       stats_out.open(stats_partial);
       stats_out << "{\"frames\": [\n";
     }
+    // Frame N is encoded and written while frame N+1 renders. Two frames may wait (the writer
+    // holds a third): at 1024² that is 12 MiB of pixels at most, and one frame of slack for a
+    // write that takes longer once (a slow disk) before the render waits for it.
+    FrameWriter writer(opts.sync_output ? 0 : 2);
     Progress progress(frames, opts.quiet);
     for (int f = 0; f < frames; ++f) {
       FrameRequest request;
@@ -88,21 +97,29 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
       request.surface = !opts.surface_out.empty();
       if (f == 0) request.dump_layers = opts.dump_layers;
       FrameResult result = session.render(request);
+      // After the frame's time is taken: the reference is a measuring instrument. Before the
+      // hand-off, which takes the frame's pixels.
+      if (rank == 0 && reference)
+        addAccuracy(result.stats, result.image, *reference, cameraOf(result.stats, scene.camera),
+                    scene.image.background);
+      // Rank 0 hands the frame to its writer; a write that failed before (this frame's
+      // predecessors) is thrown here and so stops every rank.
       collectively(comm, [&] {
         if (rank != 0) return;
         const std::string file = frameFileName(opts.output, f, frames);
+        const glm::dvec3 background = scene.image.background;
         if (float_output)
-          writeImage(file, result.image_f, scene.image.background);
+          writer.push(file, [file, background, image = std::move(result.image_f)] { writeImage(file, image, background); });
         else
-          writeImage(file, result.image, scene.image.background);
-        if (request.surface && (scene.particles.enabled() || !scene.surfaces.empty()))
-          writeSurfaceImage(frameFileName(opts.surface_out, f, frames), result.surface);
+          writer.push(file, [file, background, image = std::move(result.image)] { writeImage(file, image, background); });
+        if (request.surface && (scene.particles.enabled() || !scene.surfaces.empty())) {
+          const std::string surface_file = frameFileName(opts.surface_out, f, frames);
+          writer.push(surface_file, [surface_file, surface = std::move(result.surface)] {
+            writeSurfaceImage(surface_file, surface);
+          });
+        }
       });
       if (rank == 0) {
-        // After the frame's time is taken: the reference is a measuring instrument.
-        if (reference)
-          addAccuracy(result.stats, result.image, *reference, cameraOf(result.stats, scene.camera),
-                      scene.image.background);
         if (stats_out.is_open()) {
           stats_out << (first_frame_stats ? "" : ",\n") << result.stats.dump(1);
           first_frame_stats = false;
@@ -110,6 +127,10 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
         progress.frameDone(f);
       }
     }
+    // The last frames are written before the job ends well, and before the stats, which say so.
+    collectively(comm, [&] {
+      if (rank == 0) writer.finish();
+    });
     if (stats_out.is_open()) {
       nlohmann::json top{{"ranks", size},
                          {"bricks_per_axis", scene.bricks.per_axis},
@@ -120,6 +141,11 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
                          {"compositing", std::string(nameOf(scene.compositing.strategy))},
                          {"particles", session.particleCount()}};
       top.update(session.jobStats());
+      const FrameWriter::Stats written = writer.stats();
+      top["output"] = {{"mode", opts.sync_output ? "sync" : "writer_thread"},
+                       {"files", written.files},
+                       {"write_s", written.write_s},
+                       {"wait_s", written.wait_s}};
       // The rest of the top-level object after the frames: top's members without its '{'.
       stats_out << "\n],\n" << top.dump(1).substr(1) << "\n";
       stats_out.close();

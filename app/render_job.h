@@ -19,6 +19,7 @@ struct RenderOptions {
   bool psnr = false;                   // --stats also carries each frame's PSNR vs the reference
   int max_frames = 0;                  // only the first N of an orbit's frames (0: all)
   bool quiet = false;
+  bool sync_output = false;            // write each frame before the next renders (benchmarks)
 };
 
 // Returns the process exit code (0 on success). Collective over `comm`.

@@ -38,16 +38,24 @@ std::vector<float> overBackground(const ImageF& img, const glm::dvec3& backgroun
 // Opaque RGB floats (overBackground's) rounded to 8 bits as every PNG and served frame is: round
 // half away from zero after scaling by 255, then clamp (NaN: 0).
 std::vector<uint8_t> toRGB8(const std::vector<float>& rgb);
+// toRGB8(overBackground(toFloat(img), background)) bit for bit, in one pass without the float
+// frame: what an 8-bit frame file and a served frame hold.
+std::vector<uint8_t> opaqueRGB8(const ImageRGBA8& img, const glm::dvec3& background);
 
-// Writes PNG (8-bit) or EXR (float) by extension (io/image_files.h). The premultiplied image is
-// composited over `background` and written opaque. Throws InputError on failure.
+// Writes PNG, JPEG (quality kJpegFileQuality), binary PPM (8-bit) or EXR (float) by extension
+// (io/image_files.h). The premultiplied image is composited over `background` and written opaque.
+// Throws InputError naming the file on failure.
 void writeImage(const std::string& path, const ImageF& img, const glm::dvec3& background);
 void writeImage(const std::string& path, const ImageRGBA8& img, const glm::dvec3& background);
+constexpr int kJpegFileQuality = 95;
+// Throws InputError naming `path` when writeImage has no writer for its extension: a job checks
+// its output name before it renders anything.
+void checkOutputFormat(const std::string& path);
 // Output file of frame i: OUT itself for a single frame, OUT with _0000 before the extension
 // for a series (batch render, reference, in-situ outputs).
 std::string frameFileName(const std::string& out, int frame, int frames);
 
-// Reads a PNG, JPEG or EXR image as RGBA8 (an opaque RGB file gets A = 255).
+// Reads a PNG, JPEG, PPM or EXR image as RGBA8 (an opaque RGB file gets A = 255).
 ImageRGBA8 readImageRGBA8(const std::string& path);
 
 // An image file's channels as stored, converted to float with no rounding for float files: any

@@ -6,13 +6,13 @@
 #include "common/error.h"
 #include "io/image_files.h"
 
-// encodeImage on a 512x512 frame (a volume-like image: smooth colour, partial alpha, empty
-// border), 2-core development machine, Release, mean of 30 runs, other builds running (measured
-// through OpenImageIO 2.4, which drove the same libpng and libjpeg-turbo with these settings):
-//   PNG, zlib level 1, "sub" row filter    6.0 ms  106 KB  (of which compositing ~0.7 ms;
-//                                                   the default, level 6 + adaptive filters,
-//                                                   costs ~25 ms more for 81 KB)
-//   JPEG quality 90 / 75                   2.6 ms  11 / 8 KB
+// The PNG of a served frame, 512² engine CT frame (bench/output/run: bench_png_encode, 15
+// repeats, 2-core development machine with other builds running), median ms and bytes:
+//   libpng, zlib level 1, "sub" row filter (before)   8.0 ms  116 KB
+//   libdeflate level 2, "up" row filter (now)           2.6 ms   76 KB
+//   libpng with zlib's defaults (level 6, adaptive)    30.0 ms   77 KB
+//   JPEG quality 90                                     0.5 ms   21 KB
+// libdeflate's is faster and smaller, so the service encodes as the files do.
 
 namespace sortlast {
 
@@ -26,11 +26,10 @@ std::string encodeImage(const ImageRGBA8& img, const glm::dvec3& background,
 
   // Same compositing and the same rounding as writeImage, so a PNG served equals the PNG file
   // `sortlast render` writes.
-  files::Pixels8 rgb{img.width, img.height, 3, toRGB8(overBackground(toFloat(img), background))};
+  files::Pixels8 rgb{img.width, img.height, 3, opaqueRGB8(img, background)};
   try {
-    // The frame is on the interactive path: zlib level 1 and the cheap "sub" filter cost an
-    // eighth of the default compression for files a third larger (timings at the top).
-    return png ? files::encodePng(rgb, 1, true) : files::encodeJpeg(rgb, quality);
+    // The frame is on the interactive path: libdeflate at level 2 (timings at the top).
+    return png ? files::encodePngDeflate(rgb) : files::encodeJpeg(rgb, quality);
   } catch (const InputError& e) {
     throw InputError("encoding " + format + ": " + e.what());
   }

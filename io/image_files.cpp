@@ -34,6 +34,7 @@ Format formatOf(const std::string& path) {
   if (ext == ".png") return Format::png;
   if (ext == ".jpg" || ext == ".jpeg") return Format::jpeg;
   if (ext == ".exr") return Format::exr;
+  if (ext == ".ppm") return Format::ppm;
   return Format::other;
 }
 
@@ -228,7 +229,9 @@ Pixels8 decodeRGBA8(const std::string& bytes, const std::string& name_for_errors
   if (bytes.size() >= 8 && std::memcmp(bytes.data(), kPng, 8) == 0) return decodePng(bytes);
   if (bytes.size() >= 3 && uint8_t(bytes[0]) == 0xFF && uint8_t(bytes[1]) == 0xD8 && uint8_t(bytes[2]) == 0xFF)
     return decodeJpeg(bytes);
-  throw InputError("not a PNG or JPEG file" +
+  if (bytes.size() >= 3 && bytes[0] == 'P' && bytes[1] == '6' && std::isspace(static_cast<unsigned char>(bytes[2])))
+    return decodePpm(bytes);
+  throw InputError("not a PNG, JPEG or PPM file" +
                    (name_for_errors.empty() ? std::string() : " (" + name_for_errors + ")"));
 }
 

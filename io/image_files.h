@@ -1,5 +1,6 @@
 #pragma once
-// Image codecs, one library each: PNG (libpng), JPEG (libjpeg-turbo) and OpenEXR (OpenEXR). The one
+// Image codecs, one library each: PNG (libpng reads; libdeflate writes, io/png_deflate.cpp;
+// libpng's encodePng is kept for the benchmark that compares them), JPEG (libjpeg-turbo), OpenEXR (OpenEXR) and binary PPM (ours: no library). The one
 // place that knows file formats; io/image.h (frames), io/surface_image.h (surface images)
 // and io/image_encode.h (the service's in-memory frames) call it.
 //
@@ -15,8 +16,8 @@
 
 namespace sortlast::files {
 
-enum class Format { png, jpeg, exr, other };
-// By the file name's extension, case-insensitive: .png, .jpg/.jpeg, .exr.
+enum class Format { png, jpeg, exr, ppm, other };
+// By the file name's extension, case-insensitive: .png, .jpg/.jpeg, .exr, .ppm.
 Format formatOf(const std::string& path);
 
 // 8-bit pixels, `channels` (3: RGB, 4: RGBA) interleaved, row 0 at the top.
@@ -25,12 +26,20 @@ struct Pixels8 {
   std::vector<uint8_t> px;
 };
 
-// PNG with zlib `level` (0-9; 6 is zlib's and libpng's default) and, with `sub_filter`, only the
-// cheap "sub" row filter instead of libpng's adaptive choice (the service's fast frames).
+// PNG through libpng with zlib `level` (0-9; 6 is zlib's and libpng's default) and, with
+// `sub_filter`, only the cheap "sub" row filter instead of libpng's adaptive choice: how files and
+// served frames were written before encodePngDeflate (bench/output compares them).
 std::string encodePng(const Pixels8& img, int level = 6, bool sub_filter = false);
+// PNG through libdeflate at `level` (0-12, its scale), every row with one filter (io/png_deflate.cpp
+// has the measurements that chose level 2 and "up" for files).
+enum class PngFilter { kNone, kSub, kUp, kPaeth };
+std::string encodePngDeflate(const Pixels8& img, int level = 2, PngFilter filter = PngFilter::kUp);
+// Binary PPM (P6, 8-bit) of an RGB image, and read back as RGBA (A = 255).
+std::string encodePpm(const Pixels8& rgb);
+Pixels8 decodePpm(const std::string& bytes);
 // Baseline JPEG of an RGB image, quality 1-100, 4:2:0 chroma (libjpeg's defaults).
 std::string encodeJpeg(const Pixels8& rgb, int quality);
-// A PNG or JPEG file (by its first bytes, whatever its name) as 8-bit RGBA: grey is replicated,
+// A PNG, JPEG or binary PPM file (by its first bytes, whatever its name) as 8-bit RGBA: grey is replicated,
 // a missing alpha is 255, 16-bit samples keep their high byte, palettes are expanded.
 Pixels8 decodeRGBA8(const std::string& bytes, const std::string& name_for_errors);
 

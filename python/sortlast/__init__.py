@@ -95,7 +95,7 @@ class Image(np.ndarray):
         return self._repr_png_()
 
     def save(self, path):
-        """Writes the frame over its background: .png (8-bit) or .exr (float RGB)."""
+        """Writes the frame over its background: .png, .jpg (quality 95), .ppm (8-bit) or .exr (float RGB)."""
         _sortlast._write_image(str(path), np.asarray(self), self.background)
 
 

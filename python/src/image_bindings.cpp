@@ -43,7 +43,7 @@ void bindImages(py::module_& m) {
     std::string png;
     {
       py::gil_scoped_release nogil;
-      png = sortlast::files::encodePng(
+      png = sortlast::files::encodePngDeflate(
           {img.width, img.height, 3, sortlast::toRGB8(sortlast::overBackground(img, vec(background)))});
     }
     return py::bytes(png);
