@@ -44,9 +44,12 @@ void DirectSend::begin(const FrameSetup& setup) {
       frame_f_ = ImageF(setup.width, setup.height);
     else {
       chargePixels(PixelWork::Copy, dirty_.area());
-      for (int y = dirty_.y; y < dirty_.y + dirty_.h; ++y)
-        std::fill_n(&frame_f_.px[(size_t(y) * setup.width + size_t(dirty_.x)) * 4],
-                    size_t(dirty_.w) * 4, 0.0f);
+      const size_t rows_per_part = std::max<size_t>(1, (size_t(1) << 16) / size_t(std::max(dirty_.w, 1)));
+      parallelFor(size_t(dirty_.h), rows_per_part, [&](size_t b, size_t e) {
+        for (int y = dirty_.y + int(b); y < dirty_.y + int(e); ++y)
+          std::fill_n(&frame_f_.px[(size_t(y) * setup.width + size_t(dirty_.x)) * 4],
+                      size_t(dirty_.w) * 4, 0.0f);
+      });
     }
     dirty_ = {};
   } else {
