@@ -69,8 +69,9 @@ void decode(std::span<const uint8_t> s, size_t pixel_count, std::span<uint8_t> o
                    std::to_string(pixel_count));
 }
 
-// Inputs below two parts' worth stay serial. 64 K pixels (256 KB of RGBA8) take ~0.1 ms to
-// encode or decode, well above a worker's wake-up (~10 us).
+// Inputs below two parts' worth stay serial. 64 K pixels (256 KB of RGBA8) take about 0.07 ms
+// to encode and 0.04 ms to decode on one core of the 2-core development machine (bench/pixels:
+// 1.05 and 0.70 ms a 1024^2 frame). Not tuned by a sweep.
 constexpr size_t kRleGrain = size_t(1) << 16;
 
 // Parallel encoding. Each part [b, e) of the pixels is split into its leading transparent

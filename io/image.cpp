@@ -37,7 +37,9 @@ inline void toRGBA8Pixels(const float* in, uint8_t* out, size_t pixels) {
   }
 }
 
-// Pixels a thread converts at least: 64 K pixels (1 MB of floats, ~0.1 ms) outweighs a wake-up.
+// Pixels a thread converts at least: 64 K pixels, about 0.34 ms on one core of the 2-core
+// development machine (bench/pixels: 5.45 ms a 1024^2 frame), so a thread's wake-up is small
+// beside its part. Not tuned by a sweep.
 constexpr size_t kConvertGrain = 1 << 16;
 
 }  // namespace
