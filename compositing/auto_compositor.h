@@ -25,6 +25,9 @@ class AutoCompositor final : public Compositor {
   ImageRGBA8 finish(CompositeStats& stats, ImageF* float_frame) override {
     return current_->finish(stats, float_frame);
   }
+  void recycle(ImageRGBA8 frame) override {
+    if (current_) current_->recycle(std::move(frame));
+  }
   void abandon() override {
     if (current_) current_->abandon();
   }

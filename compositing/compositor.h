@@ -89,6 +89,11 @@ class Compositor {
   // With options.emission and a `float_frame`, the RGBA8 frame may be left transparent (direct
   // send does: the caller tone-maps the float frame into its own).
   virtual ImageRGBA8 finish(CompositeStats& stats, ImageF* float_frame = nullptr) = 0;
+  // Hands back a frame finish() returned, once the caller is done with it (its pixels may be
+  // anything): a later finish() fills it instead of a fresh frame-sized image, whose pages the
+  // kernel would fault in and zero again every frame. Optional; strategies without a frame of
+  // their own ignore it.
+  virtual void recycle(ImageRGBA8 frame) { (void)frame; }
   // The frame failed on some rank before finish(). Called on every rank: completes or drains the
   // messages already under way, so every rank can stop without a message left unmatched.
   virtual void abandon() = 0;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "common/pixel_threads.h"
 #include "compositing/blend.h"
 #include "compositing/pixel_cost.h"
 #include "compositing/rect_image.h"
@@ -43,13 +44,28 @@ void DirectSend::begin(const FrameSetup& setup) {
       frame_f_ = ImageF(setup.width, setup.height);
     else {
       chargePixels(PixelWork::Copy, dirty_.area());
-      for (int y = dirty_.y; y < dirty_.y + dirty_.h; ++y)
-        std::fill_n(&frame_f_.px[(size_t(y) * setup.width + size_t(dirty_.x)) * 4],
-                    size_t(dirty_.w) * 4, 0.0f);
+      const size_t rows_per_part = std::max<size_t>(1, (size_t(1) << 16) / size_t(std::max(dirty_.w, 1)));
+      parallelFor(size_t(dirty_.h), rows_per_part, [&](size_t b, size_t e) {
+        for (int y = dirty_.y + int(b); y < dirty_.y + int(e); ++y)
+          std::fill_n(&frame_f_.px[(size_t(y) * setup.width + size_t(dirty_.x)) * 4],
+                      size_t(dirty_.w) * 4, 0.0f);
+      });
     }
     dirty_ = {};
-  } else
-    frame_8_ = ImageRGBA8(setup.width, setup.height);
+  } else {
+    frame_8_ = frameImage(setup.width, setup.height);
+  }
+}
+
+ImageRGBA8 DirectSend::frameImage(int width, int height) {
+  if (spare_8_.width != width || spare_8_.height != height) return ImageRGBA8(width, height);
+  // Its pages are already faulted in: clearing them is a memset on the pixel threads, not the
+  // kernel's fault-and-zero of a fresh allocation page by page.
+  ImageRGBA8 out = std::move(spare_8_);
+  spare_8_ = {};
+  parallelFor(out.px.size(), size_t(1) << 20,
+              [&](size_t b, size_t e) { std::fill(out.px.data() + b, out.px.data() + e, uint8_t(0)); });
+  return out;
 }
 
 void DirectSend::send(const BrickImage& image) {
@@ -184,13 +200,17 @@ ImageRGBA8 DirectSend::finish(CompositeStats& stats, ImageF* float_frame) {
     // Only the touched rectangle can hold anything but transparent pixels. Emission: the RGBA8
     // frame (colour clamped to alpha) means nothing and the caller makes its own from the float
     // frame, so it stays transparent rather than costing a rounding pass over the frame.
-    out = ImageRGBA8(frame_f_.width, frame_f_.height);
+    out = frameImage(frame_f_.width, frame_f_.height);
     chargePixels(PixelWork::Fill8, out.width * static_cast<long long>(out.height));
     if (!(opt_.emission && float_frame)) {
       chargePixels(PixelWork::Round8, dirty_.area());
-      for (int y = dirty_.y; y < dirty_.y + dirty_.h; ++y)
-        for (int x = dirty_.x; x < dirty_.x + dirty_.w; ++x)
-          toRGBA8(&frame_f_.px[(size_t(y) * frame_f_.width + size_t(x)) * 4], out.at(x, y));
+      // Rows of the touched rectangle, rounded on the pixel threads.
+      const size_t rows_per_part = std::max<size_t>(1, (size_t(1) << 16) / size_t(std::max(dirty_.w, 1)));
+      parallelFor(size_t(dirty_.h), rows_per_part, [&](size_t b, size_t e) {
+        for (int y = dirty_.y + int(b); y < dirty_.y + int(e); ++y)
+          toRGBA8(&frame_f_.px[(size_t(y) * frame_f_.width + size_t(dirty_.x)) * 4],
+                  out.at(dirty_.x, y), size_t(dirty_.w));
+      });
     }
     if (float_frame) *float_frame = frame_f_;
   } else {

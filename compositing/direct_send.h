@@ -27,6 +27,7 @@ class DirectSend final : public Compositor {
   }
   void progress() override;
   ImageRGBA8 finish(CompositeStats& stats, ImageF* float_frame) override;
+  void recycle(ImageRGBA8 frame) override { spare_8_ = std::move(frame); }
   void abandon() override;
 
  private:
@@ -38,6 +39,8 @@ class DirectSend final : public Compositor {
   void accept(BrickImage image, int source);
   void blendReady();            // blends images in order while the next one is at hand
   void blendInOrder(const std::vector<int>& order);
+  // A transparent frame: the recycled one (cleared) if it has this size, else a fresh one.
+  ImageRGBA8 frameImage(int width, int height);
 
   CompositeOptions opt_;
   FrameSetup setup_;
@@ -57,6 +60,7 @@ class DirectSend final : public Compositor {
   ImageF frame_f_;                     // kept between frames (see begin())
   Rect dirty_;                         // the part of frame_f_ this frame has blended into
   ImageRGBA8 frame_8_;
+  ImageRGBA8 spare_8_;  // a returned frame handed back (recycle()): the next frame's memory
   std::vector<uint8_t> buffer_;
 };
 

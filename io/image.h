@@ -1,6 +1,7 @@
 #pragma once
 // Images in memory: premultiplied RGBA, row 0 at the top. RGBA8 is what travels between ranks
 // (the paper's intermediate image format); float images are for the reference and EXR output.
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -28,6 +29,9 @@ struct ImageF {
 // Round a premultiplied float pixel to RGBA8, keeping colour <= alpha so the result is still a
 // valid premultiplied pixel (and A = 0 implies RGB = 0, which the RLE codec relies on).
 void toRGBA8(const float* in, uint8_t* out);
+// `pixels` pixels (4 floats each in, 4 bytes each out), each exactly as above, on the pixel
+// threads (common/pixel_threads.h): what a read-back brick image goes through.
+void toRGBA8(const float* in, uint8_t* out, size_t pixels);
 ImageRGBA8 toRGBA8(const ImageF& img);
 ImageF toFloat(const ImageRGBA8& img);
 
