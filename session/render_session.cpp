@@ -18,6 +18,7 @@
 #include <optional>
 
 #include "common/error.h"
+#include "common/pixel_threads.h"
 #include "compositing/compositor.h"
 #include "compositing/rect_image.h"
 #include "compositing/rle.h"
@@ -325,6 +326,9 @@ void RenderSession::State::meetDevices() {
   gpu_budget = gpuMemoryBudget(mine, ranksSharingDevice(mine, comm));
   ranks_per_core = ranksPerCore(comm);
   devices = gatherDeviceInfo(mine, comm);
+  // The CPU pixel work's threads (common/pixel_threads.h): this rank's share of the cores in its
+  // affinity mask, which the node's ranks share.
+  setPixelThreads(pixelThreadsFor(nodePlace(comm).size));
 }
 long long RenderSession::particleCount() const { return s_->current ? s_->current->loaded.total : 0; }
 int RenderSession::currentStep() const {
@@ -764,6 +768,7 @@ nlohmann::json RenderSession::jobStats() const {
   const State& S = *s_;
   nlohmann::json top = nlohmann::json::object();
   top["ranks_gl"] = deviceJson(S.devices);  // each rank's GL_VENDOR, GL_RENDERER, device, host
+  top["pixel_threads"] = pixelThreads();     // rank 0's (common/pixel_threads.h)
   if (S.current && !S.current->read_s.empty()) {
     top["volume_read_s"] = S.current->read_s;  // per rank: its bricks, from the file
     top["peak_rss_after_read_mb"] = S.current->read_peak_rss_mb;

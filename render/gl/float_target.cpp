@@ -83,7 +83,7 @@ ImageRGBA8 FloatTarget::finish(const Rect& r) {
   gl_.Disable(GL_SCISSOR_TEST);
   gl_.check("brick render");
   ImageRGBA8 out(r.w, r.h);
-  for (size_t i = 0; i < size_t(r.area()); ++i) toRGBA8(&readback_[4 * i], &out.px[4 * i]);
+  toRGBA8(readback_.data(), out.px.data(), size_t(r.area()));  // on the pixel threads
   return out;
 }
 

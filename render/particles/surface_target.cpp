@@ -78,7 +78,7 @@ void SurfaceTarget::readBack(const Rect& r, bool want_surface, SurfaceBrick& out
   gl_.ReadPixels(r.x, r.y, r.w, r.h, GL_RGBA, GL_FLOAT, readback_.data());
   out.rect = r;
   out.pixels = ImageRGBA8(r.w, r.h);
-  for (size_t i = 0; i < size_t(r.area()); ++i) toRGBA8(&readback_[4 * i], &out.pixels.px[4 * i]);
+  toRGBA8(readback_.data(), out.pixels.px.data(), size_t(r.area()));  // on the pixel threads
   if (want_surface) {
     gl_.ReadBuffer(GL_COLOR_ATTACHMENT1);
     out.surface.resize(size_t(r.area()) * 4);
