@@ -3,7 +3,10 @@
 # - overlap on/off (direct send): the identical frame;
 # - RLE off: the identical frame, and more bytes sent;
 # - rgba8 precision: within a stated bound of float, and fewer bytes for the swap strategies;
-# - an .exr output holds the float frame, which rounds to the PNG frame within 1/255.
+# - an .exr output holds the float frame, which rounds to the PNG frame within 1/255;
+# - render.pipeline serial and overlapped (session/brick_stages.h): the identical frame on 3 ranks
+#   (binary-swap folds one: the compositor reads the frame's order after the bricks' stage), and
+#   --stats' stages consistent (each rank drew, the frame's draw time within its total).
 # Usage: compositing_options.sh SORTLAST DATA_DIR
 source "$(dirname "$0")/lib.sh" "$1"
 data=$2
@@ -45,4 +48,18 @@ for s in direct binary-swap; do
   render "exr_$s" 4 exr --set compositing.strategy=$s
   diff_at_most overlap.png "exr_$s.exr" 1
 done
-echo "overlap, RLE off, rgba8 and EXR behave as stated"
+
+for p in serial overlapped; do
+  render "pipeline_$p" 3 png --set compositing.strategy=binary-swap --set render.pipeline=$p --set camera.orbit.frames=2
+done
+for f in 0000 0001; do diff_at_most "pipeline_serial_$f.png" "pipeline_overlapped_$f.png" 0; done
+python3 - "$WORK/pipeline_overlapped.json" <<'PY' || fail "stages in --stats"
+import json, sys
+for f in json.load(open(sys.argv[1]))["frames"]:
+    s = f["stages"]
+    assert len(s["draw_s"]) == 3 and all(d > 0 for d in s["draw_s"]), s["draw_s"]
+    assert 0 < s["frame_draw_s"] <= f["total_s"], (s["frame_draw_s"], f["total_s"])
+    assert s["critical"] in ("draw", "issue", "readback", "encode", "exchange", "composite"), s["critical"]
+    assert abs(s["outside_draw_s"] - (f["total_s"] - s["frame_draw_s"])) < 1e-9
+PY
+echo "overlap, RLE off, rgba8, EXR and the two pipelines behave as stated"
