@@ -1,5 +1,6 @@
 #pragma once
-// Transport over an MPI communicator: non-blocking sends, probed receives, MPI_Allgather.
+// Transport over an MPI communicator: non-blocking sends, probed receives, strided receives into
+// place (MPI_Type_vector), MPI_Allgather.
 #include <mpi.h>
 
 #include <memory>
@@ -16,6 +17,7 @@ class MpiTransport final : public Transport {
   int size() const override { return size_; }
   void send(int to, int tag, std::vector<uint8_t> bytes) override;
   std::vector<uint8_t> receive(int from, int tag) override;
+  void receivePlaced(const std::vector<PlacedReceive>& parts) override;
   void finishSends() override;
   std::vector<int> allgather(const std::vector<int>& mine) override;
 

@@ -24,6 +24,8 @@ enum class PixelWork : int {
   Copy,              // float pixels copied or cleared (crop, pastePart, a new image's zero fill)
   Round8,            // float pixels rounded to RGBA8 (direct send's frame)
   Fill8,             // a new RGBA8 frame's zero fill (rank 0)
+  Place,             // 4 bytes of a raw final part put in place in the frame (MPI's unpacking of a
+                     // strided receive on rank 0: a copy of each row)
   Count
 };
 
@@ -32,6 +34,15 @@ enum class PixelWork : int {
 void chargePixels(PixelWork work, long long pixels, int bytes_per_pixel = 4);
 #else
 inline void chargePixels(PixelWork, long long, int = 4) {}
+#endif
+
+// Marks the moment this rank has finished its part of the swap rounds and starts the gather of
+// the final parts to rank 0, so that a simulated run can tell what the gather adds to the frame
+// (the frame's end minus the last rank's mark) from what the rounds take. Empty outside SMPI.
+#ifdef SORTLAST_SMPI
+void markGatherStart();
+#else
+inline void markGatherStart() {}
 #endif
 
 }  // namespace sortlast

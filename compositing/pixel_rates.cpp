@@ -8,7 +8,7 @@ namespace sortlast {
 
 namespace {
 constexpr const char* kNames[] = {"decode_blend8", "decode_blend_into8", "blend_float", "scan",
-                                  "encode", "decode", "decode_rgba8", "copy", "round8", "fill8"};
+                                  "encode", "decode", "decode_rgba8", "copy", "round8", "fill8", "place"};
 static_assert(sizeof kNames / sizeof kNames[0] == size_t(PixelWork::Count));
 }  // namespace
 
@@ -78,6 +78,10 @@ PixelRates measuredPixelRates() {
       {PixelWork::Decode, 8, 11.9606},
       {PixelWork::BlendFloat, 4, 1.3406},
       {PixelWork::BlendFloat, 8, 1.3406},
+      // Measured on 2026-12-06 (measure_rates, three runs 0.37-0.43; the largest), while a
+      // simulation kept the other core busy.
+      {PixelWork::Place, 4, 0.4318},
+      {PixelWork::Place, 8, 0.4318},
   };
   PixelRates r;
   for (const Row& row : kRows) r.ns[int(row.work)][row.bytes == 8 ? 1 : 0] = row.ns;

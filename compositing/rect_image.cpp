@@ -206,6 +206,52 @@ BrickImage encodePart(const RectImage& img, const Rect& part, int id, WireFormat
   return b;
 }
 
+RawPart rawFinalPart(const RectImage& img, const Rect& bound, WireFormat format) {
+  RawPart out;
+  out.rect = bound;
+  if (bound.empty()) return out;
+  if (!img.rect.empty() && !contains(bound, img.rect))
+    throw std::logic_error("final part: the composite lies outside its part of the frame");
+  const size_t n = size_t(bound.area());
+  chargePixels(PixelWork::Fill8, bound.area());  // the zero fill of the new buffer
+  out.rgba8.assign(n * 4, 0);
+  const bool exact = format != WireFormat::RGBA8;
+  if (exact) {
+    chargePixels(PixelWork::Copy, bound.area());  // the float buffer's zero fill
+    out.exact.assign(n * 16, 0);                  // all-zero bytes: 0.0f
+  }
+  const Rect& r = img.rect;
+  if (exact) {  // through the wire format and back, as the RLE path's encode and decode
+    chargePixels(PixelWork::Encode, r.area(), 8);
+    chargePixels(PixelWork::Decode, r.area(), 8);
+  }
+  chargePixels(PixelWork::Round8, r.area());
+  for (int y = r.y; y < r.y + r.h; ++y) {
+    const float* src = img.at(r.x, y);
+    const size_t o = size_t(y - bound.y) * size_t(bound.w) + size_t(r.x - bound.x);
+    for (int x = 0; x < r.w; ++x) {
+      const float* p = src + 4 * x;
+      uint8_t* d8 = &out.rgba8[4 * (o + size_t(x))];
+      if (!exact) {
+        toRGBA8(p, d8);
+        continue;
+      }
+      float d[4];
+      uint8_t wire[8];
+      if (format == WireFormat::Emission) {
+        toEmission16(p, wire);
+        fromEmission16(wire, d);
+      } else {
+        toRGBA16(p, wire);
+        for (int c = 0; c < 4; ++c) d[c] = fromRGBA16(wire + 2 * c);
+      }
+      toRGBA8(d, d8);
+      std::memcpy(&out.exact[16 * (o + size_t(x))], d, 16);
+    }
+  }
+  return out;
+}
+
 RectImage decodePart(const BrickImage& b, WireFormat format, const Rect& within) {
   if (b.rect.empty()) {
     if (!b.rle.empty()) throw RleError("image part: empty rectangle with a non-empty stream");

@@ -75,6 +75,19 @@ BrickImage encodePart(const RectImage& img, const Rect& part, int id, WireFormat
 // checked before allocating, so a corrupt rectangle cannot ask for gigabytes). Throws RleError if
 // malformed or outside `within`.
 RectImage decodePart(const BrickImage& b, WireFormat format, const Rect& within);
+// A final part of the frame as rank 0's frame will hold it, raw (no RLE, no header), so that rank 0
+// only has to put it in place: every pixel of `bound` (which must contain img.rect: throws
+// std::logic_error otherwise), row 0 first, zero outside img.rect. `rgba8`: 4 bytes a pixel, the
+// bytes encodePart(format RGBA8) and pastePart give. With `exact` (format RGBA16 or Emission, for
+// a float frame), also `exact`: 4 floats a pixel (16 bytes), each pixel rounded to `format` and
+// decoded back as decodePart would, and `rgba8` that float pixel rounded to RGBA8 as toRGBA8(ImageF)
+// would. Done where the part was composited, so rank 0 decodes nothing.
+struct RawPart {
+  Rect rect;
+  std::vector<uint8_t> rgba8;
+  std::vector<uint8_t> exact;  // empty for format RGBA8
+};
+RawPart rawFinalPart(const RectImage& img, const Rect& bound, WireFormat format);
 // Decodes an RGBA8 part into `frame` (a plain copy: parts do not overlap). Throws RleError if
 // malformed or outside the frame.
 void pastePart(const BrickImage& b, ImageRGBA8& frame);

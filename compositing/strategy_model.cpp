@@ -63,7 +63,6 @@ StrategyForecast forecastRadixK(const VisibilityOrder& order, const FrameFootpri
   const int ranks = int(fp.rect.size());
   const int brick_bytes = opt.emission ? 8 : 4;
   const int partial = opt.emission ? 8 : opt.precision == Precision::kRgba8 ? 4 : 8;
-  const int finals = opt.emission || opt.float_frame ? 8 : 4;
   StrategyForecast f{k == 2 ? "binary-swap" : "radix-k", k};
   auto phase = [&](const char* name, double compute, double other) {
     f.phases.emplace_back(name, compute * slow + other);
@@ -145,23 +144,32 @@ StrategyForecast forecastRadixK(const VisibilityOrder& order, const FrameFootpri
           worst_c, worst - worst_c * slow);
   }
 
-  // 4. Gather: every unit encodes its final part; rank 0 zero-fills the frame and decodes each
-  // part into it as it arrives.
-  double enc = 0, dec = 0, bytes = 0;
+  // 4. Gather (radix_k.cpp, step 5): every unit rounds its final part (its bound) where it is and
+  // sends it raw; rank 0 has posted a receive for each, straight into the frame, and MPI unpacks
+  // each part there as it arrives while the others are still on the wire, so the longer of the
+  // transfer and the unpacking counts. Rank 0 zero-filled the frame before the rounds: off its
+  // path as far as the rounds last if it takes no part in them, on it otherwise.
+  const bool exact = opt.emission || opt.float_frame;
+  const int part_bytes = exact ? 20 : 4;  // RGBA8, and the float frame's 16 bytes a pixel
+  double enc = 0, place = 0, bytes = 0;
   int messages = 0;
   for (int u = 0; u < s.units(); ++u) {
     const double a = double(at.bound[size_t(s.rounds())][size_t(u)].area());
     if (a <= 0) continue;
-    enc = std::max(enc, encode(a, finals));
-    dec += finals == 8 ? cost(PixelWork::Decode, a, 8) + cost(PixelWork::Copy, a)
-                       : cost(PixelWork::DecodeRGBA8, a);
-    if (plan.carrier(u) != 0) bytes += a * finals + kHeaderBytes, ++messages;
+    double c = cost(PixelWork::Fill8, a) + cost(PixelWork::Round8, a);
+    if (exact)
+      c += cost(PixelWork::Copy, a) + cost(PixelWork::Encode, a, 8) + cost(PixelWork::Decode, a, 8);
+    enc = std::max(enc, c);
+    place += cost(PixelWork::Place, a * part_bytes / 4);
+    if (plan.carrier(u) != 0) bytes += a * part_bytes, messages += exact ? 2 : 1;
   }
   const double fill = cost(PixelWork::Fill8, double(width) * height);
-  const double transfer = messages * lat + bytes / bw;
+  const bool rank0_in_rounds = ranks > 0 && !fp.rect[0].empty();
+  const double fill_on_path = rank0_in_rounds ? fill : std::max(0.0, fill - f.seconds);
+  const double transfer = (messages ? lat : 0.0) + bytes / bw;
   // Rank 0 alone: its compute is not shared with other ranks' (they are done), so not slowed.
-  f.phases.emplace_back("gather", enc * slow + fill + dec + transfer);
-  f.compute_s += enc * slow + fill + dec;
+  f.phases.emplace_back("gather", fill_on_path + enc * slow + std::max(transfer, place));
+  f.compute_s += fill_on_path + enc * slow + (place >= transfer ? place : 0.0);
   f.seconds += f.phases.back().second;
   return f;
 }

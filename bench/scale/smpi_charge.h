@@ -8,4 +8,9 @@ namespace sortlast::scale {
 // speed 1 Gflop/s ("1Gf") is that core, and "2Gf" a host twice as fast.
 void usePixelRates(const PixelRates& rates);
 
+// Simulated seconds (MPI_Wtime) at which world rank `rank` last called markGatherStart since
+// clearGatherStart(rank); 0 if it has not.
+double gatherStartTime(int rank);
+void clearGatherStart(int rank);
+
 }  // namespace sortlast::scale

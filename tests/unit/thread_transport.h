@@ -12,6 +12,7 @@
 #include <tuple>
 #include <vector>
 
+#include "compositing/pixel_cost.h"
 #include "compositing/transport.h"
 
 namespace sortlast {
@@ -44,6 +45,25 @@ class ThreadTransport final : public Transport {
     std::vector<uint8_t> bytes = std::move(q.front());
     q.pop_front();
     return bytes;
+  }
+  // As MpiTransport's: each part's bytes copied into its rows, charged as MPI's unpacking.
+  void receivePlaced(const std::vector<PlacedReceive>& parts) override {
+    std::string error;
+    for (const PlacedReceive& p : parts) {
+      const std::vector<uint8_t> bytes = receive(p.from, p.tag);
+      chargePixels(PixelWork::Place, 1LL * p.rows * p.row_bytes / 4);
+      if (bytes.size() != size_t(p.rows) * size_t(p.row_bytes)) {
+        if (error.empty())
+          error = "placed receive: the message from rank " + std::to_string(p.from) +
+                  " is not the " + std::to_string(1LL * p.rows * p.row_bytes) +
+                  " bytes of its rectangle";
+        continue;
+      }
+      for (int y = 0; y < p.rows; ++y)
+        std::memcpy(p.dst + size_t(y) * p.stride, bytes.data() + size_t(y) * size_t(p.row_bytes),
+                    size_t(p.row_bytes));
+    }
+    if (!error.empty()) throw std::runtime_error(error);
   }
   void finishSends() override {}
   std::vector<int> allgather(const std::vector<int>& mine) override {
