@@ -60,12 +60,17 @@ void BrickRenderer::enableVolume(const TransferFunction& tf, int table_size, int
     volume_ = std::make_unique<SlicingRenderer>(*ctx_, width_, height_, block_cells);
   volume_->setTransferFunction(tf, table_size, preintegrated);
   volume_->setShading(method.shading);
-  volume_->setDeferredReadback(overlapped_readback_);
+  // The image stays in the target until readBack(): the draw's timer ends before any read-back.
+  volume_->setDeferredReadback(true);
 }
 
-void BrickRenderer::setOverlappedReadback(bool on) {
-  overlapped_readback_ = on;
-  if (volume_) volume_->setDeferredReadback(on);
+void BrickRenderer::readBack(BrickFrame& frame) {
+  if (!frame.unread) return;
+  if (overlapped_readback_)
+    frame.pending = frame.unread->readAsync(frame.rect);
+  else
+    frame.pixels = frame.unread->finish(frame.rect);
+  frame.unread = nullptr;
 }
 
 void BrickRenderer::enableParticles(const MetaballSettings& settings) {
@@ -276,8 +281,7 @@ BrickFrame BrickRenderer::render(int handle, const Camera& cam, double slice_spa
   out.rect = rb.rect;
   out.pixels = std::move(rb.pixels);
   out.pixels_f = std::move(rb.pixels_f);
-  timed.reset();
-  if (rb.unread) out.pending = rb.unread->readAsync(rb.rect);
+  out.unread = rb.unread;
   return out;
 }
 

@@ -49,8 +49,10 @@ struct BrickFrame {
   std::vector<float> pixels_f;
   std::vector<float> surface;  // (t, nx, ny, nz) per pixel of rect, when asked for and there are particles or surfaces
   int particle_rounds = 0;
-  // Overlapped read-back (setOverlappedReadback): the RGBA8 pixels on their way, `pixels` empty;
-  // the caller maps them (pending.ring->map) and releases them.
+  // A volume brick's image still in its target after render() (`pixels` empty): readBack() reads
+  // it. Then, overlapped (setOverlappedReadback), its RGBA8 pixels are on their way (`pending`;
+  // the caller maps them, pending.ring->map, and releases them); serial, they are in `pixels`.
+  FloatTarget* unread = nullptr;
   PendingPixels pending;
 };
 
@@ -108,14 +110,16 @@ class BrickRenderer {
   // A brick with particles only.
   int addParticleBrick(const Box3& particle_clip, const std::vector<glm::vec3>& particles);
 
-  // Draws a brick. Its GL work is timed (drawSeconds); with overlapped read-back a volume brick's
-  // RGBA8 pixels are converted on the GPU and left on their way (BrickFrame::pending), so the next
-  // brick's draw can be issued before this one's pixels are waited for.
+  // Draws a brick; its GL work is timed (drawSeconds). A volume brick's image is left in its
+  // target (BrickFrame::unread) for readBack().
   BrickFrame render(int handle, const Camera& cam, double slice_spacing, double near_plane,
                     double far_plane, bool want_surface);
-  // Volume bricks read back through the pixel-buffer ring with the GPU's conversion (true), or
-  // synchronously as floats converted on the CPU (false: the serial pipeline, for comparison).
-  void setOverlappedReadback(bool on);
+  // Starts (overlapped) or does (serial) the read-back of a brick render() left unread: converted
+  // to RGBA8 on the GPU into the pixel-buffer ring, returning at once (BrickFrame::pending), or
+  // read as floats now and converted on the CPU (BrickFrame::pixels). Nothing to do otherwise.
+  void readBack(BrickFrame& frame);
+  // Which of the two readBack() does (true: overlapped; false: the serial pipeline, for comparison).
+  void setOverlappedReadback(bool on) { overlapped_readback_ = on; }
   // The GL time of the bricks drawn since the last call (GpuTimer: timer queries), in seconds.
   double drawSeconds() { return timer_->collect(); }
 

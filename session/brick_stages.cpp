@@ -30,6 +30,7 @@ struct InFlight {
   InFlight(int brick_id, BrickFrame f) : id(brick_id), frame(std::move(f)) {}
   ~InFlight() {
     if (frame.pending.pending()) frame.pending.ring->release(frame.pending);
+    // (A brick left unread needs nothing: its image is overwritten by the next draw.)
   }
   InFlight(const InFlight&) = delete;
   InFlight& operator=(const InFlight&) = delete;
@@ -76,7 +77,10 @@ void runBrickStages(const BrickStages& b, RankFrameStats& st, std::vector<Surfac
     const double t0 = MPI_Wtime();
     auto drawn = std::make_unique<InFlight>(
         b.ids[i], b.renderer.render(b.handles[i], b.cam, b.spacing, b.near_plane, b.far_plane, b.want_surface));
-    st.render_s += MPI_Wtime() - t0;
+    const double t1 = MPI_Wtime();
+    b.renderer.readBack(drawn->frame);  // overlapped: started; serial: done
+    st.render_s += t1 - t0;
+    st.readback_s += MPI_Wtime() - t1;
     // Brick i's GL work is issued (and its read fenced): now wait for brick i - 1's pixels.
     if (previous) sendBrick(b, *previous, st, surfaces);
     previous = std::move(drawn);

@@ -24,7 +24,10 @@ struct RankFrameStats {
   // overlap (the GPU draws while this core reads back and encodes), so they need not add up to
   // wall_s. render_s above is the CPU's time in the draw calls (serial: with the read-back).
   double draw_s = 0;      // GL work of the bricks (timer queries), read-back excluded
-  double readback_s = 0;  // waiting for and mapping the bricks' pixels
+  // Reading the bricks' pixels: starting each read (overlapped: the GPU's conversion and a read
+  // into the ring, which Mesa's llvmpipe does at once, waiting for the draw; serial: the whole
+  // float read and the CPU's conversion), then waiting for and mapping them.
+  double readback_s = 0;
   double exchange_s = 0;  // handing images to the compositor (direct send: sending them)
   double composite_s = 0; // the compositor's decode, blend and gather (CompositeStats)
   double wall_s = 0;      // this rank's frame, first brick to composited frame

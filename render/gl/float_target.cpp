@@ -76,7 +76,9 @@ std::vector<float> FloatTarget::finishFloat(const Rect& r) {
 }
 
 ImageRGBA8 FloatTarget::finish(const Rect& r) {
-  // Window row y is image row y (the projection flips y), so rows come back top first.
+  // Window row y is image row y (the projection flips y), so rows come back top first. Bound
+  // again: a deferred read comes after other targets may have been bound.
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
   readback_.resize(size_t(r.area()) * 4);
   gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
   gl_.ReadPixels(r.x, r.y, r.w, r.h, GL_RGBA, GL_FLOAT, readback_.data());
