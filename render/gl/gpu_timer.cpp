@@ -10,6 +10,10 @@ GpuTimer::~GpuTimer() {
 
 void GpuTimer::begin() {
   if (depth_++ > 0) return;
+  if (finish_bounded_) {
+    interval_begin_ = std::chrono::steady_clock::now();
+    return;
+  }
   if (used_ == 0) first_begin_ = std::chrono::steady_clock::now();
   if (used_ == queries_.size()) {
     unsigned q = 0;
@@ -21,13 +25,23 @@ void GpuTimer::begin() {
 
 void GpuTimer::end() {
   if (depth_ == 0 || --depth_ > 0) return;
+  if (finish_bounded_) {
+    gl_.Finish();
+    finished_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - interval_begin_).count();
+    return;
+  }
   gl_.EndQuery(GL_TIME_ELAPSED);
 }
 
 double GpuTimer::collect() {
   if (depth_ > 0) {  // an interval still open (a frame abandoned mid-brick): close it
-    depth_ = 0;
-    gl_.EndQuery(GL_TIME_ELAPSED);
+    depth_ = 1;
+    end();
+  }
+  if (finish_bounded_) {
+    const double s = finished_s_;
+    finished_s_ = 0;
+    return s;
   }
   GLuint64 total = 0;
   for (size_t i = 0; i < used_; ++i) {
