@@ -15,20 +15,12 @@
 
 #include "tests/unit/glsl/glsl_files.h"  // generated from tests/unit/glsl/*.glsl
 #include "render/gl/gl_context.h"
+#include "tests/unit/gl_test_context.h"
 #include "render/gl/gl_program.h"
 #include "render/gl/glsl_files.h"
 
 namespace sortlast {
 namespace {
-
-std::unique_ptr<GlContext> context() {
-  try {
-    return createGlContext("osmesa");
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "no GL context: " << e.what();
-    return nullptr;
-  }
-}
 
 // The 1-based line of `file` holding `text`.
 int lineOf(const GlslFile& file, const std::string& text) {
@@ -52,7 +44,7 @@ std::string errorOf(F f) {
 }
 
 TEST(GlProgram, CompileErrorNamesTheFileAndLine) {
-  auto ctx = context();
+  auto ctx = testGlContext();
   if (!ctx) return;
   const GlApi& gl = ctx->gl();
   const std::string message = errorOf([&] {
@@ -70,7 +62,7 @@ TEST(GlProgram, CompileErrorNamesTheFileAndLine) {
 }
 
 TEST(GlProgram, LinkErrorNamesTheFiles) {
-  auto ctx = context();
+  auto ctx = testGlContext();
   if (!ctx) return;
   const std::string message = errorOf([&] {
     linkProgram(ctx->gl(), ShaderSource().add(glsl::fullscreen_vert),
@@ -84,7 +76,7 @@ TEST(GlProgram, LinkErrorNamesTheFiles) {
 }
 
 TEST(GlProgram, GoodChunksLink) {
-  auto ctx = context();
+  auto ctx = testGlContext();
   if (!ctx) return;
   const GlApi& gl = ctx->gl();
   GlProgram p(
@@ -139,7 +131,7 @@ GlApi countingApi(const GlApi& gl) {
 }
 
 TEST(GlProgram, TypedSettersSetTheirValues) {
-  auto ctx = context();
+  auto ctx = testGlContext();
   if (!ctx) return;
   const GlApi& gl = ctx->gl();
   const GlProgram p = uniformsProgram(gl);
@@ -179,7 +171,7 @@ TEST(GlProgram, TypedSettersSetTheirValues) {
 }
 
 TEST(GlProgram, LooksEachLocationUpOnce) {
-  auto ctx = context();
+  auto ctx = testGlContext();
   if (!ctx) return;
   const GlApi counting = countingApi(ctx->gl());
   GlProgram p = uniformsProgram(counting);
@@ -201,7 +193,7 @@ TEST(GlProgram, LooksEachLocationUpOnce) {
 }
 
 TEST(GlProgram, AMissingUniformIsSilentlyPassedOver) {
-  auto ctx = context();
+  auto ctx = testGlContext();
   if (!ctx) return;
   const GlApi counting = countingApi(ctx->gl());
   const GlProgram p = uniformsProgram(counting);

@@ -17,20 +17,12 @@
 #include "io/image.h"
 #include "render/gl/float_target.h"
 #include "render/gl/gl_context.h"
+#include "tests/unit/gl_test_context.h"
 #include "render/gl/gpu_timer.h"
 #include "render/gl/pixel_readback.h"
 
 namespace sortlast {
 namespace {
-
-std::unique_ptr<GlContext> context() {
-  try {
-    return createGlContext("osmesa");
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "no GL context: " << e.what();
-    return nullptr;
-  }
-}
 
 // Values that probe toRGBA8's rounding: every k / 255 and the floats next to each (k + 1/2) / 255
 // boundary after scaling, plus values outside [0, 1], infinities and signed zeros.
@@ -70,7 +62,7 @@ void upload(const GlApi& gl, unsigned texture, int w, int h, const std::vector<f
 }
 
 TEST(PixelReadback, GpuConversionEqualsToRGBA8BitForBit) {
-  auto ctx = context();
+  auto ctx = testGlContext();
   if (!ctx) return;
   const GlApi& gl = ctx->gl();
   const int w = 97, h = 61;  // odd sizes: no row padding hides an error
@@ -98,7 +90,7 @@ TEST(PixelReadback, GpuConversionEqualsToRGBA8BitForBit) {
 }
 
 TEST(PixelReadback, RingKeepsReadsInFlightAcrossFramesAndResizes) {
-  auto ctx = context();
+  auto ctx = testGlContext();
   if (!ctx) return;
   const GlApi& gl = ctx->gl();
   std::mt19937 rng(7);
@@ -147,7 +139,7 @@ TEST(PixelReadback, RingKeepsReadsInFlightAcrossFramesAndResizes) {
 }
 
 TEST(PixelReadback, FullRingRefusesAnotherRead) {
-  auto ctx = context();
+  auto ctx = testGlContext();
   if (!ctx) return;
   const GlApi& gl = ctx->gl();
   FloatTarget target(gl, 16, 16);
@@ -167,7 +159,7 @@ TEST(PixelReadback, FullRingRefusesAnotherRead) {
 }
 
 TEST(GpuTimer, SumsIntervalsWithinTheWallTime) {
-  auto ctx = context();
+  auto ctx = testGlContext();
   if (!ctx) return;
   const GlApi& gl = ctx->gl();
   FloatTarget target(gl, 256, 256);
