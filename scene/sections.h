@@ -31,6 +31,15 @@ enum class Pipeline { kOverlapped, kSerial };
 template <>
 inline constexpr std::array kEnumNames<Pipeline>{"overlapped", "serial"};
 
+// render.blend: how a volume's samples along a ray make the pixel. kComposite: emission-absorption
+// (front to back "over"); the projections take the maximum, the minimum, the mean or the sum of
+// what each ray meets (order-free: every brick's partial result combines with any other's);
+// kIsosurface: the first crossings of render.isovalues.
+enum class VolumeBlend { kComposite, kMip, kMinip, kAverage, kAdditive, kIsosurface };
+template <>
+inline constexpr std::array kEnumNames<VolumeBlend>{"composite", "mip", "minip", "average", "additive",
+                                                    "isosurface"};
+
 struct RenderSection {
   GlBackend backend = GlBackend::kOsmesa;
   int device = -1;              // a hardware EGL device index; -1: auto
@@ -46,6 +55,7 @@ struct RenderSection {
   bool adaptive_step = false;             // ray casting: a block takes every m-th lattice sample
   double adaptive_step_tolerance = 0.02;  // the step rule's bound (render/volume/step_rule.h)
   Pipeline pipeline = Pipeline::kOverlapped;
+  VolumeBlend blend = VolumeBlend::kComposite;
 
   bool raycast() const { return method == RenderMethod::kRaycast; }
 };

@@ -46,6 +46,13 @@ std::vector<sortlast::SceneKey> sortlast::renderKeys() {
      "per brick, front to back on samples `render.sample_spacing` apart along each ray, with "
      "early ray termination and empty blocks jumped along the ray).",
      Choice{member<&Scene::render, &RenderSection::method>}},
+    {"render.blend", "composite",
+     "How a volume's samples along each ray make its pixel: `composite` (emission and "
+     "absorption, front to back), `mip` / `minip` (the largest / smallest value a ray meets), "
+     "`average` (the mean value along the ray inside the volume), `additive` (the sum of the "
+     "samples' emission without absorption), `isosurface` (the first crossings of "
+     "`render.isovalues`).",
+     Choice{member<&Scene::render, &RenderSection::blend>}},
     {"render.pipeline", "overlapped",
      "How each brick's pixels travel from GL to the compositor. `overlapped`: converted to RGBA8 "
      "on the GPU (rounded as the CPU rounds, bit for bit), read through a ring of pixel-buffer "
@@ -101,6 +108,9 @@ namespace sortlast {
 
 // A device index names an EGL device: with OSMesa it would be ignored without a word.
 void checkRenderKeys(const Scene& s) {
+  if (s.render.blend != VolumeBlend::kComposite)
+    throw InputError("scene key 'render.blend': " + std::string(nameOf(s.render.blend)) +
+                     " is not available yet (only composite)");
   if (s.render.device >= 0 && s.render.backend != GlBackend::kEgl)
     throw InputError("scene key 'render.device': device " + std::to_string(s.render.device) +
                      " names an EGL device, but render.backend is " + std::string(nameOf(s.render.backend)) +
