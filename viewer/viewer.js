@@ -1,5 +1,6 @@
 // The web viewer of `sortlast serve`: asks the server for frames of the current view state
-// (camera, image size, renderer, compositing, transfer function, time step) and shows them.
+// (camera, image size, renderer, compositing, transfer function, time step, the volume's modes:
+// volume_modes.js) and shows them.
 // While the user interacts it asks for reduced JPEG frames, and for a full-size PNG once the
 // interaction stops (progressive refinement).
 
@@ -7,6 +8,7 @@ import { FrameClient } from './connection.js';
 import { PRESETS, sampleKnots, cssGradient } from './colormaps.js';
 import { TransferEditor } from './transfer_editor.js';
 import * as cam from './orbit.js';
+import * as modes from './volume_modes.js';
 
 const $ = (id) => document.getElementById(id);
 const params = new URLSearchParams(location.search);
@@ -160,6 +162,7 @@ function buildRequest(mode) {
       const map = $('colormap').value;
       if (map !== 'scene') r['transfer.colormap'] = map;
     }
+    modes.modeKeys(r, { camera: c, bounds: state.bounds, range: tfRange() });
   }
   r['compositing.strategy'] = $('strategy').value;
   if (state.steps > 1) r['time.step'] = state.step;
@@ -359,7 +362,7 @@ canvas.addEventListener('pointerdown', (e) => {
   pointers.set(e.pointerId, { x: e.clientX, y: e.clientY });
   if (pointers.size === 1) {
     state.drags += 1;
-    dragMode = e.button === 2 || e.button === 1 || e.shiftKey ? 'pan' : 'orbit';
+    dragMode = e.altKey && $('clip-on').checked ? 'clip' : e.button === 2 || e.button === 1 || e.shiftKey ? 'pan' : 'orbit';
   } else {
     dragMode = 'pinch';
   }
@@ -384,10 +387,11 @@ canvas.addEventListener('pointermove', (e) => {
     state.camera = cam.pan(state.camera, midAfter[0] - midBefore[0], midAfter[1] - midBefore[1], vh);
   } else {
     p.x = e.clientX; p.y = e.clientY;
-    if (dragMode === 'pan') state.camera = cam.pan(state.camera, dx, dy, vh);
+    if (dragMode === 'clip') modes.dragClip(dy, vh);
+    else if (dragMode === 'pan') state.camera = cam.pan(state.camera, dx, dy, vh);
     else state.camera = cam.orbit(state.camera, dx, dy, vh);
   }
-  state.camera = cam.keepOutside(state.camera, state.bounds);
+  state.camera = keepOut(state.camera);
   submit('reduced');
 });
 function pointerEnd(e) {
@@ -405,7 +409,7 @@ canvas.addEventListener('wheel', (e) => {
   if (!state.camera) return;
   e.preventDefault();
   const unit = e.deltaMode === 1 ? 0.05 : e.deltaMode === 2 ? 1 : 0.0015;
-  state.camera = cam.zoom(state.camera, Math.exp(e.deltaY * unit), state.bounds);
+  state.camera = cam.zoom(state.camera, Math.exp(e.deltaY * unit), modes.flyInside() ? null : state.bounds);
   interact();
 }, { passive: false });
 
@@ -418,6 +422,13 @@ $('reset').addEventListener('click', resetView);
 window.addEventListener('keydown', (e) => {
   if (e.target instanceof HTMLInputElement || e.target instanceof HTMLSelectElement || e.target === $('tf-canvas')) return;
   if (e.key === 'r' || e.key === 'R') resetView();
+  // Flying: the eye and look_at move along the view, 5 % of the scene's radius a key press.
+  if ((e.key === 'w' || e.key === 's') && modes.flyInside() && state.camera) {
+    const f = cam.frame(state.camera);
+    const step = cam.scale(f.forward, (e.key === 'w' ? 0.05 : -0.05) * cam.sphere(state.bounds).radius);
+    state.camera = { ...state.camera, position: cam.add(state.camera.position, step), look_at: cam.add(state.camera.look_at, step) };
+    interact();
+  }
   if (e.key === ' ' && state.steps > 1) { e.preventDefault(); setPlaying(!state.playing); }
 });
 
@@ -434,6 +445,20 @@ function trackSlider(el, onInput) {
 }
 
 for (const id of ['size', 'method', 'strategy', 'shading', 'preint']) $(id).addEventListener('change', () => submit('full'));
+
+// the volume's modes (volume_modes.js)
+function keepOut(c) { return modes.flyInside() ? c : cam.keepOutside(c, state.bounds); }
+for (const id of ['blend', 'projection', 'clip-on', 'clip-axis', 'clip-flip', 'tf-scale']) {
+  $(id).addEventListener('change', () => { modes.showModeControls(); showHistogram(); submit('full'); });
+}
+$('fly-inside').addEventListener('change', () => { state.camera = keepOut(state.camera); submit('full'); });
+$('legend-on').addEventListener('change', showLegend);
+trackSlider($('iso-value'), () => {});
+trackSlider($('iso-opacity'), () => {});
+trackSlider($('clip-pos'), () => {});
+function showLegend() {
+  modes.drawLegend($('legend'), { knots: currentKnots(), range: tfRange(), scale: $('tf-scale').value, fmt });
+}
 
 // sample spacing: a log slider and a number box, 0.01 .. 100
 const SPACING_MIN = 0.01, SPACING_MAX = 100;
@@ -537,6 +562,7 @@ $('colormap').addEventListener('change', () => {
   tf.setColormap(currentKnots());
   $('colormap-preview').style.background = cssGradient(currentKnots());
   state.tfEdited = true;
+  showLegend();
   submit('full');
 });
 $('tf-reset').addEventListener('click', () => {
@@ -622,7 +648,10 @@ function applyScene(scene) {
   tf.setColormap(currentKnots());
   $('colormap-preview').style.background = cssGradient(currentKnots());
   state.histogramStep = state.step;
+  modes.applyModeSettings(settings);
+  $('modes-group').hidden = !hasVolume;
   showHistogram();
+  showLegend();
 
   const parts = [];
   if (scene.ranks) parts.push(`${scene.ranks} rank${scene.ranks === 1 ? '' : 's'}`);
