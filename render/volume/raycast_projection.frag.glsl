@@ -97,23 +97,28 @@ float cellExtremum(float c[8], vec3 l0, vec3 dl) {
 // The exact extremum of the field along [t0, t1] (this brick's own box) into acc.
 void projectExact(inout vec4 acc, float t0, float t1, vec3 dir) {
   ivec3 size = textureSize(u_volume, 0);
-  // Texel index coordinates (texel centres at integers) of the ray: u(t) = u_o + t u_d.
-  vec3 u_o = (u_eye * u_tex_scale + u_tex_offset) * vec3(size) - 0.5;
+  // Texel index coordinates (texel centres at integers) of the ray, from its entry into the brick:
+  // u(s) = u_o + s u_d, s = t - t0. Relative to the entry, s and u stay small (a brick's extent
+  // in voxels), so their float rounding does not grow with the eye's distance (from the eye,
+  // t u_d ~ 100 voxels rounds to 8e-6 voxel a step: measured 2.5e-5 of the range on a lattice of
+  // lines, against 1e-5 from the entry).
+  vec3 p0 = u_eye + t0 * dir;
+  vec3 u_o = (p0 * u_tex_scale + u_tex_offset) * vec3(size) - 0.5;
   vec3 u_d = dir * u_tex_scale * vec3(size);
-  float t = t0;
+  float s = 0.0, s1 = t1 - t0;
   int guard = 3 * (size.x + size.y + size.z) + 8;
-  while (t < t1 && guard-- > 0) {
-    vec3 ua = u_o + t * u_d;
+  while (s < s1 && guard-- > 0) {
+    vec3 ua = u_o + s * u_d;
     ivec3 cell = clamp(ivec3(floor(ua + sign(u_d) * 1e-4)), ivec3(0), size - 2);
     // Where the ray leaves the cell on each axis.
-    float tb = t1;
+    float sb = s1;
     for (int ax = 0; ax < 3; ++ax) {
       if (abs(u_d[ax]) < 1e-20) continue;
       float plane = float(cell[ax] + (u_d[ax] > 0.0 ? 1 : 0));
-      float te = (plane - u_o[ax]) / u_d[ax];
-      if (te > t) tb = min(tb, te);
+      float se = (plane - u_o[ax]) / u_d[ax];
+      if (se > s) sb = min(sb, se);
     }
-    if (!(tb > t)) tb = min(t1, t + 1e-4 / max(length(u_d), 1e-20));  // no progress: nudge
+    if (!(sb > s)) sb = min(s1, s + 1e-4 / max(length(u_d), 1e-20));  // no progress: nudge
     float c[8];
     bool missing = false;
     for (int i = 0; i < 8; ++i) {
@@ -121,10 +126,10 @@ void projectExact(inout vec4 acc, float t0, float t1, vec3 dir) {
       missing = missing || isnan(c[i]);
     }
     if (!missing) {
-      vec3 l0 = clamp(ua - vec3(cell), 0.0, 1.0), l1 = clamp(u_o + tb * u_d - vec3(cell), 0.0, 1.0);
+      vec3 l0 = clamp(ua - vec3(cell), 0.0, 1.0), l1 = clamp(u_o + sb * u_d - vec3(cell), 0.0, 1.0);
       projectValue(acc, cellExtremum(c, l0, l1 - l0));
     }
-    t = tb;
+    s = sb;
   }
 }
 #endif

