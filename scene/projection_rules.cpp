@@ -21,7 +21,7 @@ void checkProjectionKeys(const Scene& s) {
            "a projection's partial results are values, sums and counts, not colours; 8-bit "
            "colour has no meaning for them (compositing.precision: float)");
   if (s.particles.enabled() || !s.surfaces.empty())
-    refuse(s.particles.enabled() ? "particles" : "surfaces",
+    refuse(s.particles.enabled() ? "particles.file / particles.procedural" : "surfaces",
            "projections are not bounded by opaque surfaces yet");
   if (s.glow.enabled()) refuse("glow.emitters", "glow is integrated in emission-absorption only");
   if (s.render.shading.enabled)

@@ -99,6 +99,7 @@
 #endif
 #ifndef PROJECTION  // (raycast_projection.frag.glsl: projections never stop early)
 #define ERT_REACHED(a) ((a) >= u_ert)
+#define BLOCK_CANNOT_CHANGE(idx, acc) false
 #endif
 
 // A sample standing for `len` of the ray, front to back (opacity corrected for len); its segment
@@ -260,7 +261,7 @@ bool march(inout vec4 acc, inout Walk w, float t1, ivec3 nb, vec3 dir) {
     vec3 te = vec3(exitT(0, last.x), exitT(1, last.y), exitT(2, last.z));
     float tb = min(min(te.x, te.y), min(te.z, t1));
     int k_end = firstSample(tb);  // the first lattice sample this block (or cube) does not own
-    if (info.g != 0u) sampleBlock(acc, w, k_end, blockStep(w.idx, info.g), dir);
+    if (info.g != 0u && !BLOCK_CANNOT_CHANGE(w.idx, acc)) sampleBlock(acc, w, k_end, blockStep(w.idx, info.g), dir);
 #ifdef GLOW
     else if (acc.a < u_ert) glowTo((float(k_end) - 0.5) * u_delta, 1.0 - acc.a);  // jumped: T constant
     // A piece closed inside the block: integrate it, then go on from sample w.k.

@@ -22,6 +22,28 @@
 #endif
 #define ERT_REACHED(a) false
 
+// mip / minip: a block whose samples all lie at or below (above) what the ray already holds cannot
+// change it, and is jumped: u_block_range holds each block's (min, max) over the samples of its
+// cells (BrickBlocks::vmin / vmax), which bound the trilinear field inside it (a convex
+// combination of them, up to one float rounding of the filter). Exact for the result, whatever
+// the blocks' opacity; before any sample is taken nothing is jumped. Average and additive jump no
+// such block (every sample adds to a sum).
+#if PROJECTION <= 2
+uniform sampler3D u_block_range;
+bool blockCannotChange(ivec3 idx, vec4 acc) {
+  if (!(acc.w > 0.0)) return false;
+  vec2 r = texelFetch(u_block_range, idx, 0).rg;
+#if PROJECTION == 1
+  return r.y <= acc.x;
+#else
+  return r.x >= acc.x;
+#endif
+}
+#define BLOCK_CANNOT_CHANGE(idx, acc) blockCannotChange(idx, acc)
+#else
+#define BLOCK_CANNOT_CHANGE(idx, acc) false
+#endif
+
 void projectValue(inout vec4 acc, float v) {
   if (isnan(v)) return;
 #if PROJECTION == 1

@@ -89,6 +89,7 @@ RaycastRenderer::~RaycastRenderer() {
       gl_.DeleteTextures(1, &b.volume.texture);
     gl_.DeleteTextures(1, &b.planes);
     gl_.DeleteTextures(1, &b.skip);
+    gl_.DeleteTextures(1, &b.range);
     if (b.adaptive) gl_.DeleteTextures(1, &b.lookup.table);
   }
   gl_.DeleteVertexArrays(1, &vao_);
@@ -165,6 +166,12 @@ int RaycastRenderer::addGpuBrick(GpuBrick g) {
   gl_.TexImage3D(GL_TEXTURE_3D, 0, GL_RG8UI, nb.x, nb.y, nb.z, 0, GL_RG_INTEGER, GL_UNSIGNED_BYTE,
                  nullptr);
   nearest(gl_, GL_TEXTURE_3D);
+  std::vector<float> range(2 * g.blocks.vmin.size());
+  for (size_t i = 0; i < g.blocks.vmin.size(); ++i) range[2 * i] = g.blocks.vmin[i], range[2 * i + 1] = g.blocks.vmax[i];
+  gl_.GenTextures(1, &g.range);
+  gl_.BindTexture(GL_TEXTURE_3D, g.range);
+  gl_.TexImage3D(GL_TEXTURE_3D, 0, GL_RG32F, nb.x, nb.y, nb.z, 0, GL_RG, GL_FLOAT, range.data());
+  nearest(gl_, GL_TEXTURE_3D);
   gl_.ActiveTexture(GL_TEXTURE0);
   gl_.check("ray caster brick upload");
   bricks_.push_back(std::move(g));
@@ -189,7 +196,7 @@ void RaycastRenderer::setGlobalRanges(std::vector<float> vmin, std::vector<float
 
 void RaycastRenderer::classify(GpuBrick& g, float delta) {
   const ClassKey key{table_.version(), ranges_version_, delta, settings_.adaptive_step,
-                     settings_.adaptive_tolerance, int(settings_.blend)};
+                     settings_.adaptive_tolerance, int(settings_.blend) * 2 + (settings_.mip_exact ? 1 : 0)};
   if (key == g.classified) return;
   const bool projection_counts_all = settings_.blend == VolumeBlend::kMip ||
                                      settings_.blend == VolumeBlend::kMinip ||
@@ -251,7 +258,10 @@ void RaycastRenderer::classify(GpuBrick& g, float delta) {
   std::vector<unsigned char> texels(2 * n);
   for (size_t i = 0; i < n; ++i) {
     // The ADAPTIVE variant reads each block's own samples: its rays sample one block at a time.
-    texels[2 * i] = !b.global && cls[i] ? 1 : reach[i];
+    // mip / minip (sampled) ask per block whether it can change the ray's result: one at a time.
+    const bool per_block = (settings_.blend == VolumeBlend::kMip || settings_.blend == VolumeBlend::kMinip) &&
+                           !settings_.mip_exact;
+    texels[2 * i] = (!b.global || per_block) && cls[i] ? 1 : reach[i];
     texels[2 * i + 1] = cls[i];
   }
   gl_.ActiveTexture(GL_TEXTURE4);
@@ -344,6 +354,11 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
     gl_.BindTexture(GL_TEXTURE_2D, g.planes);
     gl_.ActiveTexture(GL_TEXTURE4);
     gl_.BindTexture(GL_TEXTURE_3D, g.skip);
+    if (settings_.blend == VolumeBlend::kMip || settings_.blend == VolumeBlend::kMinip) {
+      program.set("u_block_range", 12);
+      gl_.ActiveTexture(GL_TEXTURE12);
+      gl_.BindTexture(GL_TEXTURE_3D, g.range);
+    }
     gl_.ActiveTexture(GL_TEXTURE0);
     gl_.BindTexture(GL_TEXTURE_3D, b.texture);
     gl_.BindVertexArray(vao_);

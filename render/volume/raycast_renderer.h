@@ -130,6 +130,7 @@ class RaycastRenderer : public VolumeRenderer {
     BrickBlocks blocks;
     unsigned planes = 0;  // block planes: R32F, (largest block count + 1) x 3
     unsigned skip = 0;    // per block: RG8UI (distance to the nearest non-empty block, log2 m)
+    unsigned range = 0;   // per block: RG32F (vmin, vmax), what mip / minip jump blocks by
     ClassKey classified;  // what `skip`, `any` and `bound` hold now
     bool any = false;     // some block is not empty
     Box3 bound;           // the box around the non-empty blocks

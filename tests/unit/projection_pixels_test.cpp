@@ -143,7 +143,7 @@ TEST(ProjectionPixels, RadixKMatchesOneCombine) {
         std::iota(order.bricks.begin(), order.bricks.end(), 0);
         order.ranks.resize(size_t(ranks));
         std::iota(order.ranks.begin(), order.ranks.end(), 0);
-        std::vector<std::vector<BrickImage>> mine(size_t(ranks));
+        std::vector<std::vector<BrickImage>> mine(static_cast<size_t>(ranks));
         for (int i = 0; i < bricks; ++i) mine[size_t(i % ranks)].push_back(images[size_t(i)]);
         CompositeOptions options;
         options.projection = f;
@@ -151,9 +151,9 @@ TEST(ProjectionPixels, RadixKMatchesOneCombine) {
         else options.colour_projection = colour;
         Mailbox box;
         box.sent.resize(size_t(ranks));
-        std::vector<CompositeStats> stats(size_t(ranks));
-        std::vector<ImageRGBA8> frames(size_t(ranks));
-        std::vector<std::string> errors(size_t(ranks));
+        std::vector<CompositeStats> stats(static_cast<size_t>(ranks));
+        std::vector<ImageRGBA8> frames(static_cast<size_t>(ranks));
+        std::vector<std::string> errors(static_cast<size_t>(ranks));
         std::vector<std::thread> threads;
         for (int r = 0; r < ranks; ++r)
           threads.emplace_back([&, r] {
