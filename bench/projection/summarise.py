@@ -45,11 +45,11 @@ for r in rows:
 print(f"  exact frame_s {times['mip_exact']:.3f}")
 
 plot = f"""
-set terminal pngcairo size 1100,420 font ',10'
+set terminal pngcairo size 1100,420 font ',10' noenhanced
 set output '{out}/projection.png'
 set datafile separator ','
 set multiplot layout 1,2
-set title 'Frame time, engine 256^3, 1 rank, {spacing} voxel steps'
+set title 'Frame time, engine 256³, 1 rank, {spacing} voxel steps'
 set style data histograms
 set style fill solid 0.8
 set ylabel 'frame time (s)'
