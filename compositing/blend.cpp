@@ -8,6 +8,7 @@
 #include "common/pixel_threads.h"
 #include "compositing/over.h"
 #include "compositing/pixel_cost.h"
+#include "compositing/projection_pixels.h"
 #include "compositing/rle.h"
 
 namespace sortlast {
@@ -85,6 +86,8 @@ void decodeBlend(const BrickImage& b, int bytes, WireFormat format, Pixel* dst, 
             if constexpr (std::is_same_v<Pixel, float>) {
               if (format == WireFormat::Emission)
                 blendRowEmission(s, len, d);
+              else if (isProjection(format))
+                combineWireRow(format, s, len, d);
               else
                 blendRow8(s, len, d);
             } else {
@@ -125,7 +128,8 @@ void blendBricks(const std::vector<const BrickImage*>& images, Pixel* dst, const
     chargePixels(std::is_same_v<Pixel, float> ? PixelWork::DecodeBlend8 : PixelWork::DecodeBlendInto8,
                  r.area(), bytes);
     if (format != WireFormat::RGBA8) {
-      if (format != WireFormat::Emission) throw std::logic_error("brick images: RGBA8 or Emission");
+      if (format != WireFormat::Emission && !isProjection(format))
+        throw std::logic_error("brick images: RGBA8, Emission or a projection format");
       if constexpr (!std::is_same_v<Pixel, float>)
         throw std::logic_error("emission brick images blend in float only");
     }
@@ -152,7 +156,7 @@ RectImage blendBackToFront(const std::vector<const BrickImage*>& images, WireFor
   return out;
 }
 
-RectImage blendBackToFront(const std::vector<const RectImage*>& layers) {
+RectImage blendBackToFront(const std::vector<const RectImage*>& layers, WireFormat format) {
   Rect all;
   for (const RectImage* l : layers) all = unionOf(all, l->rect);
   RectImage out(all);
@@ -161,7 +165,10 @@ RectImage blendBackToFront(const std::vector<const RectImage*>& layers) {
   for (const RectImage* l : layers)
     if (!l->rect.empty())
       forRowBands(l->rect, [&](const Rect& band) {
-        blendRectF(l->at(band.x, band.y), band, out.px.data(), all.w, all.x, all.y);
+        if (isProjection(format))
+          combineRectF(format, l->at(band.x, band.y), band, out.px.data(), all.w, all.x, all.y);
+        else
+          blendRectF(l->at(band.x, band.y), band, out.px.data(), all.w, all.x, all.y);
       });
   return out;
 }

@@ -23,7 +23,9 @@ RectImage blendBackToFront(const std::vector<const BrickImage*>& images,
                            WireFormat format = WireFormat::RGBA8);
 
 // Layers in back-to-front order, each blended over the ones before it, into one image of the
-// rectangle they cover.
-RectImage blendBackToFront(const std::vector<const RectImage*>& layers);
+// rectangle they cover. A projection format (compositing/projection_pixels.h) combines them with
+// its order-free operator instead; so do the brick-image overloads above given one.
+RectImage blendBackToFront(const std::vector<const RectImage*>& layers,
+                           WireFormat format = WireFormat::RGBA8);
 
 }  // namespace sortlast

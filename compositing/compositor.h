@@ -8,6 +8,7 @@
 // sending in add(); the swap strategies need every brick of a rank first and do all in finish().
 #include <mpi.h>
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "io/image.h"
 #include "scene/sections.h"
 #include "compositing/brick_image.h"
+#include "compositing/rect_image.h"
 #include "common/visibility.h"
 
 namespace sortlast {
@@ -43,6 +45,14 @@ struct CompositeOptions {
   // above 1 before the final tone map, as WireFormat::Emission (half floats); precision must be
   // Float and the caller asks for the float frame (the RGBA8 one clamps colour to alpha).
   bool emission = false;
+  // Projection blend modes (render.blend: mip, minip, average, additive): brick images and
+  // partial composites are this format (compositing/projection_pixels.h), combined by its
+  // order-free operator; RGBA8 here: not a projection. precision must be Float.
+  WireFormat projection = WireFormat::RGBA8;
+  // With a projection: turns `n` combined float pixels (in place) into premultiplied RGBA, once,
+  // on the final values: on rank 0 (direct send) or on the rank that makes a final part (radix-k),
+  // before it is rounded. An absent pixel (all zero) must stay transparent.
+  std::function<void(float* px, size_t n)> colour_projection;
   // `auto` only (strategy_model.h): the network and core sharing its forecasts assume.
   double network_latency_s = 40e-6;       // one message, end to end
   double network_bandwidth_Bps = 1.25e9;  // one rank's link, each way

@@ -7,6 +7,7 @@
 #include "compositing/blend.h"
 #include "compositing/pixel_cost.h"
 #include "compositing/rect_image.h"
+#include "compositing/projection_pixels.h"
 
 namespace sortlast {
 
@@ -34,6 +35,8 @@ void DirectSend::begin(const FrameSetup& setup) {
   received_ = 0;
   error_.clear();
   if (rank_ != 0) return;
+  if (isProjection(opt_.projection) && opt_.precision != Precision::kFloat)
+    throw std::logic_error("direct send: projections are combined in float only");
   const size_t n = setup.order->bricks.size();
   seen_.assign(n, false);
   expected_ = int(n) - setup.brick_count;
@@ -147,7 +150,10 @@ void DirectSend::blendInOrder(const std::vector<int>& order) {
     std::vector<const BrickImage*> one{&it->second};
     dirty_ = unionOf(dirty_, it->second.rect);
     if (opt_.precision == Precision::kFloat)
-      blendBackToFront(one, frame_f_, opt_.emission ? WireFormat::Emission : WireFormat::RGBA8);
+      blendBackToFront(one, frame_f_,
+                       isProjection(opt_.projection) ? opt_.projection
+                       : opt_.emission               ? WireFormat::Emission
+                                                     : WireFormat::RGBA8);
     else
       blendBackToFront(one, frame_8_);
     pending_.erase(it);
@@ -202,6 +208,12 @@ ImageRGBA8 DirectSend::finish(CompositeStats& stats, ImageF* float_frame) {
     // frame, so it stays transparent rather than costing a rounding pass over the frame.
     out = frameImage(frame_f_.width, frame_f_.height);
     chargePixels(PixelWork::Fill8, out.width * static_cast<long long>(out.height));
+    if (isProjection(opt_.projection)) {  // the final values, coloured once (rows in place)
+      if (!opt_.colour_projection) throw std::logic_error("direct send: a projection without its colouring");
+      for (int y = dirty_.y; y < dirty_.y + dirty_.h; ++y)
+        opt_.colour_projection(&frame_f_.px[(size_t(y) * frame_f_.width + size_t(dirty_.x)) * 4],
+                               size_t(dirty_.w));
+    }
     if (!(opt_.emission && float_frame)) {
       chargePixels(PixelWork::Round8, dirty_.area());
       // Rows of the touched rectangle, rounded on the pixel threads.

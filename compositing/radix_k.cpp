@@ -10,6 +10,7 @@
 #include "compositing/blend.h"
 #include "compositing/mpi_transport.h"
 #include "compositing/pixel_cost.h"
+#include "compositing/projection_pixels.h"
 #include "compositing/radix_k_plan.h"
 
 namespace sortlast {
@@ -86,7 +87,7 @@ class Exchange {
 
 // This rank's bricks, far to near, blended into one image shrunk to its active rectangle.
 RectImage blendOwnBricks(const std::vector<BrickImage>& mine, const std::vector<int>& brick_order,
-                         bool emission) {
+                         WireFormat format) {
   std::map<int, const BrickImage*> by_id;
   for (const BrickImage& b : mine) by_id[b.brick_id] = &b;
   std::vector<const BrickImage*> seq;
@@ -96,7 +97,7 @@ RectImage blendOwnBricks(const std::vector<BrickImage>& mine, const std::vector<
   }
   if (seq.size() != mine.size() || by_id.size() != mine.size())
     throw std::runtime_error("radix-k: this rank's brick ids are not in the visibility order");
-  RectImage img = blendBackToFront(seq, emission ? WireFormat::Emission : WireFormat::RGBA8);
+  RectImage img = blendBackToFront(seq, format);
   Rect active = activeRect(img, img.rect);
   return active == img.rect ? img : crop(img, active);
 }
@@ -123,7 +124,9 @@ ImageRGBA8 radixKComposite(std::vector<BrickImage> mine, const VisibilityOrder& 
                            int height, int k, Transport& transport, CompositeStats& stats,
                            const CompositeOptions& options, ImageF* float_frame) {
   // Partial composites travel at 16 bits unless the scene asks for the paper's RGBA8.
-  const WireFormat partials = options.emission                      ? WireFormat::Emission
+  const bool projection = isProjection(options.projection);
+  const WireFormat partials = projection                            ? options.projection
+                              : options.emission                      ? WireFormat::Emission
                               : options.precision == Precision::kRgba8 ? WireFormat::RGBA8
                                                                       : WireFormat::RGBA16;
   Stopwatch watch(stats);
@@ -135,7 +138,10 @@ ImageRGBA8 radixKComposite(std::vector<BrickImage> mine, const VisibilityOrder& 
                                 std::to_string(ranks));
 
   // 1. Own bricks, then everyone's content rectangle.
-  RectImage image = blendOwnBricks(mine, order.bricks, options.emission);
+  // A projection's brick images are combined in any order; over needs the visibility order.
+  RectImage image = blendOwnBricks(mine, order.bricks,
+                                   projection ? options.projection
+                                              : options.emission ? WireFormat::Emission : WireFormat::RGBA8);
   const Rect& c = image.rect;
   watch.lapComposite();
   std::vector<int> rects = transport.allgather({c.x, c.y, c.w, c.h});
@@ -177,7 +183,7 @@ ImageRGBA8 radixKComposite(std::vector<BrickImage> mine, const VisibilityOrder& 
     } else {
       RectImage front = ex.receive(plan.rank_at[size_t(pos + 1)], kFoldTag, partials,
                                     plan.content[size_t(pos + 1)]);
-      image = blendBackToFront(std::vector<const RectImage*>{&image, &front});
+      image = blendBackToFront(std::vector<const RectImage*>{&image, &front}, partials);
       unit = pos / 2;
     }
   } else if (pos >= 0) {
@@ -205,8 +211,13 @@ ImageRGBA8 radixKComposite(std::vector<BrickImage> mine, const VisibilityOrder& 
       }
       layers.push_back(&received[m]);
     }
-    image = blendBackToFront(layers);
+    image = blendBackToFront(layers, partials);
     ex.finish();
+  }
+  // A projection's final values, coloured where the final part is made (then rounded as any).
+  if (projection && unit >= 0 && !image.rect.empty()) {
+    if (!options.colour_projection) throw std::logic_error("radix-k: a projection without its colouring");
+    options.colour_projection(image.px.data(), size_t(image.rect.area()));
   }
 
   markGatherStart();

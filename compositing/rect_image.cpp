@@ -11,6 +11,7 @@
 #include "compositing/half.h"
 #include "compositing/over.h"
 #include "compositing/pixel_cost.h"
+#include "compositing/projection_pixels.h"
 #include "compositing/rle.h"
 
 namespace sortlast {
@@ -199,6 +200,8 @@ BrickImage encodePart(const RectImage& img, const Rect& part, int id, WireFormat
         toRGBA8(row + 4 * x, o);
       else if (format == WireFormat::Emission)
         toEmission16(row + 4 * x, o);
+      else if (isProjection(format))
+        toProjected(format, row + 4 * x, o);
       else
         toRGBA16(row + 4 * x, o);
   }
@@ -215,6 +218,8 @@ RawPart rawFinalPart(const RectImage& img, const Rect& bound, WireFormat format)
   const size_t n = size_t(bound.area());
   chargePixels(PixelWork::Fill8, bound.area());  // the zero fill of the new buffer
   out.rgba8.assign(n * 4, 0);
+  if (isProjection(format))
+    throw std::logic_error("final part: a projection's parts are coloured before they are made");
   const bool exact = format != WireFormat::RGBA8;
   if (exact) {
     chargePixels(PixelWork::Copy, bound.area());  // the float buffer's zero fill
@@ -266,6 +271,8 @@ RectImage decodePart(const BrickImage& b, WireFormat format, const Rect& within)
   RectImage out(b.rect);
   if (format == WireFormat::Emission)
     for (size_t i = 0; i < size_t(b.rect.area()); ++i) fromEmission16(&px[8 * i], &out.px[4 * i]);
+  else if (isProjection(format))
+    for (size_t i = 0; i < size_t(b.rect.area()); ++i) fromProjected(format, &px[8 * i], &out.px[4 * i]);
   else if (format == WireFormat::RGBA16)
     for (size_t i = 0; i < out.px.size(); ++i) out.px[i] = fromRGBA16(&px[2 * i]);
   else

@@ -25,7 +25,7 @@ StrategyForecast forecastDirect(const FrameFootprint& fp, int width, int height,
                                 const CompositeOptions& opt, const ModelSettings& m) {
   const Cost cost{m.rates};
   const int ranks = int(fp.rect.size());
-  const int brick_bytes = opt.emission ? 8 : 4;
+  const int brick_bytes = opt.emission || opt.projection != WireFormat::RGBA8 ? 8 : 4;
   Rect dirty;
   double pixels = 0, bytes_in = 0;
   int messages = 0;
@@ -61,8 +61,8 @@ StrategyForecast forecastRadixK(const VisibilityOrder& order, const FrameFootpri
   const double slow = std::max(1.0, m.ranks_per_core);  // ranks sharing a core share its time
   const double lat = m.network.latency_s, bw = m.network.bandwidth_Bps;
   const int ranks = int(fp.rect.size());
-  const int brick_bytes = opt.emission ? 8 : 4;
-  const int partial = opt.emission ? 8 : opt.precision == Precision::kRgba8 ? 4 : 8;
+  const int brick_bytes = opt.emission || opt.projection != WireFormat::RGBA8 ? 8 : 4;
+  const int partial = opt.emission || opt.projection != WireFormat::RGBA8 ? 8 : opt.precision == Precision::kRgba8 ? 4 : 8;
   StrategyForecast f{k == 2 ? "binary-swap" : "radix-k", k};
   auto phase = [&](const char* name, double compute, double other) {
     f.phases.emplace_back(name, compute * slow + other);

@@ -8,6 +8,7 @@
 #include "common/error.h"
 #include "io/particles.h"
 #include "io/volume_source.h"
+#include "reference/projection_reference.h"
 
 namespace sortlast {
 
@@ -80,6 +81,8 @@ FrameReference::FrameReference(Scene scene, int threads)
     in.tf = scene.transfer.build(lo, hi, scene.volume.grid.minSpacing());
     in.step = scene.reference.step * scene.volume.grid.minSpacing();
     in.shading = scene.render.shading;
+    in.blend = scene.render.projection() ? scene.render.blend : VolumeBlend::kComposite;
+    in.mip_exact = scene.render.mip_exact;
     bounds_ = unite(bounds_, in.vol.grid.worldBox());
     volume_ = std::move(in);
   }
@@ -121,7 +124,10 @@ ImageF FrameReference::render(const Camera& cam, SurfaceImage* surface_out, int 
       surface = std::move(s), colour = std::move(c);
   }
   if (!surface) {
-    if (volume_)
+    if (volume_ && volume_->blend != VolumeBlend::kComposite)  // the scene refuses glow with it
+      out = renderProjectionReference(volume_->vol, volume_->tf, cam, volume_->step, threads_,
+                                      volume_->blend, volume_->mip_exact);
+    else if (volume_)
       out = renderReference(volume_->vol, volume_->tf, cam, volume_->step, threads_, volume_->shading, g);
     else if (g)
       addGlowOnly(out, cam, *g, nullptr);

@@ -50,6 +50,8 @@ class FrameReference {
     TransferFunction tf;
     double step = 0.0;  // world units
     Shading shading;    // render.shading*
+    VolumeBlend blend = VolumeBlend::kComposite;  // a projection: reference/projection_reference.h
+    bool mip_exact = false;
   };
   std::optional<VolumeInput> volume_;
   std::optional<MetaballModel> balls_;

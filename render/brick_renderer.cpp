@@ -17,6 +17,10 @@ VolumeMethod volumeMethod(const Scene& scene) {
   m.raycast_settings.adaptive_step = scene.render.adaptive_step;
   m.raycast_settings.adaptive_tolerance = scene.render.adaptive_step_tolerance;
   m.ray_block_cells = scene.render.ray_block_cells;
+  if (scene.render.projection()) {
+    m.raycast_settings.blend = scene.render.blend;
+    m.raycast_settings.mip_exact = scene.render.mip_exact;
+  }
   return m;
 }
 

@@ -121,6 +121,8 @@ void checkParticleKeys(const Reader& r, ParticleDesc& p);                   // s
 std::vector<std::string> readSeries(const Reader& r, const std::string& key, const Origin& o);  // time.cpp
 void checkTimeKeys(Scene& s);                                               // sections/time.cpp
 void readGlowKeys(const Reader& r, Scene& s);                               // sections/glow.cpp
+// render.blend's projections against the rest of the scene (scene/projection_rules.cpp).
+void checkProjectionKeys(const Scene& s);
 void checkRenderKeys(const Scene& s);                                       // sections/render.cpp
 void readTransferKeys(const Reader& r, const Origin& o, TransferSpec& tf);  // sections/transfer.cpp
 void checkCameraKeys(const Scene& s);                                       // sections/camera.cpp

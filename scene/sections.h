@@ -56,8 +56,14 @@ struct RenderSection {
   double adaptive_step_tolerance = 0.02;  // the step rule's bound (render/volume/step_rule.h)
   Pipeline pipeline = Pipeline::kOverlapped;
   VolumeBlend blend = VolumeBlend::kComposite;
+  bool mip_exact = false;  // mip / minip: the exact extremum of the trilinear field along each ray
 
   bool raycast() const { return method == RenderMethod::kRaycast; }
+  // mip, minip, average, additive: order-free (docs/volumes.md, compositing/projection_pixels.h).
+  bool projection() const {
+    return blend == VolumeBlend::kMip || blend == VolumeBlend::kMinip || blend == VolumeBlend::kAverage ||
+           blend == VolumeBlend::kAdditive;
+  }
 };
 
 // compositing.strategy

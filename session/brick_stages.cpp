@@ -10,6 +10,7 @@
 #include "common/error.h"
 #include "compositing/rect_image.h"
 #include "compositing/rle.h"
+#include "compositing/projection_pixels.h"
 
 namespace sortlast {
 
@@ -44,10 +45,13 @@ void sendBrick(const BrickStages& b, InFlight& f, RankFrameStats& st, std::vecto
   std::span<const uint8_t> px = bf.pixels.px;
   if (bf.pending.pending()) px = bf.pending.ring->map(bf.pending);
   const double t1 = MPI_Wtime();
-  const int pixel_bytes = b.glow ? 8 : 4;  // glow: WireFormat::Emission
+  const bool projection = b.projection != WireFormat::RGBA8;
+  const int pixel_bytes = b.glow || projection ? 8 : 4;  // glow: WireFormat::Emission
   const uint32_t max_run = b.rle ? kMaxRun : 1;
   const bool local = b.glow && b.compositor.takesLocalEmission() && b.dump_layers.empty();
-  if (!bf.rect.empty() && local)
+  if (!bf.rect.empty() && projection)
+    encodeProjected(b.projection, bf.pixels_f, img.rle, max_run);
+  else if (!bf.rect.empty() && local)
     img.emission = std::move(bf.pixels_f);  // blended on this rank: not encoded
   else if (!bf.rect.empty() && b.glow)
     encodeEmission(bf.pixels_f, img.rle, max_run);

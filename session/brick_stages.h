@@ -14,6 +14,7 @@
 
 #include "common/camera.h"
 #include "compositing/compositor.h"
+#include "compositing/rect_image.h"
 #include "render/brick_renderer.h"
 #include "session/fault_injection.h"
 #include "session/frame_stats.h"
@@ -34,6 +35,9 @@ struct BrickStages {
   bool rle = true;
   bool overlapped = true;
   std::string dump_layers;  // also write each brick image here (bench_compositing --layers)
+  // A projection (render.blend: mip, minip, average, additive): images in float, sent in this
+  // format (compositing/projection_pixels.h); RGBA8: none.
+  WireFormat projection = WireFormat::RGBA8;
 };
 
 // Every brick of this rank through the stages. Adds the stages' busy seconds (draw_s, render_s =

@@ -3,6 +3,7 @@
 // (only what changed), and runs one frame: render each brick, encode, composite in visibility
 // order.
 #include "session/render_session.h"
+#include "session/projection_frame.h"
 
 #include "scene/file_steps.h"
 
@@ -123,6 +124,7 @@ struct CompositorKey {
   Precision precision = Precision::kFloat;
   bool overlap = true, rle = true, float_frame = false, emission = false;
   double latency_us = 0, gbps = 0;  // auto's network
+  VolumeBlend blend = VolumeBlend::kComposite;  // a projection's partial images and colouring
   bool operator==(const CompositorKey&) const = default;
 };
 
@@ -148,6 +150,8 @@ std::vector<std::string> frameKeys() {
 
 struct RenderSession::State {
   SessionOptions opts;
+  // The transfer function a projection's final values are coloured with (kept current per request).
+  std::shared_ptr<TransferFunction> projection_tf = std::make_shared<TransferFunction>();
   MPI_Comm comm = MPI_COMM_NULL;
   int rank = 0, size = 1;
   Scene base;
@@ -567,7 +571,12 @@ void RenderSession::State::applyFrameSettings(const Scene& sc, const FrameReques
   // Glow: the frame comes back in float for the tone map.
   const bool float_frame = request.float_frame || glow;
   const CompositingSection& c = sc.compositing;
-  CompositorKey key{c.strategy, c.radix, c.precision, c.overlap, c.rle, float_frame, glow, c.latency_us, c.bandwidth_gbps};
+  // A projection's colouring reads the current transfer function (session/projection_frame.h).
+  const bool projection = sc.hasVolume() && sc.render.projection();
+  if (projection)
+    *projection_tf = sc.transfer.build(data_min, data_max, layout.grid.minSpacing());
+  CompositorKey key{c.strategy, c.radix, c.precision, c.overlap, c.rle, float_frame, glow, c.latency_us, c.bandwidth_gbps,
+                    projection ? sc.render.blend : VolumeBlend::kComposite};
   if (compositor && key == compositor_key) return;
   CompositeOptions copts;
   copts.precision = c.precision;
@@ -575,6 +584,10 @@ void RenderSession::State::applyFrameSettings(const Scene& sc, const FrameReques
   copts.rle = c.rle;
   copts.float_frame = float_frame;
   copts.emission = glow;
+  if (projection) {
+    copts.projection = projectionFormat(sc.render.blend);
+    copts.colour_projection = projectionColouring(sc.render.blend, projection_tf);
+  }
   copts.network_latency_s = c.latency_us * 1e-6;
   copts.network_bandwidth_Bps = c.bandwidth_gbps * 1e9 / 8;
   copts.ranks_per_core = ranks_per_core;
@@ -605,7 +618,9 @@ void RenderSession::State::drawBricks(const Scene& sc, const FrameRequest& reque
   const BrickStages stages{*renderer, *compositor, faults, layout.mine, handles, cam,
                            sc.sampleSpacingWorld(), near_plane, far_plane, want_surface,
                            sc.glow.enabled(), sc.compositing.rle,
-                           sc.render.pipeline == Pipeline::kOverlapped, request.dump_layers};
+                           sc.render.pipeline == Pipeline::kOverlapped, request.dump_layers,
+                           sc.hasVolume() && sc.render.projection() ? projectionFormat(sc.render.blend)
+                                                                    : WireFormat::RGBA8};
   try {
     collectively(comm, [&] {
       faults.beforeBricks();

@@ -11,6 +11,7 @@
 //   raycast_sample.frag.glsl                      uniforms, sampleVolume(), classify(), sampleAt()
 //   [preintegrated_segment.glsl: PREINTEGRATED]   segment()
 //   [raycast_glow.frag.glsl: GLOW]                the glow pieces along the ray
+//   [raycast_projection.frag.glsl: PROJECTION]    the projections' samples (and MIP_EXACT)
 //   raycast_march.frag.glsl                       compositing, the block walk and main()
 //
 // Samples lie on one lattice for every brick: distance t_k = k * delta from the eye. Sample k
@@ -95,6 +96,10 @@
 //     field at the full sampling cost.
 #ifndef GLOW
 #define GLOW_STOP false
+#endif
+#ifndef PROJECTION  // (raycast_projection.frag.glsl: projections never stop early)
+#define ERT_REACHED(a) ((a) >= u_ert)
+#define BLOCK_CANNOT_CHANGE(idx, acc) false
 #endif
 
 // A sample standing for `len` of the ray, front to back (opacity corrected for len); its segment
@@ -193,7 +198,10 @@ struct Walk {
 // k_end, or past the sample after which the ray stopped: its opacity reached u_ert, or (GLOW_STOP)
 // a glow piece is to be closed first.
 void sampleBlock(inout vec4 acc, inout Walk w, int k_end, int m, vec3 dir) {
-#ifdef PREINTEGRATED
+#if defined(PROJECTION)
+  projectSamples(acc, w.k, k_end, dir);  // every sample (m = 1), never stopping early
+  w.k = k_end;
+#elif defined(PREINTEGRATED)
   if (m == 1) {
     // The front value of sample w.k: the back value of sample w.k - 1 if that was just taken.
     float vf = w.k == w.k_back ? w.v_back : sampleVolume(u_eye + (float(w.k) - 0.5) * u_delta * dir);
@@ -245,7 +253,7 @@ void sampleBlock(inout vec4 acc, inout Walk w, int k_end, int m, vec3 dir) {
 // GLOW variant), to go on from w.
 bool march(inout vec4 acc, inout Walk w, float t1, ivec3 nb, vec3 dir) {
   bool more = false;
-  while (w.t < t1 && acc.a < u_ert) {
+  while (w.t < t1 && !ERT_REACHED(acc.a)) {
     uvec2 info = texelFetch(u_skip, w.idx, 0).rg;
     // Every block within d - 1 of this one has its class: the ray crosses that cube at once (d = 1:
     // this block alone), jumping it if empty, else sampling it with one m.
@@ -253,7 +261,7 @@ bool march(inout vec4 acc, inout Walk w, float t1, ivec3 nb, vec3 dir) {
     vec3 te = vec3(exitT(0, last.x), exitT(1, last.y), exitT(2, last.z));
     float tb = min(min(te.x, te.y), min(te.z, t1));
     int k_end = firstSample(tb);  // the first lattice sample this block (or cube) does not own
-    if (info.g != 0u) sampleBlock(acc, w, k_end, blockStep(w.idx, info.g), dir);
+    if (info.g != 0u && !BLOCK_CANNOT_CHANGE(w.idx, acc)) sampleBlock(acc, w, k_end, blockStep(w.idx, info.g), dir);
 #ifdef GLOW
     else if (acc.a < u_ert) glowTo((float(k_end) - 0.5) * u_delta, 1.0 - acc.a);  // jumped: T constant
     // A piece closed inside the block: integrate it, then go on from sample w.k.
@@ -310,6 +318,12 @@ void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
   if (surfaceAt(px)) t1 = min(t1, texelFetch(u_surface, px, 0).x);
   vec4 acc = vec4(0.0);
+#ifdef MIP_EXACT  // the exact extremum over the brick's own part of the ray: no lattice
+  if (!(t0 < t1)) discard;
+  projectExact(acc, t0, t1, dir);
+  frag = acc;
+  return;
+#endif
 #ifdef GLOW
   glowBegin(dir, px, t0, t1);
 #else

@@ -24,17 +24,34 @@ enum RaycastVariant : unsigned {
   kShading = 4,        // SHADING: render.shading
   kGlow = 8,           // GLOW: glow emitters inside the volume
   kFloatFilter = 16,    // FLOAT_FILTER: the volume filtered in float (volume_shading.h floatFilter)
+  // PROJECTION = 1 mip, 2 minip, 3 average, 4 additive (bits 5-7; raycast_projection.frag.glsl)
+  kProjectionShift = 5,
+  kProjectionMask = 7u << kProjectionShift,
+  kMipExact = 256,     // MIP_EXACT: render.mip_exact
 };
+
+// The variant bits of a projection (0: emission-absorption).
+unsigned projectionBits(VolumeBlend b, bool exact) {
+  const unsigned p = b == VolumeBlend::kMip       ? 1u
+                     : b == VolumeBlend::kMinip   ? 2u
+                     : b == VolumeBlend::kAverage ? 3u
+                     : b == VolumeBlend::kAdditive ? 4u
+                                                   : 0u;
+  return (p << kProjectionShift) | (p != 0 && p <= 2 && exact ? unsigned(kMipExact) : 0u);
+}
 
 // The fragment shader of a variant: render/volume/raycast_march.frag.glsl describes the chunks.
 ProgramSources raycastSources(unsigned v) {
   const bool glow = v & kGlow, shading = v & kShading, preint = v & kPreintegrated;
+  const unsigned projection = (v & kProjectionMask) >> kProjectionShift;
   ShaderSource fragment;
+  if (projection) fragment.define("PROJECTION", std::to_string(projection));
   fragment.defineIf(v & kAdaptive, "ADAPTIVE")
       .defineIf(preint, "PREINTEGRATED")
       .defineIf(shading, "SHADING")
       .defineIf(v & kFloatFilter, "FLOAT_FILTER")
       .defineIf(glow, "GLOW")
+      .defineIf(v & kMipExact, "MIP_EXACT")
       .addIf(glow, glsl::glow_segment)
       .addIf(glow, glsl::glow_emitters)
       .add(glsl::volume_filter)
@@ -42,6 +59,7 @@ ProgramSources raycastSources(unsigned v) {
       .add(glsl::raycast_sample_frag)
       .addIf(preint, glsl::preintegrated_segment)
       .addIf(glow, glsl::raycast_glow_frag)
+      .addIf(projection != 0, glsl::raycast_projection_frag)
       .add(glsl::raycast_march_frag);
   return {ShaderSource().add(glsl::fullscreen_vert), fragment};
 }
@@ -71,6 +89,7 @@ RaycastRenderer::~RaycastRenderer() {
       gl_.DeleteTextures(1, &b.volume.texture);
     gl_.DeleteTextures(1, &b.planes);
     gl_.DeleteTextures(1, &b.skip);
+    gl_.DeleteTextures(1, &b.range);
     if (b.adaptive) gl_.DeleteTextures(1, &b.lookup.table);
   }
   gl_.DeleteVertexArrays(1, &vao_);
@@ -147,6 +166,12 @@ int RaycastRenderer::addGpuBrick(GpuBrick g) {
   gl_.TexImage3D(GL_TEXTURE_3D, 0, GL_RG8UI, nb.x, nb.y, nb.z, 0, GL_RG_INTEGER, GL_UNSIGNED_BYTE,
                  nullptr);
   nearest(gl_, GL_TEXTURE_3D);
+  std::vector<float> range(2 * g.blocks.vmin.size());
+  for (size_t i = 0; i < g.blocks.vmin.size(); ++i) range[2 * i] = g.blocks.vmin[i], range[2 * i + 1] = g.blocks.vmax[i];
+  gl_.GenTextures(1, &g.range);
+  gl_.BindTexture(GL_TEXTURE_3D, g.range);
+  gl_.TexImage3D(GL_TEXTURE_3D, 0, GL_RG32F, nb.x, nb.y, nb.z, 0, GL_RG, GL_FLOAT, range.data());
+  nearest(gl_, GL_TEXTURE_3D);
   gl_.ActiveTexture(GL_TEXTURE0);
   gl_.check("ray caster brick upload");
   bricks_.push_back(std::move(g));
@@ -171,8 +196,11 @@ void RaycastRenderer::setGlobalRanges(std::vector<float> vmin, std::vector<float
 
 void RaycastRenderer::classify(GpuBrick& g, float delta) {
   const ClassKey key{table_.version(), ranges_version_, delta, settings_.adaptive_step,
-                     settings_.adaptive_tolerance};
+                     settings_.adaptive_tolerance, int(settings_.blend) * 2 + (settings_.mip_exact ? 1 : 0)};
   if (key == g.classified) return;
+  const bool projection_counts_all = settings_.blend == VolumeBlend::kMip ||
+                                     settings_.blend == VolumeBlend::kMinip ||
+                                     settings_.blend == VolumeBlend::kAverage;
   const BrickBlocks& b = g.blocks;
   const size_t n = b.vmin.size();
   std::vector<unsigned char> visible(n);
@@ -185,8 +213,13 @@ void RaycastRenderer::classify(GpuBrick& g, float delta) {
         // Pre-integrated segments reach up to delta/2 <= one voxel beyond the block
         // (render/volume/raycast_march.frag.glsl): the whole block's range grown by one sample
         // holds their ends.
-        visible[i] = (table_.preintegrated() && b.global ? table_.visible(b.grown_min[i], b.grown_max[i])
-                                                         : table_.visible(b.vmin[i], b.vmax[i]))
+        // mip, minip and average count every sample whatever its opacity: no block is empty
+        // for them (a block holds samples where vmin <= vmax). Additive adds c a, exactly zero
+        // where the table's opacity is: its empty blocks are skipped as emission-absorption's.
+        const bool counts_all = projection_counts_all;
+        visible[i] = (counts_all ? b.vmin[i] <= b.vmax[i]
+                      : table_.preintegrated() && b.global ? table_.visible(b.grown_min[i], b.grown_max[i])
+                                                           : table_.visible(b.vmin[i], b.vmax[i]))
                          ? 1 : 0;
         if (!visible[i]) continue;
         g.any = true;
@@ -198,7 +231,7 @@ void RaycastRenderer::classify(GpuBrick& g, float delta) {
       }
   // Adaptive steps need the whole blocks' ranges (the same m in every brick sharing a block).
   const StepRule* rule = nullptr;
-  if (settings_.adaptive_step && b.global && !global_min_.empty()) {
+  if (settings_.adaptive_step && b.global && !global_min_.empty() && !projecting()) {
     ClassKey rk{table_.version(), 0, delta, true, settings_.adaptive_tolerance};
     if (!rule_ || !(rk == rule_key_)) {
       rule_ = std::make_unique<StepRule>(table_.entries(), table_.rangeLo(), table_.rangeHi(), delta,
@@ -225,7 +258,10 @@ void RaycastRenderer::classify(GpuBrick& g, float delta) {
   std::vector<unsigned char> texels(2 * n);
   for (size_t i = 0; i < n; ++i) {
     // The ADAPTIVE variant reads each block's own samples: its rays sample one block at a time.
-    texels[2 * i] = !b.global && cls[i] ? 1 : reach[i];
+    // mip / minip (sampled) ask per block whether it can change the ray's result: one at a time.
+    const bool per_block = (settings_.blend == VolumeBlend::kMip || settings_.blend == VolumeBlend::kMinip) &&
+                           !settings_.mip_exact;
+    texels[2 * i] = (!b.global || per_block) && cls[i] ? 1 : reach[i];
     texels[2 * i + 1] = cls[i];
   }
   gl_.ActiveTexture(GL_TEXTURE4);
@@ -244,7 +280,10 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
   GpuBrick& g = bricks_.at(size_t(handle));
   const VolumeBrick& b = g.volume;
   RenderedBrick out;
-  const bool preint = table_.preintegrated();
+  const unsigned projection = projectionBits(settings_.blend, settings_.mip_exact);
+  if (projection && (glow || (surface && !surface->rect.empty()) || g.adaptive || shading_.enabled))
+    throw std::logic_error("ray caster: a projection with glow, a surface, adaptive blocks or shading");
+  const bool preint = table_.preintegrated() && !projection;  // segments mean nothing to a projection
   if (preint && g.adaptive)  // the scene refuses this (transfer.preintegrated with adaptive.tolerance)
     throw std::logic_error("ray caster: pre-integration of adaptive bricks is not supported");
   classify(g, float(spacing));
@@ -262,15 +301,17 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
 
   target_.begin(r, has_surface ? surface : nullptr);
   if (g.any || glowing) {
-    gl_.Enable(GL_BLEND);
-    gl_.BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // the ray's colour over the surface's
+    if (!projection) {
+      gl_.Enable(GL_BLEND);
+      gl_.BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // the ray's colour over the surface's
+    }
     // Adaptive blocks cannot be shaded (raycast_sample.frag.glsl sampleAt); the scene refuses it.
     if (g.adaptive && shading_.enabled)
       throw std::logic_error("ray caster: gradient shading of an adaptive brick");
     const GlProgram& program =
         programs_.get((g.adaptive ? kAdaptive : 0) | (preint ? kPreintegrated : 0) |
                       (shading_.enabled ? kShading : 0) | (float_filter_ ? kFloatFilter : 0) |
-                      (glowing ? kGlow : 0));
+                      (glowing ? kGlow : 0) | projection);
     gl_.UseProgram(program);
     setPixelRayUniforms(program, cam);
     if (g.adaptive) {
@@ -313,6 +354,11 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
     gl_.BindTexture(GL_TEXTURE_2D, g.planes);
     gl_.ActiveTexture(GL_TEXTURE4);
     gl_.BindTexture(GL_TEXTURE_3D, g.skip);
+    if (settings_.blend == VolumeBlend::kMip || settings_.blend == VolumeBlend::kMinip) {
+      program.set("u_block_range", 12);
+      gl_.ActiveTexture(GL_TEXTURE12);
+      gl_.BindTexture(GL_TEXTURE_3D, g.range);
+    }
     gl_.ActiveTexture(GL_TEXTURE0);
     gl_.BindTexture(GL_TEXTURE_3D, b.texture);
     gl_.BindVertexArray(vao_);
@@ -320,7 +366,7 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
     gl_.Disable(GL_BLEND);
   }
   out.rect = r;
-  if (glow)
+  if (glow || projection)  // a projection's pixels are values and sums: float, not colour
     out.pixels_f = target_.finishFloat(r);
   else
     target_.finish(r, out);

@@ -30,6 +30,7 @@
 #include "adaptive/adaptive_brick.h"
 #include "common/brick.h"
 #include "common/camera.h"
+#include "scene/sections.h"
 #include "transfer/shading.h"
 #include "transfer/transfer_function.h"
 #include "render/gl/brick_output.h"
@@ -52,6 +53,11 @@ struct RaycastSettings {
   // largest with m delta osc <= adaptive_tolerance.
   bool adaptive_step = false;
   double adaptive_tolerance = 0.02;
+  // render.blend: a projection (mip, minip, average, additive) or emission-absorption (composite);
+  // a projection's image comes back in float (RenderedBrick::pixels_f, its pixels
+  // compositing/projection_pixels.h's), every lattice sample taken, none stopping early.
+  VolumeBlend blend = VolumeBlend::kComposite;
+  bool mip_exact = false;  // mip / minip: the exact extremum along each ray (render.mip_exact)
 };
 
 class RaycastRenderer : public VolumeRenderer {
@@ -72,6 +78,7 @@ class RaycastRenderer : public VolumeRenderer {
   void setDeferredReadback(bool on) override { target_.setDeferred(on); }
   // Early ray termination and adaptive stepping can change between frames.
   void setSettings(const RaycastSettings& settings) { settings_ = settings; }
+  bool projecting() const { return settings_.blend != VolumeBlend::kComposite; }
   // Gradient shading (transfer/shading.h) for the next frames; not for adaptive bricks.
   void setShading(const Shading& shading) override { shading_ = shading; }
   // Uploads a brick's stored samples (x fastest); returns a handle for render().
@@ -114,6 +121,7 @@ class RaycastRenderer : public VolumeRenderer {
     float delta = 0.0f;
     bool adaptive_step = false;
     double tolerance = 0.0;
+    int blend = 0;
     bool operator==(const ClassKey&) const = default;
   };
   VolumeTexturePool* pool_ = nullptr;
@@ -122,6 +130,7 @@ class RaycastRenderer : public VolumeRenderer {
     BrickBlocks blocks;
     unsigned planes = 0;  // block planes: R32F, (largest block count + 1) x 3
     unsigned skip = 0;    // per block: RG8UI (distance to the nearest non-empty block, log2 m)
+    unsigned range = 0;   // per block: RG32F (vmin, vmax), what mip / minip jump blocks by
     ClassKey classified;  // what `skip`, `any` and `bound` hold now
     bool any = false;     // some block is not empty
     Box3 bound;           // the box around the non-empty blocks

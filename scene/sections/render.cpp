@@ -48,11 +48,27 @@ std::vector<sortlast::SceneKey> sortlast::renderKeys() {
      Choice{member<&Scene::render, &RenderSection::method>}},
     {"render.blend", "composite",
      "How a volume's samples along each ray make its pixel: `composite` (emission and "
-     "absorption, front to back), `mip` / `minip` (the largest / smallest value a ray meets), "
-     "`average` (the mean value along the ray inside the volume), `additive` (the sum of the "
-     "samples' emission without absorption), `isosurface` (the first crossings of "
-     "`render.isovalues`).",
+     "absorption, front to back), `mip` / `minip` (the largest / smallest trilinear value among "
+     "the lattice samples a ray takes inside the volume; missing (NaN) samples ignored), "
+     "`average` (the mean of those samples: their sum over their count), `additive` (the sum "
+     "over the samples of the transfer function's premultiplied emission c(v) a, a = 1 - "
+     "exp(-tau(v) spacing) the opacity corrected for the step, without absorption; alpha the sum "
+     "of the a, both clamped to 1 in the frame), `isosurface` (the first crossings of "
+     "`render.isovalues`). mip, minip and average colour the projected value v once, on the "
+     "final value, through the transfer function: the pixel is (c(v) a(v), a(v)), c the table's "
+     "colour and a(v) its opacity (`transfer.opacity` at v, per `transfer.unit_length`); a pixel "
+     "no sample reached stays transparent. Projections never stop early (no early ray "
+     "termination) and combine bricks with max / min / sum (docs/volumes.md). Ray casting only, "
+     "compositing.precision float, without particles, surfaces, glow, shading, adaptive "
+     "sampling or adaptive steps; transfer.preintegrated does not apply.",
      Choice{member<&Scene::render, &RenderSection::blend>}},
+    {"render.mip_exact", "false",
+     "`render.blend: mip` / `minip`: the exact largest / smallest value of the trilinear field "
+     "along each ray inside the volume, instead of the largest / smallest sample's: the ray "
+     "walks the volume's cells, and in each the field on the ray is a cubic in t whose extremum "
+     "is at an end or at a root of its quadratic derivative (closed form). Thin features between "
+     "samples keep their peak; it costs more per ray than sampling (docs/volumes.md).",
+     Flag{member<&Scene::render, &RenderSection::mip_exact>}},
     {"render.pipeline", "overlapped",
      "How each brick's pixels travel from GL to the compositor. `overlapped`: converted to RGBA8 "
      "on the GPU (rounded as the CPU rounds, bit for bit), read through a ring of pixel-buffer "
@@ -108,9 +124,10 @@ namespace sortlast {
 
 // A device index names an EGL device: with OSMesa it would be ignored without a word.
 void checkRenderKeys(const Scene& s) {
-  if (s.render.blend != VolumeBlend::kComposite)
+  if (s.render.blend == VolumeBlend::kIsosurface)
     throw InputError("scene key 'render.blend': " + std::string(nameOf(s.render.blend)) +
-                     " is not available yet (only composite)");
+                     " is not available yet");
+  checkProjectionKeys(s);
   if (s.render.device >= 0 && s.render.backend != GlBackend::kEgl)
     throw InputError("scene key 'render.device': device " + std::to_string(s.render.device) +
                      " names an EGL device, but render.backend is " + std::string(nameOf(s.render.backend)) +

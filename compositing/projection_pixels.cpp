@@ -1,0 +1,98 @@
+#include "compositing/projection_pixels.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+#include <glm/gtc/packing.hpp>
+
+#include "compositing/half.h"
+#include "compositing/rle.h"
+
+namespace sortlast {
+
+void toProjected(WireFormat f, const float* in, uint8_t* out) {
+  std::memset(out, 0, 8);
+  if (!projectedPresent(f, in)) return;
+  if (f == WireFormat::Additive) {
+    uint16_t v[4];
+    for (int c = 0; c < 3; ++c) v[c] = halfBits(std::clamp(in[c], 0.0f, 65504.0f));
+    v[3] = uint16_t(halfBits(std::clamp(in[3], 0.0f, 65504.0f)) | 0x8000u);  // -alpha, -0 included
+    for (int c = 0; c < 4; ++c) {
+      out[2 * c] = uint8_t(v[c] & 0xff);
+      out[2 * c + 1] = uint8_t(v[c] >> 8);
+    }
+    return;
+  }
+  const float w = -in[3];  // < 0: the sign bit lands in byte 7 (little-endian)
+  std::memcpy(out, &in[0], 4);
+  std::memcpy(out + 4, &w, 4);
+}
+
+void fromProjected(WireFormat f, const uint8_t* in, float* out) {
+  for (int c = 0; c < 4; ++c) out[c] = 0.0f;
+  if ((in[6] | in[7]) == 0) return;  // a run's pixel: absent
+  if (f == WireFormat::Additive) {
+    for (int c = 0; c < 4; ++c) {
+      const uint16_t h = uint16_t(unsigned(in[2 * c]) | unsigned(in[2 * c + 1]) << 8);
+      float x = glm::unpackHalf1x16(c == 3 ? uint16_t(h & 0x7fffu) : h);
+      out[c] = std::isfinite(x) ? std::max(x, 0.0f) : 0.0f;
+    }
+    return;
+  }
+  float v, w;
+  std::memcpy(&v, in, 4);
+  std::memcpy(&w, in + 4, 4);
+  w = -w;
+  if (!std::isfinite(v) || !std::isfinite(w) || !(w > 0.0f)) return;  // corrupt: absent
+  out[0] = v;
+  out[3] = w;
+}
+
+void encodeProjected(WireFormat f, std::span<const float> px, std::vector<uint8_t>& out,
+                     uint32_t max_run) {
+  if (!isProjection(f)) throw std::logic_error("encodeProjected: not a projection format");
+  if (max_run < 1 || max_run > kMaxRun)
+    throw std::invalid_argument("RLE: max_run must be in [1, 2^24 - 1]");
+  const size_t n = px.size() / 4, start = out.size();
+  out.resize(start + n * 8);
+  uint8_t* o = out.data() + start;
+  size_t i = 0;
+  while (i < n) {
+    if (projectedPresent(f, &px[4 * i])) {
+      toProjected(f, &px[4 * i], o);
+      o += 8;
+      ++i;
+      continue;
+    }
+    size_t j = i + 1;
+    while (j < n && !projectedPresent(f, &px[4 * j]) && j - i < max_run) ++j;
+    const uint32_t run = uint32_t(j - i);
+    const uint8_t marker[8] = {uint8_t(run & 0xff), uint8_t((run >> 8) & 0xff),
+                               uint8_t((run >> 16) & 0xff)};
+    std::memcpy(o, marker, 8);
+    o += 8;
+    i = j;
+  }
+  out.resize(size_t(o - out.data()));
+}
+
+void combineWireRow(WireFormat f, const uint8_t* s, size_t n, float* d) {
+  for (size_t x = 0; x < n; ++x) {
+    float p[4];
+    fromProjected(f, s + 8 * x, p);
+    combineProjected(f, p, d + 4 * x);
+  }
+}
+
+void combineRectF(WireFormat f, const float* src, const Rect& r, float* dst, int dst_width, int ox,
+                  int oy) {
+  for (int y = 0; y < r.h; ++y) {
+    const float* s = src + size_t(y) * r.w * 4;
+    float* d = dst + (size_t(r.y - oy + y) * dst_width + size_t(r.x - ox)) * 4;
+    for (int x = 0; x < r.w; ++x) combineProjected(f, s + 4 * x, d + 4 * x);
+  }
+}
+
+}  // namespace sortlast

@@ -1,0 +1,76 @@
+#pragma once
+// Partial images of the projection blend modes (render.blend: mip, minip, average, additive): what
+// a ray's samples leave in one brick, combined with other bricks' by an order-free operator, so
+// every strategy may group the partial images any way it likes (no visibility order needed).
+//
+// In float (RectImage, ImageF, a brick's float pixels) a projected pixel is four floats:
+//   ValueMax / ValueMin (mip / minip): (v, 0, 0, 1) where a sample was taken, v its largest /
+//     smallest value; (0, 0, 0, 0) where none was (the pixel is "absent": no sample reached it).
+//   ValueSum (average): (sum of the values, 0, 0, count of the samples); absent: zero count.
+//   Additive: premultiplied (sum c_i alpha_i, sum alpha_i); absent: all zero.
+// combine() is the operator: max / min of v between present pixels (an absent one is the
+// identity), or the channel-wise sum. All are associative and commutative, up to float rounding
+// for the sums (about 2^-24 relative a sum).
+//
+// On the wire, 8 bytes a pixel (RLE-coded as RGBA16 is: a pixel whose bytes 6 and 7 are zero is
+// a run of absent pixels, rle.h):
+//   ValueMax, ValueMin, ValueSum: float32 v (or the sum) in bytes 0-3, and float32 -w in bytes
+//     4-7, w = 1 (mip, minip) or the count (average). A present pixel has w > 0, so byte 7 holds
+//     the sign bit: never 0, never read as a run. Exact: no rounding at all, so a value travels
+//     bit for bit and the transfer function sees the same float on every rank count.
+//   Additive: four IEEE halves (compositing/half.h): rgb sums and -alpha (the sign bit set, so the
+//     alpha word is never 0 on a pixel that shows). 2^-11 relative per rounding; the sums are
+//     clamped to 65504.
+// The colouring through the transfer function happens once, on the final value (Compositor's
+// CompositeOptions::colour_projection).
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "compositing/rect_image.h"
+
+namespace sortlast {
+
+inline bool isProjection(WireFormat f) {
+  return f == WireFormat::ValueMax || f == WireFormat::ValueMin || f == WireFormat::ValueSum ||
+         f == WireFormat::Additive;
+}
+
+// dst = dst (op) src, in float, for projection format `f`.
+inline void combineProjected(WireFormat f, const float* src, float* dst) {
+  if (f == WireFormat::ValueMax || f == WireFormat::ValueMin) {
+    if (!(src[3] > 0.0f)) return;  // absent: the identity
+    if (!(dst[3] > 0.0f)) {
+      for (int c = 0; c < 4; ++c) dst[c] = src[c];
+      return;
+    }
+    dst[0] = f == WireFormat::ValueMax ? (src[0] > dst[0] ? src[0] : dst[0])
+                                       : (src[0] < dst[0] ? src[0] : dst[0]);
+    return;
+  }
+  for (int c = 0; c < 4; ++c) dst[c] += src[c];
+}
+
+// Whether a float projected pixel is present (encodes as a pixel, not a run).
+inline bool projectedPresent(WireFormat f, const float* p) {
+  return f == WireFormat::Additive ? shows(p) : p[3] > 0.0f;
+}
+
+// One float pixel to / from the wire (8 bytes). toProjected of an absent pixel writes zeros; a
+// corrupt pixel (non-finite, or w <= 0 for the value formats) decodes as absent.
+void toProjected(WireFormat f, const float* in, uint8_t* out);
+void fromProjected(WireFormat f, const uint8_t* in, float* out);
+
+// Float pixels (4 a pixel, row 0 first) to format `f` and RLE in one pass, appended to `out`
+// (an absent pixel is part of a run).
+void encodeProjected(WireFormat f, std::span<const float> px, std::vector<uint8_t>& out,
+                     uint32_t max_run);
+
+// `n` wire pixels, all present (a stretch between runs), decoded and combined into `d`.
+void combineWireRow(WireFormat f, const uint8_t* s, size_t n, float* d);
+// Float rectangle `r` of `src` combined into `dst` (dst_width wide, pixel (0, 0) at (ox, oy)).
+void combineRectF(WireFormat f, const float* src, const Rect& r, float* dst, int dst_width, int ox,
+                  int oy);
+
+}  // namespace sortlast

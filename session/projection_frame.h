@@ -1,0 +1,25 @@
+#pragma once
+// The final step of a projection's frame (render.blend: mip, minip, average, additive): the
+// combined values turned into premultiplied RGBA through the transfer function, once, where the
+// compositor makes the final pixels (CompositeOptions::colour_projection).
+#include <cstddef>
+#include <functional>
+#include <memory>
+
+#include "compositing/rect_image.h"
+#include "scene/sections.h"
+#include "transfer/transfer_function.h"
+
+namespace sortlast {
+
+// The wire format of a projection's partial images; RGBA8 for composite (not a projection).
+WireFormat projectionFormat(VolumeBlend blend);
+
+// Colours combined pixels in place: mip / minip (v, ., ., 1) and average (sum, ., ., count) to
+// (c(v) a(v), a(v)) of v = the value or sum / count (transfer/projection_colour.h); additive sums
+// clamped to [0, 1]; an absent pixel stays transparent. `tf` is read at each call (the session
+// keeps it current as requests change the transfer function).
+std::function<void(float*, size_t)> projectionColouring(VolumeBlend blend,
+                                                        std::shared_ptr<const TransferFunction> tf);
+
+}  // namespace sortlast

@@ -1,0 +1,178 @@
+// The projection blend modes' partial images (compositing/projection_pixels.h): their wire
+// formats round-trip (value formats bit for bit, Additive within half rounding), absent pixels
+// become runs, the operators are order-free, and radix-k's groupings give the same frame as
+// combining every brick image at once.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+#include <numeric>
+#include <random>
+#include <thread>
+
+#include "compositing/blend.h"
+#include "compositing/projection_pixels.h"
+#include "compositing/radix_k.h"
+#include "compositing/rle.h"
+#include "thread_transport.h"
+
+namespace sortlast {
+namespace {
+
+constexpr WireFormat kFormats[] = {WireFormat::ValueMax, WireFormat::ValueMin, WireFormat::ValueSum,
+                                   WireFormat::Additive};
+
+// A random present pixel of format f (about one in three absent).
+void randomPixel(WireFormat f, std::mt19937& rng, float* p) {
+  std::uniform_real_distribution<float> u(-3.0f, 5.0f), a(0.0f, 1.0f);
+  for (int c = 0; c < 4; ++c) p[c] = 0.0f;
+  if (rng() % 3 == 0) return;
+  if (f == WireFormat::ValueMax || f == WireFormat::ValueMin) {
+    p[0] = u(rng);
+    p[3] = 1.0f;
+  } else if (f == WireFormat::ValueSum) {
+    const int n = 1 + int(rng() % 400);
+    p[0] = u(rng) * float(n);
+    p[3] = float(n);
+  } else {
+    p[3] = a(rng) * 3.0f;
+    for (int c = 0; c < 3; ++c) p[c] = a(rng) * p[3];
+  }
+}
+
+TEST(ProjectionPixels, WireRoundTripAndRuns) {
+  std::mt19937 rng(7);
+  for (WireFormat f : kFormats) {
+    RectImage img(Rect{2, 3, 40, 5});
+    for (size_t i = 0; i < img.px.size(); i += 4) randomPixel(f, rng, &img.px[i]);
+    // A long absent stretch: one run marker.
+    for (int x = 2; x < 42; ++x) std::fill_n(img.at(x, 5), 4, 0.0f);
+    BrickImage b = encodePart(img, img.rect, 1, f);
+    size_t present = 0;
+    for (size_t i = 0; i < img.px.size(); i += 4) present += projectedPresent(f, &img.px[i]);
+    EXPECT_LT(b.rle.size(), (present + 40) * 8) << "absent pixels did not become runs";
+    RectImage back = decodePart(unpackBrickImage(packBrickImage(b)), f, Rect{0, 0, 100, 100});
+    for (int y = back.rect.y; y < back.rect.y + back.rect.h; ++y)
+      for (int x = back.rect.x; x < back.rect.x + back.rect.w; ++x)
+        for (int c = 0; c < 4; ++c) {
+          const float want = img.at(x, y)[c], got = back.at(x, y)[c];
+          if (f == WireFormat::Additive)
+            EXPECT_NEAR(got, want, want / 2048.0f + 1e-7f);
+          else
+            EXPECT_EQ(got, want) << int(f) << " " << x << "," << y;  // exact, bit for bit
+        }
+    // Every present pixel's bytes 6 and 7 are not both zero (never a run marker).
+    uint8_t wire[8];
+    for (size_t i = 0; i < img.px.size(); i += 4)
+      if (projectedPresent(f, &img.px[i])) {
+        toProjected(f, &img.px[i], wire);
+        EXPECT_NE(wire[6] | wire[7], 0);
+      }
+  }
+}
+
+TEST(ProjectionPixels, OperatorsAreOrderFree) {
+  std::mt19937 rng(11);
+  for (WireFormat f : kFormats)
+    for (int trial = 0; trial < 200; ++trial) {
+      float p[6][4];
+      for (auto& q : p) randomPixel(f, rng, q);
+      // ((((p0 p1) p2) p3) p4) p5 against a shuffled, pairwise tree grouping.
+      float left[4] = {0, 0, 0, 0};
+      for (auto& q : p) combineProjected(f, q, left);
+      int idx[6] = {0, 1, 2, 3, 4, 5};
+      std::shuffle(idx, idx + 6, rng);
+      float a[4] = {0, 0, 0, 0}, b[4] = {0, 0, 0, 0}, c[4] = {0, 0, 0, 0};
+      combineProjected(f, p[idx[0]], a), combineProjected(f, p[idx[1]], a);
+      combineProjected(f, p[idx[2]], b), combineProjected(f, p[idx[3]], b), combineProjected(f, p[idx[4]], b);
+      combineProjected(f, p[idx[5]], c);
+      combineProjected(f, c, b);
+      combineProjected(f, b, a);
+      for (int k = 0; k < 4; ++k) {
+        if (f == WireFormat::ValueMax || f == WireFormat::ValueMin)
+          EXPECT_EQ(a[k], left[k]);  // max and min are exact in any order
+        else
+          EXPECT_NEAR(a[k], left[k], 1e-5f * (std::abs(left[k]) + 1.0f));
+      }
+    }
+}
+
+// Every rank count 1-4 and k = 2, 4: radix-k's frame equals combining every brick at once and
+// colouring it, within one 8-bit step.
+TEST(ProjectionPixels, RadixKMatchesOneCombine) {
+  const int width = 37, height = 29;
+  auto colour = [](float* px, size_t n) {  // a stand-in colouring: grey ramp of the value
+    for (size_t i = 0; i < n; ++i) {
+      float* p = px + 4 * i;
+      if (!(p[3] > 0.0f)) continue;
+      const float v = std::clamp(p[0] / p[3] * 0.1f + 0.4f, 0.0f, 1.0f);
+      p[0] = p[1] = p[2] = v * 0.8f;
+      p[3] = 0.8f;
+    }
+  };
+  auto colourAdd = [](float* px, size_t n) {
+    for (size_t i = 0; i < 4 * n; ++i) px[i] = std::min(px[i], 1.0f);
+  };
+  std::mt19937 rng(3);
+  for (WireFormat f : kFormats)
+    for (int ranks = 1; ranks <= 4; ++ranks)
+      for (int k : {2, 4}) {
+        const int bricks = 6;
+        std::vector<std::vector<float>> floats(bricks);
+        std::vector<BrickImage> images(bricks);
+        for (int i = 0; i < bricks; ++i) {
+          const int x0 = int(rng() % 20), y0 = int(rng() % 15);
+          images[size_t(i)].brick_id = i;
+          images[size_t(i)].rect = {x0, y0, 1 + int(rng() % unsigned(width - x0)),
+                                    1 + int(rng() % unsigned(height - y0))};
+          floats[size_t(i)].resize(size_t(images[size_t(i)].rect.area()) * 4);
+          for (size_t p = 0; p < floats[size_t(i)].size(); p += 4) randomPixel(f, rng, &floats[size_t(i)][p]);
+          encodeProjected(f, floats[size_t(i)], images[size_t(i)].rle, kMaxRun);
+        }
+        ImageF want(width, height);
+        std::vector<const BrickImage*> all;
+        for (const BrickImage& b : images) all.push_back(&b);
+        std::reverse(all.begin(), all.end());  // any order: the operator does not care
+        blendBackToFront(all, want, f);
+        if (f == WireFormat::Additive) colourAdd(want.px.data(), size_t(width) * height);
+        else colour(want.px.data(), size_t(width) * height);
+        const ImageRGBA8 want8 = toRGBA8(want);
+
+        VisibilityOrder order;
+        order.bricks.resize(bricks);
+        std::iota(order.bricks.begin(), order.bricks.end(), 0);
+        order.ranks.resize(size_t(ranks));
+        std::iota(order.ranks.begin(), order.ranks.end(), 0);
+        std::vector<std::vector<BrickImage>> mine(static_cast<size_t>(ranks));
+        for (int i = 0; i < bricks; ++i) mine[size_t(i % ranks)].push_back(images[size_t(i)]);
+        CompositeOptions options;
+        options.projection = f;
+        if (f == WireFormat::Additive) options.colour_projection = colourAdd;
+        else options.colour_projection = colour;
+        Mailbox box;
+        box.sent.resize(size_t(ranks));
+        std::vector<CompositeStats> stats(static_cast<size_t>(ranks));
+        std::vector<ImageRGBA8> frames(static_cast<size_t>(ranks));
+        std::vector<std::string> errors(static_cast<size_t>(ranks));
+        std::vector<std::thread> threads;
+        for (int r = 0; r < ranks; ++r)
+          threads.emplace_back([&, r] {
+            try {
+              ThreadTransport t(box, r, ranks);
+              frames[size_t(r)] = radixKComposite(mine[size_t(r)], order, width, height, k, t,
+                                                  stats[size_t(r)], options);
+            } catch (const std::exception& e) {
+              errors[size_t(r)] = e.what();
+            }
+          });
+        for (auto& t : threads) t.join();
+        for (int r = 0; r < ranks; ++r) ASSERT_EQ(errors[size_t(r)], "") << "rank " << r;
+        int worst = 0;
+        for (size_t i = 0; i < want8.px.size(); ++i)
+          worst = std::max(worst, std::abs(int(want8.px[i]) - int(frames[0].px[i])));
+        EXPECT_LE(worst, 1) << "format " << int(f) << " ranks " << ranks << " k " << k;
+      }
+}
+
+}  // namespace
+}  // namespace sortlast
