@@ -1,6 +1,7 @@
 #include "reference/frame_reference.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <thread>
@@ -8,6 +9,8 @@
 #include "common/error.h"
 #include "io/particles.h"
 #include "io/volume_source.h"
+#include "reference/isosurface_reference.h"
+#include "scene/isosurface_scene.h"
 
 namespace sortlast {
 
@@ -80,6 +83,10 @@ FrameReference::FrameReference(Scene scene, int threads)
     in.tf = scene.transfer.build(lo, hi, scene.volume.grid.minSpacing());
     in.step = scene.reference.step * scene.volume.grid.minSpacing();
     in.shading = scene.render.shading;
+    if (scene.render.blend == VolumeBlend::kIsosurface) {
+      in.isovalues = scene.render.isovalues;
+      for (const std::string& w : isovalueRangeWarnings(in.isovalues, lo, hi)) std::fprintf(stderr, "%s\n", w.c_str());
+    }
     bounds_ = unite(bounds_, in.vol.grid.worldBox());
     volume_ = std::move(in);
   }
@@ -120,7 +127,11 @@ ImageF FrameReference::render(const Camera& cam, SurfaceImage* surface_out, int 
     else
       surface = std::move(s), colour = std::move(c);
   }
-  if (!surface) {
+  if (volume_ && !volume_->isovalues.empty()) {
+    out = renderIsosurfaceReference(volume_->vol, volume_->isovalues, volume_->shading, cam, threads_,
+                                    surface ? &*surface : nullptr, surface ? &colour : nullptr);
+    if (surface && surface_out) *surface_out = std::move(*surface);
+  } else if (!surface) {
     if (volume_)
       out = renderReference(volume_->vol, volume_->tf, cam, volume_->step, threads_, volume_->shading, g);
     else if (g)

@@ -50,6 +50,7 @@ class FrameReference {
     TransferFunction tf;
     double step = 0.0;  // world units
     Shading shading;    // render.shading*
+    std::vector<Isovalue> isovalues;  // render.blend: isosurface (reference/isosurface_reference.h)
   };
   std::optional<VolumeInput> volume_;
   std::optional<MetaballModel> balls_;

@@ -17,6 +17,7 @@ VolumeMethod volumeMethod(const Scene& scene) {
   m.raycast_settings.adaptive_step = scene.render.adaptive_step;
   m.raycast_settings.adaptive_tolerance = scene.render.adaptive_step_tolerance;
   m.ray_block_cells = scene.render.ray_block_cells;
+  if (scene.render.blend == VolumeBlend::kIsosurface) m.raycast_settings.isovalues = scene.render.isovalues;
   return m;
 }
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "scene/scene_keys.h"
+#include "transfer/isosurface.h"
 #include "transfer/shading.h"
 #include "transfer/transfer_function.h"
 
@@ -56,6 +57,7 @@ struct RenderSection {
   double adaptive_step_tolerance = 0.02;  // the step rule's bound (render/volume/step_rule.h)
   Pipeline pipeline = Pipeline::kOverlapped;
   VolumeBlend blend = VolumeBlend::kComposite;
+  std::vector<Isovalue> isovalues;  // render.isovalues (scene/isosurface_scene.h)
 
   bool raycast() const { return method == RenderMethod::kRaycast; }
 };

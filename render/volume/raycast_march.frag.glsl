@@ -11,6 +11,7 @@
 //   raycast_sample.frag.glsl                      uniforms, sampleVolume(), classify(), sampleAt()
 //   [preintegrated_segment.glsl: PREINTEGRATED]   segment()
 //   [raycast_glow.frag.glsl: GLOW]                the glow pieces along the ray
+//   [raycast_isosurface.frag.glsl: ISOSURFACE]    isovalue crossings (render.blend: isosurface)
 //   raycast_march.frag.glsl                       compositing, the block walk and main()
 //
 // Samples lie on one lattice for every brick: distance t_k = k * delta from the eye. Sample k
@@ -193,7 +194,9 @@ struct Walk {
 // k_end, or past the sample after which the ray stopped: its opacity reached u_ert, or (GLOW_STOP)
 // a glow piece is to be closed first.
 void sampleBlock(inout vec4 acc, inout Walk w, int k_end, int m, vec3 dir) {
-#ifdef PREINTEGRATED
+#if defined(ISOSURFACE)
+  isoSamples(acc, w.k, w.k_back, w.v_back, k_end, dir);  // raycast_isosurface.frag.glsl
+#elif defined(PREINTEGRATED)
   if (m == 1) {
     // The front value of sample w.k: the back value of sample w.k - 1 if that was just taken.
     float vf = w.k == w.k_back ? w.v_back : sampleVolume(u_eye + (float(w.k) - 0.5) * u_delta * dir);
@@ -309,6 +312,10 @@ void main() {
   // An opaque particle surface in this brick ends the ray; its colour is already in the target.
   ivec2 px = ivec2(gl_FragCoord.xy);
   if (surfaceAt(px)) t1 = min(t1, texelFetch(u_surface, px, 0).x);
+#ifdef ISOSURFACE
+  isoBegin();
+  bool ends_here = t1 < span.y || span.y >= g_vol_t1;  // at the surface, or leaving the volume
+#endif
   vec4 acc = vec4(0.0);
 #ifdef GLOW
   glowBegin(dir, px, t0, t1);
@@ -322,6 +329,12 @@ void main() {
   marchWithGlow(acc, w, t0, t1, nb, dir);
 #else
   march(acc, w, t1, nb, dir);
+#endif
+#ifdef ISOSURFACE
+  if (ends_here) isoTail(acc, firstSample(t1) - 1, t1, dir);
+#ifdef ISO_DEBUG
+  acc = g_iso_first;
+#endif
 #endif
   frag = acc;
 }

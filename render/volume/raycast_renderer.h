@@ -30,6 +30,7 @@
 #include "adaptive/adaptive_brick.h"
 #include "common/brick.h"
 #include "common/camera.h"
+#include "transfer/isosurface.h"
 #include "transfer/shading.h"
 #include "transfer/transfer_function.h"
 #include "render/gl/brick_output.h"
@@ -52,6 +53,11 @@ struct RaycastSettings {
   // largest with m delta osc <= adaptive_tolerance.
   bool adaptive_step = false;
   double adaptive_tolerance = 0.02;
+  // render.blend: isosurface: these isovalues' crossings instead of the emission-absorption
+  // integral (render/volume/raycast_isosurface.frag.glsl); empty: the integral. With iso_debug
+  // (tests), each pixel gets the first hit's (t, unit gradient) in float instead (t = 0: none).
+  std::vector<Isovalue> isovalues;
+  bool iso_debug = false;
 };
 
 class RaycastRenderer : public VolumeRenderer {
@@ -114,6 +120,7 @@ class RaycastRenderer : public VolumeRenderer {
     float delta = 0.0f;
     bool adaptive_step = false;
     double tolerance = 0.0;
+    std::vector<double> isovalues;
     bool operator==(const ClassKey&) const = default;
   };
   VolumeTexturePool* pool_ = nullptr;
@@ -140,6 +147,7 @@ class RaycastRenderer : public VolumeRenderer {
   RaycastSettings settings_;
   Shading shading_;
   double min_spacing_ = 0.0;  // of the volume's grid (the step rule's cap)
+  Box3 volume_box_;           // the volume's world box (isosurfaces: where rays enter and leave it)
   glm::ivec3 global_count_{0};  // the volume's block grid
   std::vector<float> global_min_, global_max_;  // whole blocks, grown by one sample; empty: not yet
   int ranges_version_ = 0;
