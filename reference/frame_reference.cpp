@@ -1,6 +1,7 @@
 #include "reference/frame_reference.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <thread>
@@ -9,6 +10,8 @@
 #include "io/particles.h"
 #include "io/volume_source.h"
 #include "reference/projection_reference.h"
+#include "reference/isosurface_reference.h"
+#include "scene/isosurface_scene.h"
 
 namespace sortlast {
 
@@ -83,6 +86,10 @@ FrameReference::FrameReference(Scene scene, int threads)
     in.shading = scene.render.shading;
     in.blend = scene.render.projection() ? scene.render.blend : VolumeBlend::kComposite;
     in.mip_exact = scene.render.mip_exact;
+    if (scene.render.blend == VolumeBlend::kIsosurface) {
+      in.isovalues = scene.render.isovalues;
+      for (const std::string& w : isovalueRangeWarnings(in.isovalues, lo, hi)) std::fprintf(stderr, "%s\n", w.c_str());
+    }
     bounds_ = unite(bounds_, in.vol.grid.worldBox());
     volume_ = std::move(in);
   }
@@ -123,7 +130,11 @@ ImageF FrameReference::render(const Camera& cam, SurfaceImage* surface_out, int 
     else
       surface = std::move(s), colour = std::move(c);
   }
-  if (!surface) {
+  if (volume_ && !volume_->isovalues.empty()) {
+    out = renderIsosurfaceReference(volume_->vol, volume_->isovalues, volume_->shading, cam, threads_,
+                                    surface ? &*surface : nullptr, surface ? &colour : nullptr);
+    if (surface && surface_out) *surface_out = std::move(*surface);
+  } else if (!surface) {
     if (volume_ && volume_->blend != VolumeBlend::kComposite)  // the scene refuses glow with it
       out = renderProjectionReference(volume_->vol, volume_->tf, cam, volume_->step, threads_,
                                       volume_->blend, volume_->mip_exact);

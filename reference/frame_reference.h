@@ -52,6 +52,7 @@ class FrameReference {
     Shading shading;    // render.shading*
     VolumeBlend blend = VolumeBlend::kComposite;  // a projection: reference/projection_reference.h
     bool mip_exact = false;
+    std::vector<Isovalue> isovalues;  // render.blend: isosurface (reference/isosurface_reference.h)
   };
   std::optional<VolumeInput> volume_;
   std::optional<MetaballModel> balls_;

@@ -21,6 +21,7 @@ VolumeMethod volumeMethod(const Scene& scene) {
     m.raycast_settings.blend = scene.render.blend;
     m.raycast_settings.mip_exact = scene.render.mip_exact;
   }
+  if (scene.render.blend == VolumeBlend::kIsosurface) m.raycast_settings.isovalues = scene.render.isovalues;
   return m;
 }
 

@@ -1,4 +1,5 @@
 #include "scene/scene.h"
+#include "scene/isosurface_scene.h"
 #include "scene/scene_reader.h"
 
 #include <algorithm>
@@ -211,6 +212,7 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
   readGlowKeys(r, s);
   s.surfaces = parseSurfaces(r.get("surfaces"), origin.base_dir);
   checkRenderKeys(s);
+  s.render.isovalues = parseIsovalues(r.get("render.isovalues"));
   // The rules between sections.
   if (!s.hasVolume() && !s.particles.enabled() && !s.glow.enabled() && s.surfaces.empty())
     throw InputError("the scene has nothing to render: volume.procedural is none with no "
@@ -236,6 +238,7 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
     throw InputError("scene keys 'transfer.preintegrated' and 'adaptive.tolerance': pre-integration "
                      "is not supported with adaptive sampling; set transfer.preintegrated: false or "
                      "adaptive.tolerance: 0");
+  applyIsosurfaceRules(r, s);
   // A segment's ends lie up to half a step beyond the brick that owns it; the bricks' one-voxel
   // ghost layer holds them for steps up to 2 voxels (beyond, brick faces showed seams of 55-74/255).
   if (s.transfer.preintegrated && s.render.sample_spacing > 2.0)

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "scene/scene_keys.h"
+#include "transfer/isosurface.h"
 #include "transfer/shading.h"
 #include "transfer/transfer_function.h"
 
@@ -57,6 +58,7 @@ struct RenderSection {
   Pipeline pipeline = Pipeline::kOverlapped;
   VolumeBlend blend = VolumeBlend::kComposite;
   bool mip_exact = false;  // mip / minip: the exact extremum of the trilinear field along each ray
+  std::vector<Isovalue> isovalues;  // render.isovalues (scene/isosurface_scene.h)
 
   bool raycast() const { return method == RenderMethod::kRaycast; }
   // mip, minip, average, additive: order-free (docs/volumes.md, compositing/projection_pixels.h).

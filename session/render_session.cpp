@@ -6,6 +6,7 @@
 #include "session/projection_frame.h"
 
 #include "scene/file_steps.h"
+#include "scene/isosurface_scene.h"
 
 #include "session/auto_spacing.h"
 #include "session/brick_stages.h"
@@ -13,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -426,6 +428,9 @@ void RenderSession::State::uploadBricks(const Scene& scene, StepData& d) {
   if (scene.hasVolume())
     renderer->enableVolume(scene.transfer.build(d.data_min, d.data_max, layout.grid.minSpacing()),
                            scene.transfer.table_size, scene.render.block_cells, volumeMethod(scene));
+  if (scene.hasVolume() && rank == 0 && scene.render.blend == VolumeBlend::kIsosurface)
+    for (const std::string& w : isovalueRangeWarnings(scene.render.isovalues, d.data_min, d.data_max))
+      std::fprintf(stderr, "%s\n", w.c_str());
   if (has_particles) renderer->enableParticles(metaballSettings(scene.particles));
   renderer->enableSurfaces(scene.surfaces);
   if (scene.glow.enabled()) renderer->enableGlow();

@@ -12,6 +12,7 @@
 //   [preintegrated_segment.glsl: PREINTEGRATED]   segment()
 //   [raycast_glow.frag.glsl: GLOW]                the glow pieces along the ray
 //   [raycast_projection.frag.glsl: PROJECTION]    the projections' samples (and MIP_EXACT)
+//   [raycast_isosurface.frag.glsl: ISOSURFACE]    isovalue crossings (render.blend: isosurface)
 //   raycast_march.frag.glsl                       compositing, the block walk and main()
 //
 // Samples lie on one lattice for every brick: distance t_k = k * delta from the eye. Sample k
@@ -201,6 +202,8 @@ void sampleBlock(inout vec4 acc, inout Walk w, int k_end, int m, vec3 dir) {
 #if defined(PROJECTION)
   projectSamples(acc, w.k, k_end, dir);  // every sample (m = 1), never stopping early
   w.k = k_end;
+#elif defined(ISOSURFACE)
+  isoSamples(acc, w.k, w.k_back, w.v_back, k_end, dir);  // raycast_isosurface.frag.glsl
 #elif defined(PREINTEGRATED)
   if (m == 1) {
     // The front value of sample w.k: the back value of sample w.k - 1 if that was just taken.
@@ -317,6 +320,10 @@ void main() {
   // An opaque particle surface in this brick ends the ray; its colour is already in the target.
   ivec2 px = ivec2(gl_FragCoord.xy);
   if (surfaceAt(px)) t1 = min(t1, texelFetch(u_surface, px, 0).x);
+#ifdef ISOSURFACE
+  isoBegin();
+  bool ends_here = t1 < span.y || span.y >= g_vol_t1;  // at the surface, or leaving the volume
+#endif
   vec4 acc = vec4(0.0);
 #ifdef MIP_EXACT  // the exact extremum over the brick's own part of the ray: no lattice
   if (!(t0 < t1)) discard;
@@ -336,6 +343,12 @@ void main() {
   marchWithGlow(acc, w, t0, t1, nb, dir);
 #else
   march(acc, w, t1, nb, dir);
+#endif
+#ifdef ISOSURFACE
+  if (ends_here) isoTail(acc, firstSample(t1) - 1, t1, dir);
+#ifdef ISO_DEBUG
+  acc = g_iso_first;
+#endif
 #endif
   frag = acc;
 }

@@ -10,6 +10,7 @@
 #include "render/glow/glow_gl.h"
 #include "render/glow/glsl_files.h"
 #include "render/volume/adaptive_gpu_brick.h"
+#include "render/volume/isosurface_uniforms.h"
 #include "render/volume/glsl_files.h"
 #include "render/volume/volume_shading.h"
 
@@ -28,6 +29,8 @@ enum RaycastVariant : unsigned {
   kProjectionShift = 5,
   kProjectionMask = 7u << kProjectionShift,
   kMipExact = 256,     // MIP_EXACT: render.mip_exact
+  kIsosurface = 512,   // ISOSURFACE (and ISO_DEBUG: kIsoDebug): render.blend: isosurface
+  kIsoDebug = 1024,
 };
 
 // The variant bits of a projection (0: emission-absorption).
@@ -52,6 +55,8 @@ ProgramSources raycastSources(unsigned v) {
       .defineIf(v & kFloatFilter, "FLOAT_FILTER")
       .defineIf(glow, "GLOW")
       .defineIf(v & kMipExact, "MIP_EXACT")
+      .defineIf(v & kIsosurface, "ISOSURFACE")
+      .defineIf(v & kIsoDebug, "ISO_DEBUG")
       .addIf(glow, glsl::glow_segment)
       .addIf(glow, glsl::glow_emitters)
       .add(glsl::volume_filter)
@@ -60,6 +65,7 @@ ProgramSources raycastSources(unsigned v) {
       .addIf(preint, glsl::preintegrated_segment)
       .addIf(glow, glsl::raycast_glow_frag)
       .addIf(projection != 0, glsl::raycast_projection_frag)
+      .addIf(v & kIsosurface, glsl::raycast_isosurface_frag)
       .add(glsl::raycast_march_frag);
   return {ShaderSource().add(glsl::fullscreen_vert), fragment};
 }
@@ -122,6 +128,7 @@ int RaycastRenderer::addBrick(const Brick& brick, const GridGeometry& grid, cons
   g.volume = uploadVolumeBrick(gl_, brick, grid, samples, 0, pool_);
   g.blocks = cutBrickBlocks(brick, grid, samples, rayBlockGrid(grid, block_cells_));
   min_spacing_ = grid.minSpacing();
+  volume_box_ = grid.worldBox();
   global_count_ = rayBlockGrid(grid, block_cells_).count;
   return addGpuBrick(std::move(g));
 }
@@ -195,8 +202,10 @@ void RaycastRenderer::setGlobalRanges(std::vector<float> vmin, std::vector<float
 }
 
 void RaycastRenderer::classify(GpuBrick& g, float delta) {
+  std::vector<double> iso;
+  for (const Isovalue& v : settings_.isovalues) iso.push_back(v.value);
   const ClassKey key{table_.version(), ranges_version_, delta, settings_.adaptive_step,
-                     settings_.adaptive_tolerance, int(settings_.blend) * 2 + (settings_.mip_exact ? 1 : 0)};
+                     settings_.adaptive_tolerance, int(settings_.blend) * 2 + (settings_.mip_exact ? 1 : 0), iso};
   if (key == g.classified) return;
   const bool projection_counts_all = settings_.blend == VolumeBlend::kMip ||
                                      settings_.blend == VolumeBlend::kMinip ||
@@ -216,8 +225,10 @@ void RaycastRenderer::classify(GpuBrick& g, float delta) {
         // mip, minip and average count every sample whatever its opacity: no block is empty
         // for them (a block holds samples where vmin <= vmax). Additive adds c a, exactly zero
         // where the table's opacity is: its empty blocks are skipped as emission-absorption's.
+        // Isosurfaces: a block (grown by one sample) whose range holds no isovalue.
         const bool counts_all = projection_counts_all;
         visible[i] = (counts_all ? b.vmin[i] <= b.vmax[i]
+                      : !iso.empty() && b.global ? isoVisible(settings_.isovalues, b.grown_min[i], b.grown_max[i])
                       : table_.preintegrated() && b.global ? table_.visible(b.grown_min[i], b.grown_max[i])
                                                            : table_.visible(b.vmin[i], b.vmax[i]))
                          ? 1 : 0;
@@ -232,7 +243,7 @@ void RaycastRenderer::classify(GpuBrick& g, float delta) {
   // Adaptive steps need the whole blocks' ranges (the same m in every brick sharing a block).
   const StepRule* rule = nullptr;
   if (settings_.adaptive_step && b.global && !global_min_.empty() && !projecting()) {
-    ClassKey rk{table_.version(), 0, delta, true, settings_.adaptive_tolerance};
+    ClassKey rk{table_.version(), 0, delta, true, settings_.adaptive_tolerance, 0, {}};
     if (!rule_ || !(rk == rule_key_)) {
       rule_ = std::make_unique<StepRule>(table_.entries(), table_.rangeLo(), table_.rangeHi(), delta,
                                          settings_.adaptive_tolerance,
@@ -286,6 +297,9 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
   const bool preint = table_.preintegrated() && !projection;  // segments mean nothing to a projection
   if (preint && g.adaptive)  // the scene refuses this (transfer.preintegrated with adaptive.tolerance)
     throw std::logic_error("ray caster: pre-integration of adaptive bricks is not supported");
+  const bool iso = !settings_.isovalues.empty();
+  if (iso && (g.adaptive || preint || (glow && glow->count > 0)))  // the scene refuses these (scene/isosurface_scene.h)
+    throw std::logic_error("ray caster: isosurfaces with adaptive bricks, pre-integration or glow");
   classify(g, float(spacing));
   Rect r = g.any ? screenRectOf(cam, g.bound) : Rect{};
   // Glow: the whole of the brick's part of the glow box, empty blocks and all.
@@ -301,7 +315,7 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
 
   target_.begin(r, has_surface ? surface : nullptr);
   if (g.any || glowing) {
-    if (!projection) {
+    if (!projection && !settings_.iso_debug) {
       gl_.Enable(GL_BLEND);
       gl_.BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // the ray's colour over the surface's
     }
@@ -310,8 +324,9 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
       throw std::logic_error("ray caster: gradient shading of an adaptive brick");
     const GlProgram& program =
         programs_.get((g.adaptive ? kAdaptive : 0) | (preint ? kPreintegrated : 0) |
-                      (shading_.enabled ? kShading : 0) | (float_filter_ ? kFloatFilter : 0) |
-                      (glowing ? kGlow : 0) | projection);
+                      (shading_.enabled && !iso ? kShading : 0) | (float_filter_ ? kFloatFilter : 0) |
+                      (glowing ? kGlow : 0) | projection | (iso ? kIsosurface : 0) |
+                      (settings_.iso_debug ? kIsoDebug : 0));
     gl_.UseProgram(program);
     setPixelRayUniforms(program, cam);
     if (g.adaptive) {
@@ -328,7 +343,8 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
       program.set("u_tex_offset", b.tex_offset);
     }
     program.set("u_delta", float(spacing));
-    program.set("u_ert", settings_.ert_threshold < 1.0 ? float(settings_.ert_threshold) : 2.0f);
+    // Isosurfaces: a ray stops at an opaque hit only (isoHit makes its opacity exactly 1).
+    program.set("u_ert", iso ? 1.0f : settings_.ert_threshold < 1.0 ? float(settings_.ert_threshold) : 2.0f);
     program.set("u_volume", 0);
     program.set("u_surface", 2);
     program.set("u_planes", 3);
@@ -336,7 +352,8 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
     program.set("u_has_surface", has_surface ? 1 : 0);
     table_.use(program);
     if (preint) table_.usePreintegrated(program, spacing);  // segments delta long
-    if (shading_.enabled) setShadingUniforms(program, shading_, b, table_.function());
+    if (shading_.enabled && !iso) setShadingUniforms(program, shading_, b, table_.function());
+    if (iso) setIsosurfaceUniforms(program, settings_.isovalues, shading_, b, volume_box_);
     if (has_surface) {
       const Rect& sr = surface->rect;
       program.set("u_surface_rect", glm::ivec4(sr.x, sr.y, sr.w, sr.h));
@@ -366,7 +383,7 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
     gl_.Disable(GL_BLEND);
   }
   out.rect = r;
-  if (glow || projection)  // a projection's pixels are values and sums: float, not colour
+  if (glow || projection || settings_.iso_debug)  // a projection's pixels are values and sums: float
     out.pixels_f = target_.finishFloat(r);
   else
     target_.finish(r, out);

@@ -31,6 +31,7 @@
 #include "common/brick.h"
 #include "common/camera.h"
 #include "scene/sections.h"
+#include "transfer/isosurface.h"
 #include "transfer/shading.h"
 #include "transfer/transfer_function.h"
 #include "render/gl/brick_output.h"
@@ -58,6 +59,11 @@ struct RaycastSettings {
   // compositing/projection_pixels.h's), every lattice sample taken, none stopping early.
   VolumeBlend blend = VolumeBlend::kComposite;
   bool mip_exact = false;  // mip / minip: the exact extremum along each ray (render.mip_exact)
+  // render.blend: isosurface: these isovalues' crossings instead of the emission-absorption
+  // integral (render/volume/raycast_isosurface.frag.glsl); empty: the integral. With iso_debug
+  // (tests), each pixel gets the first hit's (t, unit gradient) in float instead (t = 0: none).
+  std::vector<Isovalue> isovalues;
+  bool iso_debug = false;
 };
 
 class RaycastRenderer : public VolumeRenderer {
@@ -122,6 +128,7 @@ class RaycastRenderer : public VolumeRenderer {
     bool adaptive_step = false;
     double tolerance = 0.0;
     int blend = 0;
+    std::vector<double> isovalues;
     bool operator==(const ClassKey&) const = default;
   };
   VolumeTexturePool* pool_ = nullptr;
@@ -149,6 +156,7 @@ class RaycastRenderer : public VolumeRenderer {
   RaycastSettings settings_;
   Shading shading_;
   double min_spacing_ = 0.0;  // of the volume's grid (the step rule's cap)
+  Box3 volume_box_;           // the volume's world box (isosurfaces: where rays enter and leave it)
   glm::ivec3 global_count_{0};  // the volume's block grid
   std::vector<float> global_min_, global_max_;  // whole blocks, grown by one sample; empty: not yet
   int ranges_version_ = 0;

@@ -69,6 +69,16 @@ std::vector<sortlast::SceneKey> sortlast::renderKeys() {
      "is at an end or at a root of its quadratic derivative (closed form). Thin features between "
      "samples keep their peak; it costs more per ray than sampling (docs/volumes.md).",
      Flag{member<&Scene::render, &RenderSection::mip_exact>}},
+    {"render.isovalues", "[]",
+     "With `render.blend: isosurface` (ray casting only): the isosurfaces, a list of up to 8 maps "
+     "`{value, color: [r, g, b], opacity}` (value in data units; color entries in [0, 1], default "
+     "[1, 1, 1]; opacity in [0, 1], default 1). Every crossing of a value along a ray is a surface, "
+     "shaded with the trilinear field's exact gradient (headlight Blinn-Phong, two-sided, with "
+     "`render.shading_*`'s coefficients) and composited front to back; an opaque one ends the ray. "
+     "A value outside the data's range is warned about (its surface never appears). Needs "
+     "`render.sample_spacing` <= 1 (`auto`: 0.5) and no adaptive sampling, glow or "
+     "pre-integration (docs/volumes.md).",
+     Structured{"list of {value, color, opacity}"}},
     {"render.pipeline", "overlapped",
      "How each brick's pixels travel from GL to the compositor. `overlapped`: converted to RGBA8 "
      "on the GPU (rounded as the CPU rounds, bit for bit), read through a ring of pixel-buffer "
@@ -124,9 +134,6 @@ namespace sortlast {
 
 // A device index names an EGL device: with OSMesa it would be ignored without a word.
 void checkRenderKeys(const Scene& s) {
-  if (s.render.blend == VolumeBlend::kIsosurface)
-    throw InputError("scene key 'render.blend': " + std::string(nameOf(s.render.blend)) +
-                     " is not available yet");
   checkProjectionKeys(s);
   if (s.render.device >= 0 && s.render.backend != GlBackend::kEgl)
     throw InputError("scene key 'render.device': device " + std::to_string(s.render.device) +

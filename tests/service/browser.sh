@@ -61,7 +61,7 @@ timeout 420 node "$HERE/browser_test.mjs" "http://127.0.0.1:$PORT/?token=$TOKEN"
   || { tail -20 "$OUT/server.log"; fail "browser test"; }
 
 # The frames the viewer showed are the frames `sortlast render` makes of the same settings.
-for prefix in "" tf_ cm_ sh_; do
+for prefix in "" tf_ cm_ sh_ mip_ clip_; do
   [ -f "$OUT/${prefix}render_args.txt" ] || continue
   mapfile -t args <"$OUT/${prefix}render_args.txt"
   run_np "$NP" render "${scene[@]}" -q -o "$WORK/${prefix}render.png" "${args[@]}" \

@@ -11,7 +11,9 @@
 // (tf_frame.png, tf_request.json, tf_render_args.txt), then picks the Viridis colour map, checks
 // the request names it (transfer.colormap) and the image changed, and saves that frame
 // (cm_frame.png, cm_request.json, cm_render_args.txt), then turns shading on, checks the request
-// has render.shading and the image changed (sh_frame.png, ...). Screenshots: initial.png, orbit.png,
+// has render.shading and the image changed (sh_frame.png, ...), picks MIP (render.blend;
+// mip_frame.png, ...), then turns a clip plane on and moves it by Alt-dragging the frame
+// (clip.planes; clip_frame.png, ...). Screenshots: initial.png, orbit.png,
 // final.png. Every wait is bounded; exits 1 with a message on failure.
 
 import { chromium } from 'playwright-core';
@@ -257,6 +259,49 @@ async function main() {
     if (d4.mean < 0.5 && d4.changed < 0.005) await fail('the image did not change with shading');
     await saveFrame('sh_frame.png');
     writeFrameFiles('sh_', shaded);
+
+    // ---- the volume's modes: maximum intensity projection, then a clip plane dragged with Alt
+    const beforeMip = await snapshot();
+    const n3 = (await viewerState()).framesShown;
+    await page.uncheck('#shading');
+    await page.selectOption('#blend', 'mip');
+    await waitFor('the full-size frame after choosing MIP', (n) => window.sortlastViewer.settled && window.sortlastViewer.framesShown > n, n3);
+    const mip = await viewerState();
+    if (mip.lastRequest['render.blend'] !== 'mip')
+      await fail(`the request after choosing MIP has render.blend ${JSON.stringify(mip.lastRequest['render.blend'])}`);
+    const d5 = difference(beforeMip, await snapshot());
+    log(`after choosing MIP: image difference mean ${d5.mean.toFixed(2)}, ${(d5.changed * 100).toFixed(1)}% of pixels`);
+    if (d5.mean < 0.5 && d5.changed < 0.005) await fail('the image did not change with MIP');
+    await saveFrame('mip_frame.png');
+    writeFrameFiles('mip_', mip);
+
+    const n4 = (await viewerState()).framesShown;
+    await page.selectOption('#blend', 'composite');
+    await page.check('#clip-on');
+    await waitFor('the full-size frame after turning the clip plane on', (n) => window.sortlastViewer.settled && window.sortlastViewer.framesShown > n, n4);
+    const beforeClip = await snapshot();
+    const p0 = await page.evaluate(() => Number(document.getElementById('clip-pos').value));
+    const n5 = (await viewerState()).framesShown;
+    await page.keyboard.down('Alt');
+    await page.mouse.move(cx, cy - box.height * 0.2);
+    await page.mouse.down();
+    for (let k = 1; k <= 10; k++) {
+      await page.mouse.move(cx, cy - box.height * 0.2 + (box.height * 0.15 * k) / 10);
+      await page.waitForTimeout(40);
+    }
+    await page.mouse.up();
+    await page.keyboard.up('Alt');
+    await waitFor('the full-size frame after dragging the clip plane', (n) => window.sortlastViewer.settled && window.sortlastViewer.framesShown > n, n5);
+    const clipped = await viewerState();
+    const p1 = await page.evaluate(() => Number(document.getElementById('clip-pos').value));
+    const planes = clipped.lastRequest['clip.planes'];
+    if (!Array.isArray(planes) || planes.length !== 1) await fail(`the request after the clip drag has clip.planes ${JSON.stringify(planes)}`);
+    if (!(p1 > p0)) await fail(`Alt-dragging the frame did not move the clip plane (${p0} -> ${p1})`);
+    const d6 = difference(beforeClip, await snapshot());
+    log(`clip plane dragged from ${p0.toFixed(3)} to ${p1.toFixed(3)} of the box: image difference mean ${d6.mean.toFixed(2)}, ${(d6.changed * 100).toFixed(1)}% of pixels`);
+    if (d6.mean < 0.5 && d6.changed < 0.005) await fail('the image did not change when the clip plane moved');
+    await saveFrame('clip_frame.png');
+    writeFrameFiles('clip_', clipped);
   }
 
   const end = await viewerState();
