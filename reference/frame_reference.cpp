@@ -79,6 +79,7 @@ FrameReference::FrameReference(Scene scene, int threads)
     auto [lo, hi] = presentRange(in.vol.samples, scene.volume.file);
     in.tf = scene.transfer.build(lo, hi, scene.volume.grid.minSpacing());
     in.step = scene.reference.step * scene.volume.grid.minSpacing();
+    in.vol.clip = scene.clip;
     in.shading = scene.render.shading;
     bounds_ = unite(bounds_, in.vol.grid.worldBox());
     volume_ = std::move(in);
@@ -98,8 +99,6 @@ FrameReference::FrameReference(Scene scene, int threads)
 
 ImageF FrameReference::render(const Camera& cam, SurfaceImage* surface_out, int frame,
                               SurfaceReferenceStats* surface_stats) const {
-  if (volume_ && volume_->vol.grid.worldBox().contains(cam.position))
-    throw InputError("camera.position is inside the volume; move the camera outside it");
   std::optional<GlowRays> glow;
   if (glow_.enabled()) glow.emplace(glow_, glow_box_, frame);
   const GlowRays* g = glow ? &*glow : nullptr;

@@ -124,5 +124,6 @@ void readGlowKeys(const Reader& r, Scene& s);                               // s
 void checkRenderKeys(const Scene& s);                                       // sections/render.cpp
 void readTransferKeys(const Reader& r, const Origin& o, TransferSpec& tf);  // sections/transfer.cpp
 void checkCameraKeys(const Scene& s);                                       // sections/camera.cpp
+void readClipKeys(const Reader& r, Scene& s);                               // sections/clip.cpp
 
 }  // namespace sortlast

@@ -11,6 +11,7 @@
 #include "render/glow/glsl_files.h"
 #include "render/volume/adaptive_gpu_brick.h"
 #include "render/volume/glsl_files.h"
+#include "render/volume/volume_clip.h"
 #include "render/volume/volume_shading.h"
 
 namespace sortlast {
@@ -40,6 +41,7 @@ ProgramSources raycastSources(unsigned v) {
       .add(glsl::volume_filter)
       .addIf(shading, glsl::volume_shading)
       .add(glsl::raycast_sample_frag)
+      .add(glsl::volume_clip)
       .addIf(preint, glsl::preintegrated_segment)
       .addIf(glow, glsl::raycast_glow_frag)
       .add(glsl::raycast_march_frag);
@@ -248,7 +250,7 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
   if (preint && g.adaptive)  // the scene refuses this (transfer.preintegrated with adaptive.tolerance)
     throw std::logic_error("ray caster: pre-integration of adaptive bricks is not supported");
   classify(g, float(spacing));
-  Rect r = g.any ? screenRectOf(cam, g.bound) : Rect{};
+  Rect r = g.any ? clippedRectOf(cam, g.bound, clip_) : Rect{};
   // Glow: the whole of the brick's part of the glow box, empty blocks and all.
   const bool glowing = glow && glow->count > 0 && hasVolume(glow->box);
   if (glowing) {
@@ -273,6 +275,7 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
                       (glowing ? kGlow : 0));
     gl_.UseProgram(program);
     setPixelRayUniforms(program, cam);
+    setClipUniforms(program, clip_);
     if (g.adaptive) {
       program.set("u_index_scale", g.lookup.index_scale);
       program.set("u_index_offset", g.lookup.index_offset);
