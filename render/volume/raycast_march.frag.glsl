@@ -148,17 +148,17 @@ int firstSample(float t) {
 }
 
 // The ray through this pixel's centre (Camera::pixelRay): sets its origin g_eye and returns its
-// unit direction (also g_dir).
+// unit direction (also g_ray_dir).
 vec3 pixelRay() {
   vec2 s = vec2(gl_FragCoord.x * u_pixel_scale.x - 1.0, 1.0 - gl_FragCoord.y * u_pixel_scale.y);
   g_eye = cameraEye();
   if (u_orthographic != 0) {
     g_eye += s.x * u_right + s.y * u_up;
-    g_dir = u_forward;
+    g_ray_dir = u_forward;
   } else {
-    g_dir = normalize(u_forward + s.x * u_right + s.y * u_up);
+    g_ray_dir = normalize(u_forward + s.x * u_right + s.y * u_up);
   }
-  return g_dir;
+  return g_ray_dir;
 }
 
 // Where the ray enters and leaves the brick's block grid (nb blocks per axis), from t >= 0:

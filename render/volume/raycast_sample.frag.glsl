@@ -27,11 +27,11 @@ vec3 g_inv;  // 1 / ray direction, per axis
 ivec3 g_step;
 
 // This pixel's ray, set by pixelRay() (raycast_march.frag.glsl): its origin g_eye (the eye, or the
-// pixel's point on the eye plane when orthographic) and unit direction g_dir. Every chunk from here
+// pixel's point on the eye plane when orthographic) and unit direction g_ray_dir. Every chunk from here
 // on means the ray's origin by u_eye: samples lie at u_eye + t dir, t from the origin.
 vec3 cameraEye() { return u_eye; }
 vec3 g_eye;
-vec3 g_dir;
+vec3 g_ray_dir;
 #define u_eye g_eye
 
 // Whether u_surface holds the particle surface at pixel px.
@@ -97,7 +97,7 @@ vec4 sampleAt(vec3 p) {
   vec4 e = classify(sampleVolume(p));
 #ifdef SHADING
   if (e.a > 0.0)
-    e.rgb = shadeColour(e.rgb, u_volume, p * u_tex_scale + u_tex_offset, g_dir);
+    e.rgb = shadeColour(e.rgb, u_volume, p * u_tex_scale + u_tex_offset, g_ray_dir);
 #endif
   return e;
 }

@@ -146,13 +146,19 @@ TEST(Visibility, OrthographicOrderFollowsTheViewDirection) {
       for (int s = 0; s < 4; ++s) {
         if (r == s) continue;
         const Box3 br = cellRangeBox(planes, as.region[size_t(r)]), bs = cellRangeBox(planes, as.region[size_t(s)]);
-        // Separated along an axis (kd regions are): the region further along d is behind.
-        for (int a = 0; a < 3; ++a)
-          if (d[a] != 0.0 && br.hi[a] <= bs.lo[a]) {
-            if (d[a] > 0) EXPECT_LT(rpos[size_t(s)], rpos[size_t(r)]) << trial;
-            else EXPECT_LT(rpos[size_t(r)], rpos[size_t(s)]) << trial;
-            break;
-          }
+        // kd regions are separated along some axis; the region further along d is behind where
+        // every separating axis says so (where they disagree, or d is parallel to one, no ray
+        // meets both and either order is right).
+        int behind = 0;  // +1: s behind r, -1: r behind s, 2: no constraint
+        for (int a = 0; a < 3; ++a) {
+          int says = 0;
+          if (br.hi[a] <= bs.lo[a]) says = d[a] > 0 ? 1 : d[a] < 0 ? -1 : 2;
+          else if (bs.hi[a] <= br.lo[a]) says = d[a] > 0 ? -1 : d[a] < 0 ? 1 : 2;
+          if (says == 0) continue;
+          behind = behind == 0 || behind == says ? says : 2;
+        }
+        if (behind == 1) EXPECT_LT(rpos[size_t(s)], rpos[size_t(r)]) << trial;
+        if (behind == -1) EXPECT_LT(rpos[size_t(r)], rpos[size_t(s)]) << trial;
       }
   }
 }
