@@ -47,6 +47,12 @@ Camera cameraOf(const nlohmann::json& stats, const Camera& fallback) {
   c.look_at = v(j.at("look_at"));
   c.up = v(j.at("up"));
   c.fov_deg = j.at("fov").get<double>();
+  if (j.contains("parallel_scale")) {
+    c.projection = Projection::kOrthographic;
+    c.parallel_scale = j.at("parallel_scale").get<double>();
+  } else {
+    c.projection = Projection::kPerspective;
+  }
   c.width = j.at("width").get<int>();
   c.height = j.at("height").get<int>();
   return c;

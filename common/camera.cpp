@@ -13,17 +13,27 @@ constexpr double kPi = 3.14159265358979323846;
 double tanHalfFov(double fov_deg) { return std::tan(0.5 * fov_deg * kPi / 180.0); }
 }  // namespace
 
-glm::dvec3 Camera::rayDirection(double px, double py) const {
-  double th = tanHalfFov(fov_deg), aspect = double(width) / height;
-  double sx = (2.0 * (px + 0.5) / width - 1.0) * th * aspect;
-  double sy = (1.0 - 2.0 * (py + 0.5) / height) * th;
-  return glm::normalize(forward() + sx * right() + sy * trueUp());
+glm::dvec2 Camera::screenScale() const {
+  const double aspect = double(width) / height;
+  const double s = orthographic() ? parallel_scale : tanHalfFov(fov_deg);
+  return {s * aspect, s};
+}
+
+CameraRay Camera::pixelRay(double px, double py) const {
+  const glm::dvec2 scale = screenScale();
+  double sx = (2.0 * (px + 0.5) / width - 1.0) * scale.x;
+  double sy = (1.0 - 2.0 * (py + 0.5) / height) * scale.y;
+  if (orthographic()) return {position + sx * right() + sy * trueUp(), forward()};
+  return {position, glm::normalize(forward() + sx * right() + sy * trueUp())};
 }
 
 glm::mat4 Camera::viewProjection(double near_plane, double far_plane) const {
   glm::dmat4 view = glm::lookAt(position, look_at, up);
-  glm::dmat4 proj = glm::perspective(fov_deg * kPi / 180.0, double(width) / height, near_plane,
-                                     far_plane);
+  const glm::dvec2 s = screenScale();
+  glm::dmat4 proj = orthographic()
+                        ? glm::ortho(-s.x, s.x, -s.y, s.y, near_plane, far_plane)
+                        : glm::perspective(fov_deg * kPi / 180.0, double(width) / height,
+                                           near_plane, far_plane);
   glm::dmat4 flip = glm::scale(glm::dmat4(1.0), glm::dvec3(1.0, -1.0, 1.0));
   return glm::mat4(flip * proj * view);
 }
@@ -32,8 +42,9 @@ std::optional<glm::dvec2> Camera::project(const glm::dvec3& p) const {
   glm::dvec3 d = p - position;
   double z = glm::dot(d, forward());
   if (z <= 0.0) return std::nullopt;
-  double th = tanHalfFov(fov_deg), aspect = double(width) / height;
-  double sx = glm::dot(d, right()) / (z * th * aspect), sy = glm::dot(d, trueUp()) / (z * th);
+  const glm::dvec2 s = screenScale();
+  const double w = orthographic() ? 1.0 : z;  // perspective divides by the depth
+  double sx = glm::dot(d, right()) / (w * s.x), sy = glm::dot(d, trueUp()) / (w * s.y);
   return glm::dvec2((sx + 1.0) * 0.5 * width, (1.0 - sy) * 0.5 * height);
 }
 
@@ -62,11 +73,24 @@ Camera orbitCamera(const Camera& base, const glm::dvec3& centre, double radius,
 
 Rect screenRectOf(const Camera& cam, const Box3& box) {
   double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  // Rays sample only t > 0 (a sample at the eye itself, t = 0, has a span of zero length there):
+  // a box with no corner in front of the eye plane is never seen.
+  const glm::dvec3 f = cam.forward();
+  int behind = 0;
+  for (int c = 0; c < 8; ++c) behind += glm::dot(box.corner(c) - cam.position, f) <= 0.0;
+  if (behind == 8) return {};
+  const glm::dvec2 s = cam.screenScale();
   for (int c = 0; c < 8; ++c) {
-    auto p = cam.project(box.corner(c));
-    if (!p) return {0, 0, cam.width, cam.height};  // box reaches behind the eye: be conservative
-    x0 = std::min(x0, p->x), x1 = std::max(x1, p->x);
-    y0 = std::min(y0, p->y), y1 = std::max(y1, p->y);
+    const glm::dvec3 d = box.corner(c) - cam.position;
+    if (!cam.orthographic() && behind > 0)
+      return {0, 0, cam.width, cam.height};  // straddles the eye plane: be conservative
+    // project() without its eye-plane test: an orthographic corner behind the plane projects
+    // where the box's part in front of it may reach.
+    const double w = cam.orthographic() ? 1.0 : glm::dot(d, f);
+    const double px = (glm::dot(d, cam.right()) / (w * s.x) + 1.0) * 0.5 * cam.width;
+    const double py = (1.0 - glm::dot(d, cam.trueUp()) / (w * s.y)) * 0.5 * cam.height;
+    x0 = std::min(x0, px), x1 = std::max(x1, px);
+    y0 = std::min(y0, py), y1 = std::max(y1, py);
   }
   // A pixel is covered when its centre (+0.5) is inside; pad one pixel for rasteriser rounding.
   // Clamp first: a corner just in front of the eye plane projects to huge coordinates.

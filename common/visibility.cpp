@@ -68,6 +68,18 @@ std::vector<int> backToFrontRanks(const Assignment& assignment, const BrickPlane
   return order;
 }
 
+glm::dvec3 orderEye(const Camera& cam, const Box3& bounds) {
+  if (!cam.orthographic()) return cam.position;
+  const glm::dvec3 f = cam.forward();
+  const double margin = 1.0 + glm::length(bounds.extent());
+  glm::dvec3 eye = cam.position;
+  for (int a = 0; a < 3; ++a) {
+    if (f[a] > 0.0) eye[a] = std::min(bounds.lo[a], cam.position[a]) - margin;
+    else if (f[a] < 0.0) eye[a] = std::max(bounds.hi[a], cam.position[a]) + margin;
+  }
+  return eye;
+}
+
 VisibilityOrder visibilityOrder(const Assignment& assignment, const BrickPlanes& planes,
                                 const glm::dvec3& eye) {
   return {backToFrontOrder(planes, eye), backToFrontRanks(assignment, planes, eye)};

@@ -7,7 +7,9 @@
 #include <glm/glm.hpp>
 #include <vector>
 
+#include "common/box.h"
 #include "common/brick_planes.h"
+#include "common/camera.h"
 #include "common/decomposition.h"
 
 namespace sortlast {
@@ -24,6 +26,13 @@ std::vector<int> slabOrder(const std::vector<double>& planes, double eye);
 // the side away from the eye first. Ranks that own nothing come first (they hide nothing).
 std::vector<int> backToFrontRanks(const Assignment& assignment, const BrickPlanes& planes,
                                   const glm::dvec3& eye);
+
+// The point the orders above are taken from for `cam`: its eye under perspective (an eye inside
+// the bricks sees its own slab, and its own rank's region, last). Orthographic rays are parallel:
+// the eye at infinity along -forward(). On each axis the view direction climbs, that is a
+// coordinate below every plane of `bounds` (above, where it falls; the eye's own coordinate where
+// the rays never cross the axis's planes), so every slab is ordered by the view direction alone.
+glm::dvec3 orderEye(const Camera& cam, const Box3& bounds);
 
 // What a compositor needs to know of one frame's visibility.
 struct VisibilityOrder {

@@ -83,6 +83,7 @@ FrameReference::FrameReference(Scene scene, int threads)
     auto [lo, hi] = presentRange(in.vol.samples, scene.volume.file);
     in.tf = scene.transfer.build(lo, hi, scene.volume.grid.minSpacing());
     in.step = scene.reference.step * scene.volume.grid.minSpacing();
+    in.vol.clip = scene.clip;
     in.shading = scene.render.shading;
     in.blend = scene.render.projection() ? scene.render.blend : VolumeBlend::kComposite;
     in.mip_exact = scene.render.mip_exact;
@@ -108,8 +109,6 @@ FrameReference::FrameReference(Scene scene, int threads)
 
 ImageF FrameReference::render(const Camera& cam, SurfaceImage* surface_out, int frame,
                               SurfaceReferenceStats* surface_stats) const {
-  if (volume_ && volume_->vol.grid.worldBox().contains(cam.position))
-    throw InputError("camera.position is inside the volume; move the camera outside it");
   std::optional<GlowRays> glow;
   if (glow_.enabled()) glow.emplace(glow_, glow_box_, frame);
   const GlowRays* g = glow ? &*glow : nullptr;

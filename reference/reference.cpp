@@ -7,6 +7,7 @@
 #include <cmath>
 #include <thread>
 
+#include "common/clip.h"
 #include "common/error.h"
 
 namespace sortlast {
@@ -52,7 +53,8 @@ ImageF integrate(const WholeVolume& vol, const TransferFunction& tf, const Camer
     for (int y; (y = next_row++) < cam.height;) {
       for (int x = 0; x < cam.width; ++x) {
         size_t pixel = size_t(y) * cam.width + x;
-        glm::dvec3 o = cam.position, d = cam.rayDirection(x, y);
+        const CameraRay ray = cam.pixelRay(x, y);  // from the eye, or from the eye plane (orthographic)
+        const glm::dvec3 o = ray.origin, d = ray.direction;
         double t0, t1;
         double rgb[3] = {0, 0, 0}, transmit = 1.0;
         const double t_stop = stop && stop->hit(pixel) ? double(stop->t[pixel]) : HUGE_VAL;
@@ -65,6 +67,7 @@ ImageF integrate(const WholeVolume& vol, const TransferFunction& tf, const Camer
         double t_after = 0.0;  // where the volume's part of the ray ends (glow beyond it: `transmit`)
         if (intersectRayBox(o, d, box, t0, t1)) {
           t0 = std::max(t0, 0.0);
+          clipSpan(vol.clip, o, d, t0, t1);  // clip.planes, clip.box (common/clip.h)
           if (stop && stop->hit(pixel)) t1 = std::min(t1, double(stop->t[pixel]));
           addGlow(0.0, std::min(t0, t_stop), 1.0);  // in front of the volume
           long long n = t1 > t0 ? std::max(1LL, (long long)std::ceil((t1 - t0) / step)) : 0;

@@ -11,6 +11,7 @@
 
 #include "adaptive/adaptive_blocks.h"
 #include "common/camera.h"
+#include "common/clip.h"
 #include "common/grid.h"
 #include "io/image.h"
 #include "transfer/shading.h"
@@ -26,6 +27,8 @@ struct WholeVolume {
   // Set: the field is this adaptive representation's (sampleIndex), not the samples' (which then
   // only give the transfer function its range).
   std::shared_ptr<const AdaptiveVolume> adaptive;
+  // Where the volume is shown (clip.planes, clip.box): each ray's span is cut to it (clipSpan).
+  ClipRegion clip;
   double at(const glm::dvec3& index) const;  // trilinear, index clamped to the grid
   // World gradient at `index`: (at(index + e_a) - at(index - e_a)) / (2 spacing_a) per axis, so
   // one-sided where index +- 1 leaves the grid (at() clamps).

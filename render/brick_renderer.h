@@ -87,7 +87,11 @@ class BrickRenderer {
   // What a resident session changes between frames without re-uploading any brick.
   void setImageSize(int width, int height);
   void setTransferFunction(const TransferFunction& tf, int table_size, bool preintegrated = false);
-  void setVolumeMethodSettings(const VolumeMethod& method);  // same renderer kind; its settings, shading
+  void setVolumeMethodSettings(const VolumeMethod& method);
+  // The clip region for the next frames (common/clip.h): volumes only.
+  void setClip(const ClipRegion& clip) {
+    if (volume_) volume_->setClip(clip);
+  }  // same renderer kind; its settings, shading
   void setMetaballSettings(const MetaballSettings& settings);  // same h
   // Ray casting, once every rank's bricks are added: the block value ranges adaptive steps need,
   // this rank's part of them (blockRangesPart: per block of the grid, min and max over this

@@ -44,6 +44,7 @@ std::vector<SceneKey> particleKeys();
 std::vector<SceneKey> transferKeys();
 std::vector<SceneKey> imageKeys();
 std::vector<SceneKey> cameraKeys();
+std::vector<SceneKey> clipKeys();
 std::vector<SceneKey> brickKeys();
 std::vector<SceneKey> renderKeys();
 std::vector<SceneKey> adaptiveKeys();

@@ -145,7 +145,7 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
 }
 
 bool isFrameKey(const std::string& path) {
-  for (const char* prefix : {"camera.", "image.", "transfer.", "compositing.", "time.step"})
+  for (const char* prefix : {"camera.", "clip.", "image.", "transfer.", "compositing.", "time.step"})
     if (path.rfind(prefix, 0) == 0) return true;
   for (const char* key : {"render.sample_spacing", "render.method", "render.ert_threshold",
                           "render.shading", "render.shading_ambient", "render.shading_diffuse",
@@ -224,6 +224,7 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
                      "there are none)");
   readTransferKeys(r, origin, s.transfer);
   checkCameraKeys(s);
+  readClipKeys(r, s);
 
   // Glow emitters alone need no cut: every brick would evaluate every emitter again over its
   // part of each ray (d = 2 draws about 3x the pixels of d = 1 at 512^2, docs/glow.md).

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "common/camera.h"
+#include "common/clip.h"
 #include "io/particles.h"
 #include "io/volume_source.h"
 #include "scene/glow_scene.h"
@@ -27,8 +28,10 @@ struct Scene {
   ImageSection image;
   Camera camera;               // with image width and height
   bool camera_auto = true;     // position derived from the bounds (camera.position: auto)
+  bool parallel_scale_auto = true;  // camera.parallel_scale: auto (from the distance and fov)
   bool look_at_auto = true;    // camera.look_at: auto, the bounds' centre (camera.look_at holds 0)
   OrbitSpec orbit;
+  ClipRegion clip;             // clip.planes, clip.box (volumes only)
   BricksSection bricks;
   RenderSection render;
   AdaptiveSection adaptive;

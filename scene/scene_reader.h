@@ -126,5 +126,6 @@ void checkProjectionKeys(const Scene& s);
 void checkRenderKeys(const Scene& s);                                       // sections/render.cpp
 void readTransferKeys(const Reader& r, const Origin& o, TransferSpec& tf);  // sections/transfer.cpp
 void checkCameraKeys(const Scene& s);                                       // sections/camera.cpp
+void readClipKeys(const Reader& r, Scene& s);                               // sections/clip.cpp
 
 }  // namespace sortlast

@@ -115,8 +115,10 @@ void finishGlowFrame(const GlowSpec& g, const glm::dvec3& background, ImageF& f,
 nlohmann::json vec3Json(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 
 nlohmann::json cameraJson(const Camera& c) {
-  return {{"position", vec3Json(c.position)}, {"look_at", vec3Json(c.look_at)}, {"up", vec3Json(c.up)},
-          {"fov", c.fov_deg}, {"width", c.width}, {"height", c.height}};
+  nlohmann::json j = {{"position", vec3Json(c.position)}, {"look_at", vec3Json(c.look_at)}, {"up", vec3Json(c.up)},
+                      {"fov", c.fov_deg}, {"width", c.width}, {"height", c.height}};
+  if (c.orthographic()) j["parallel_scale"] = c.parallel_scale;  // absent: perspective
+  return j;
 }
 
 // The compositor's settings: a new compositor only when they change.
@@ -260,9 +262,10 @@ RenderSession::RenderSession(SessionOptions options, MPI_Comm comm) : s_(std::ma
     checkMemory(sessionNeed(scene, S.layout, S.particles_total, S.rank, S.opts.resident), S.budget,
                 S.rank, "the scene");
     std::vector<Camera> cams = scene.frameCameras(S.layout.bounds);
+    const Box3 keep_out = keepOutBox(S.layout);
     for (size_t i = 0; i < cams.size(); ++i)
       checkCameraOutside(cams[i], S.layout.bounds,
-                         cams.size() > 1 ? " of orbit frame " + std::to_string(i) : "");
+                         cams.size() > 1 ? " of orbit frame " + std::to_string(i) : "", &keep_out);
     S.renderer = std::make_unique<BrickRenderer>(std::string(nameOf(scene.render.backend)), scene.camera.width, scene.camera.height, device);
   });
   S.meetDevices();
@@ -396,7 +399,8 @@ Scene RenderSession::State::resolve(const FrameRequest& request) const {
   std::vector<Camera> cams = sc.frameCameras(layout.bounds);
   if (request.orbit_frame >= int(cams.size()))
     throw InputError("orbit frame " + std::to_string(request.orbit_frame) + " of " + std::to_string(cams.size()));
-  checkCameraOutside(cams[size_t(std::max(0, request.orbit_frame))], layout.bounds);
+  const Box3 keep_out = keepOutBox(layout);
+  checkCameraOutside(cams[size_t(std::max(0, request.orbit_frame))], layout.bounds, "", &keep_out);
   // A request's image size must fit beside the data the session holds.
   const int d = sc.bricks.per_axis;
   checkMemory(external ? imageNeed(sc, sc.camera.width, sc.camera.height, rank,
@@ -566,6 +570,7 @@ void RenderSession::State::applyFrameSettings(const Scene& sc, const FrameReques
     renderer->setTransferFunction(sc.transfer.build(data_min, data_max, layout.grid.minSpacing()),
                                   sc.transfer.table_size, sc.transfer.preintegrated);
     renderer->setVolumeMethodSettings(volumeMethod(sc));
+    renderer->setClip(sc.clip);
   }
   if (sc.particles.enabled()) renderer->setMetaballSettings(metaballSettings(sc.particles));
   const bool glow = sc.glow.enabled();
@@ -611,7 +616,7 @@ void RenderSession::State::drawBricks(const Scene& sc, const FrameRequest& reque
   // Billboards reach sqrt(3) h beyond a particle: the depth range holds them too.
   const auto [near_plane, far_plane] = depthRange(cam, has_particles ? grow(layout.bounds, h) : layout.bounds);
   // The compositor reads the order and footprint until finish(): kept in the state.
-  frame_order = orderFor(cam.position);
+  frame_order = orderFor(orderEye(cam, layout.bounds));  // orthographic: the eye at infinity
   const VisibilityOrder& order = frame_order;
   // auto chooses from every rank's bricks on the screen: the same numbers on every rank.
   const bool choose = sc.compositing.strategy == Strategy::kAuto;

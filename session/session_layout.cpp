@@ -50,7 +50,14 @@ SessionLayout makeLayout(const Scene& scene, const Box3& particle_centres, int r
   return L;
 }
 
-void checkCameraOutside(const Camera& cam, const Box3& box, const std::string& which) {
+Box3 keepOutBox(const SessionLayout& layout) {
+  if (isEmpty(layout.glow_box)) return layout.particle_domain;
+  return isEmpty(layout.particle_domain) ? layout.glow_box : unite(layout.particle_domain, layout.glow_box);
+}
+
+void checkCameraOutside(const Camera& cam, const Box3& scene_box, const std::string& which,
+                        const Box3* keep_out) {
+  const Box3& box = scene_box;
   const glm::dvec3& p = cam.position;
   char msg[512];
   const double size = glm::length(box.extent()), distance = glm::length(p - box.centre());
@@ -62,13 +69,15 @@ void checkCameraOutside(const Camera& cam, const Box3& box, const std::string& w
                   p.x, p.y, p.z, which.c_str(), distance, distance / size, size);
     throw InputError(msg);
   }
-  if (!box.contains(p)) return;
+  const Box3& out = keep_out ? *keep_out : box;
+  if (isEmpty(out) || !out.contains(p)) return;
   std::snprintf(msg, sizeof msg,
-                "camera.position (%g, %g, %g)%s is inside the scene, whose box (the volume, "
-                "and the particles grown by their influence radius) is "
-                "[%g, %g] x [%g, %g] x [%g, %g]; move the camera outside it",
-                p.x, p.y, p.z, which.c_str(), box.lo.x, box.hi.x, box.lo.y, box.hi.y, box.lo.z,
-                box.hi.z);
+                "camera.position (%g, %g, %g)%s is inside the box of the particles (grown by "
+                "their influence radius), surfaces and glow, [%g, %g] x [%g, %g] x [%g, %g]: "
+                "their renderers need the eye outside it (inside the volume is fine); move the "
+                "camera outside it",
+                p.x, p.y, p.z, which.c_str(), out.lo.x, out.hi.x, out.lo.y, out.hi.y, out.lo.z,
+                out.hi.z);
   throw InputError(msg);
 }
 

@@ -30,10 +30,15 @@ struct SessionLayout {
 // InputError for a camera inside the box.
 SessionLayout makeLayout(const Scene& scene, const Box3& particle_centres, int rank, int size);
 
-// The camera must be outside the scene's box: slicing draws planes in front of the eye only, the
-// metaball billboards must lie in front of it, and neither method has a notion of a viewer inside
-// the data. Throws InputError naming the position and the box.
-void checkCameraOutside(const Camera& cam, const Box3& box, const std::string& which = "");
+// The camera must not be too far from the scene's box (float math), and must lie outside
+// `keep_out` (default: that box): the particles', surfaces' and glow box (keepOutBox), which
+// the metaball billboards, the surfaces and the glow pass need in front of the eye. An eye inside
+// the volume is fine: rays start at it, slices are drawn in front of the near plane. Throws
+// InputError naming the position and the box.
+void checkCameraOutside(const Camera& cam, const Box3& box, const std::string& which = "",
+                        const Box3* keep_out = nullptr);
+// What the eye must stay out of: the particles' (and surfaces') domain and the glow box.
+Box3 keepOutBox(const SessionLayout& layout);
 
 // Near and far planes enclosing the whole box, shared by every brick of a frame.
 std::pair<double, double> depthRange(const Camera& cam, const Box3& box);

@@ -45,11 +45,12 @@ void bindGlowEmitters(const GlApi& gl, const GlProgram& program, const GlowPass&
 }
 
 void setPixelRayUniforms(const GlProgram& program, const Camera& cam) {
-  const double th = std::tan(0.5 * cam.fov_deg * 3.14159265358979323846 / 180.0);
+  const glm::dvec2 s = cam.screenScale();  // tan(fov / 2) (x aspect), or parallel_scale (x aspect)
   program.set("u_eye", glm::vec3(cam.position));
   program.set("u_forward", glm::vec3(cam.forward()));
-  program.set("u_right", glm::vec3(cam.right() * (th * double(cam.width) / cam.height)));
-  program.set("u_up", glm::vec3(cam.trueUp() * th));
+  program.set("u_right", glm::vec3(cam.right() * s.x));
+  program.set("u_up", glm::vec3(cam.trueUp() * s.y));
+  program.set("u_orthographic", cam.orthographic() ? 1 : 0);  // programs without it ignore it
   program.set("u_pixel_scale", glm::vec2(float(2.0 / cam.width), float(2.0 / cam.height)));
 }
 

@@ -9,13 +9,15 @@
 //   [render/glow/glow_segment.glsl, render/glow/glow_emitters.glsl: GLOW]
 //   [render/volume/volume_shading.glsl: SHADING]  shadeColour()
 //   raycast_sample.frag.glsl                      uniforms, sampleVolume(), classify(), sampleAt()
+//   volume_clip.glsl                              clipRay(): clip.planes and clip.box
 //   [preintegrated_segment.glsl: PREINTEGRATED]   segment()
 //   [raycast_glow.frag.glsl: GLOW]                the glow pieces along the ray
 //   [raycast_projection.frag.glsl: PROJECTION]    the projections' samples (and MIP_EXACT)
 //   [raycast_isosurface.frag.glsl: ISOSURFACE]    isovalue crossings (render.blend: isosurface)
 //   raycast_march.frag.glsl                       compositing, the block walk and main()
 //
-// Samples lie on one lattice for every brick: distance t_k = k * delta from the eye. Sample k
+// Samples lie on one lattice for every brick: distance t_k = k * delta from the ray's origin (the
+// eye; orthographic: the pixel's point on the eye plane, raycast_sample.frag.glsl). Sample k
 // belongs to the brick, and to the block inside it, whose interval [enter, exit) along the ray
 // holds float(k) * delta. Every interval end is (plane - eye) * inv_dir of a block plane, and a
 // plane shared by two blocks or bricks is the same float in both, so each sample is taken by
@@ -151,10 +153,18 @@ int firstSample(float t) {
   return k;
 }
 
-// The ray through this pixel's centre (Camera::rayDirection), unit.
+// The ray through this pixel's centre (Camera::pixelRay): sets its origin g_eye and returns its
+// unit direction (also g_ray_dir).
 vec3 pixelRay() {
   vec2 s = vec2(gl_FragCoord.x * u_pixel_scale.x - 1.0, 1.0 - gl_FragCoord.y * u_pixel_scale.y);
-  return normalize(u_forward + s.x * u_right + s.y * u_up);
+  g_eye = cameraEye();
+  if (u_orthographic != 0) {
+    g_eye += s.x * u_right + s.y * u_up;
+    g_ray_dir = u_forward;
+  } else {
+    g_ray_dir = normalize(u_forward + s.x * u_right + s.y * u_up);
+  }
+  return g_ray_dir;
 }
 
 // Where the ray enters and leaves the brick's block grid (nb blocks per axis), from t >= 0:
@@ -315,7 +325,7 @@ void marchWithGlow(inout vec4 acc, inout Walk w, float t0, float t1, ivec3 nb, v
 void main() {
   vec3 dir = pixelRay();
   ivec3 nb = textureSize(u_skip, 0);
-  vec2 span = brickSpan(dir, nb);
+  vec2 span = clipRay(u_eye, dir, brickSpan(dir, nb));  // clip.planes, clip.box: volume_clip.glsl
   float t0 = span.x, t1 = span.y;
   // An opaque particle surface in this brick ends the ray; its colour is already in the target.
   ivec2 px = ivec2(gl_FragCoord.xy);

@@ -12,6 +12,7 @@
 #include "render/volume/adaptive_gpu_brick.h"
 #include "render/volume/isosurface_uniforms.h"
 #include "render/volume/glsl_files.h"
+#include "render/volume/volume_clip.h"
 #include "render/volume/volume_shading.h"
 
 namespace sortlast {
@@ -62,6 +63,7 @@ ProgramSources raycastSources(unsigned v) {
       .add(glsl::volume_filter)
       .addIf(shading, glsl::volume_shading)
       .add(glsl::raycast_sample_frag)
+      .add(glsl::volume_clip)
       .addIf(preint, glsl::preintegrated_segment)
       .addIf(glow, glsl::raycast_glow_frag)
       .addIf(projection != 0, glsl::raycast_projection_frag)
@@ -301,7 +303,7 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
   if (iso && (g.adaptive || preint || (glow && glow->count > 0)))  // the scene refuses these (scene/isosurface_scene.h)
     throw std::logic_error("ray caster: isosurfaces with adaptive bricks, pre-integration or glow");
   classify(g, float(spacing));
-  Rect r = g.any ? screenRectOf(cam, g.bound) : Rect{};
+  Rect r = g.any ? clippedRectOf(cam, g.bound, clip_) : Rect{};
   // Glow: the whole of the brick's part of the glow box, empty blocks and all.
   const bool glowing = glow && glow->count > 0 && hasVolume(glow->box);
   if (glowing) {
@@ -329,6 +331,7 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
                       (settings_.iso_debug ? kIsoDebug : 0));
     gl_.UseProgram(program);
     setPixelRayUniforms(program, cam);
+    setClipUniforms(program, clip_);
     if (g.adaptive) {
       program.set("u_index_scale", g.lookup.index_scale);
       program.set("u_index_offset", g.lookup.index_offset);

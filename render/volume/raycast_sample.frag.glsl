@@ -8,10 +8,11 @@ uniform sampler2D u_planes;     // texel (i, axis): world coordinate of block pl
 uniform usampler3D u_skip;      // per block: r = reach (distance to another class), g = class
 uniform vec3 u_tex_scale;
 uniform vec3 u_tex_offset;
-uniform vec3 u_eye;
+uniform vec3 u_eye;             // the eye (orthographic: the centre of the eye plane)
 uniform vec3 u_forward;
-uniform vec3 u_right;           // scaled by tan(fov / 2) * aspect
-uniform vec3 u_up;              // scaled by tan(fov / 2)
+uniform vec3 u_right;           // scaled by tan(fov / 2) * aspect (orthographic: parallel_scale * aspect)
+uniform vec3 u_up;              // scaled by tan(fov / 2) (orthographic: parallel_scale)
+uniform int u_orthographic;     // 1: parallel rays from the eye plane (Camera::pixelRay)
 uniform vec2 u_pixel_scale;     // 2 / width, 2 / height
 uniform float u_delta;          // lattice step along every ray (world units)
 uniform float u_ert;            // stop at this opacity; > 1: never
@@ -24,6 +25,14 @@ out vec4 frag;
 
 vec3 g_inv;  // 1 / ray direction, per axis
 ivec3 g_step;
+
+// This pixel's ray, set by pixelRay() (raycast_march.frag.glsl): its origin g_eye (the eye, or the
+// pixel's point on the eye plane when orthographic) and unit direction g_ray_dir. Every chunk from here
+// on means the ray's origin by u_eye: samples lie at u_eye + t dir, t from the origin.
+vec3 cameraEye() { return u_eye; }
+vec3 g_eye;
+vec3 g_ray_dir;
+#define u_eye g_eye
 
 // Whether u_surface holds the particle surface at pixel px.
 bool surfaceAt(ivec2 px) {
@@ -77,7 +86,7 @@ vec4 classify(float v) {
 
 // (r, g, b, tau) at world point p: the one place a sample is evaluated; its colour shaded with the
 // field's gradient in the program's shaded variant (SHADING defined; shadeColour:
-// render/volume/volume_shading.glsl; light at the eye, so the direction from it to p). A sample of
+// render/volume/volume_shading.glsl; light at the eye, so the ray's direction). A sample of
 // zero tau adds nothing whatever its colour: no gradient is read. Adaptive bricks are never shaded
 // (the scene refuses the combination): their blocks hold only their own samples, not the field one
 // voxel across a block face.
@@ -88,7 +97,7 @@ vec4 sampleAt(vec3 p) {
   vec4 e = classify(sampleVolume(p));
 #ifdef SHADING
   if (e.a > 0.0)
-    e.rgb = shadeColour(e.rgb, u_volume, p * u_tex_scale + u_tex_offset, normalize(p - u_eye));
+    e.rgb = shadeColour(e.rgb, u_volume, p * u_tex_scale + u_tex_offset, g_ray_dir);
 #endif
   return e;
 }

@@ -23,6 +23,10 @@
 // program's shaded variant (SHADING defined; shadeColour: render/volume/volume_shading.glsl, put in
 // front; light at the eye).
 // A sample of zero tau adds nothing whatever its colour: no gradient is read.
+// The ray from its origin to p: from the eye, or (orthographic) along the view axis from the
+// pixel's point on the eye plane, so its length is p's t either way.
+vec3 rayTo(vec3 p) { return u_orthographic != 0 ? u_forward * dot(p - u_eye, u_forward) : p - u_eye; }
+
 vec4 shadedSample(vec3 p) {
   vec3 tc = p * u_tex_scale + u_tex_offset;
   float v = volumeAt(u_volume, tc);
@@ -30,7 +34,7 @@ vec4 shadedSample(vec3 p) {
   float x = clamp(v * u_value_map.x + u_value_map.y, 0.0, 1.0);
   vec4 e = texture(u_table, x * u_table_map.x + u_table_map.y);
 #ifdef SHADING
-  if (e.a > 0.0) e.rgb = shadeColour(e.rgb, u_volume, tc, normalize(p - u_eye));
+  if (e.a > 0.0) e.rgb = shadeColour(e.rgb, u_volume, tc, normalize(rayTo(p)));
 #endif
   return e;
 }
@@ -38,12 +42,13 @@ vec4 shadedSample(vec3 p) {
 void main() {
   // An opaque particle surface in this brick ends the ray: nothing behind it is drawn.
   ivec2 px = ivec2(gl_FragCoord.xy);
+  if (!clipKeeps(v_world)) discard;  // clip.planes, clip.box: the sample lies outside
   if (u_has_surface != 0 && all(greaterThanEqual(px, u_surface_rect.xy)) &&
       all(lessThan(px, u_surface_rect.xy + u_surface_rect.zw)) &&
-      length(v_world - u_eye) >= texelFetch(u_surface, px, 0).x)
+      length(rayTo(v_world)) >= texelFetch(u_surface, px, 0).x)
     discard;
 #ifdef PREINTEGRATED
-  vec3 d = v_world - u_eye;
+  vec3 d = rayTo(v_world);
   float ds = u_spacing * length(d) / dot(d, u_forward);
   vec3 half_step = (0.5 * ds / length(d)) * d;
   float vf = volumeAt(u_volume, (v_world - half_step) * u_tex_scale + u_tex_offset);
@@ -57,7 +62,7 @@ void main() {
   frag = e;
 #else
   vec4 e = shadedSample(v_world);
-  vec3 d = v_world - u_eye;
+  vec3 d = rayTo(v_world);
   float ds = u_spacing * length(d) / dot(d, u_forward);
   float a = 1.0 - exp(-e.a * ds);
   frag = vec4(e.rgb * a, a);

@@ -7,6 +7,7 @@ uniform vec3 u_tex_scale;
 uniform vec3 u_tex_offset;
 uniform vec3 u_eye;
 uniform vec3 u_forward;
+uniform int u_orthographic;   // 1: parallel rays along u_forward from the eye plane through u_eye
 uniform float u_spacing;
 uniform vec2 u_value_map;   // normalised value = v * x + y
 uniform vec2 u_table_map;   // table coordinate = normalised * x + y (texel centres at the ends)

@@ -7,6 +7,7 @@
 #include "common/visibility.h"
 #include "render/volume/glsl_files.h"  // generated from render/volume/*.glsl
 #include "render/volume/slice_geometry.h"
+#include "render/volume/volume_clip.h"
 #include "render/volume/volume_shading.h"
 
 namespace sortlast {
@@ -28,6 +29,7 @@ ProgramSources slicingSources(unsigned v) {
       .add(glsl::volume_filter)
       .addIf(shading, glsl::volume_shading)
       .add(glsl::slicing_inputs_frag)
+      .add(glsl::volume_clip)
       .addIf(preint, glsl::preintegrated_segment)
       .add(glsl::slicing_frag);
   return {ShaderSource().add(glsl::slicing_vert), fragment};
@@ -80,20 +82,24 @@ RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spac
   RenderedBrick out;
   const bool preint = table_.preintegrated();
   glm::dvec3 eye = cam.position, fwd = cam.forward();
-  // Visible blocks, back to front, and the box around them (which sets the output rectangle).
+  // Visible blocks, back to front (orthographic: by the view direction, common/visibility.h
+  // orderEye), and the box around them (which sets the output rectangle).
   std::vector<float> tris;
   Box3 bound{glm::dvec3(1e300), glm::dvec3(-1e300)};
-  for (int id : backToFrontOrder(b.block_planes, eye)) {
+  const auto& bp = b.block_planes;
+  const Box3 brick_box{{bp[0].front(), bp[1].front(), bp[2].front()}, {bp[0].back(), bp[1].back(), bp[2].back()}};
+  for (int id : backToFrontOrder(b.block_planes, orderEye(cam, brick_box))) {
     const VolumeBlock& blk = b.blocks[size_t(id)];
     // Pre-integrated segments reach ds/2 beyond the block: its range grown by one voxel.
     if (preint ? !table_.visible(blk.gmin, blk.gmax) : !table_.visible(blk.vmin, blk.vmax)) continue;
+    if (clip_.culls(blk.world)) continue;  // wholly outside clip.planes / clip.box
     bound.lo = glm::min(bound.lo, blk.world.lo);
     bound.hi = glm::max(bound.hi, blk.world.hi);
     // Slices start just beyond the near plane so no polygon is clipped by it.
     std::vector<float> t = sliceTriangles(blk.world, eye, fwd, spacing, near_plane * 1.001);
     tris.insert(tris.end(), t.begin(), t.end());
   }
-  Rect r = tris.empty() ? Rect{} : screenRectOf(cam, bound);
+  Rect r = tris.empty() ? Rect{} : clippedRectOf(cam, bound, clip_);
   const bool has_surface = surface && !surface->rect.empty();
   if (has_surface) r = r.empty() ? surface->rect : unite(r, surface->rect);
   if (r.empty()) return out;
@@ -114,6 +120,8 @@ RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spac
     program.set("u_eye", glm::vec3(eye));
     program.set("u_forward", glm::vec3(fwd));
     program.set("u_spacing", float(spacing));
+    program.set("u_orthographic", cam.orthographic() ? 1 : 0);
+    setClipUniforms(program, clip_);
     table_.use(program);
     if (preint) table_.usePreintegrated(program, spacing);  // L0: the slice spacing
     if (shading_.enabled) setShadingUniforms(program, shading_, b, table_.function());

@@ -7,6 +7,7 @@
 
 #include "common/brick.h"
 #include "common/camera.h"
+#include "common/clip.h"
 #include "transfer/shading.h"
 #include "transfer/transfer_function.h"
 #include "render/gl/brick_output.h"
@@ -28,6 +29,9 @@ class VolumeRenderer {
   virtual void resize(int width, int height) = 0;
   // Gradient shading (transfer/shading.h) for the next frames.
   virtual void setShading(const Shading& shading) = 0;
+  // The clip region (common/clip.h) for the next frames: rays (slices) show only the volume inside
+  // it, and bricks wholly outside it are not drawn.
+  void setClip(const ClipRegion& clip) { clip_ = clip; }
   // Uploads a brick's stored samples (x fastest); returns a handle for render().
   virtual int addBrick(const Brick& brick, const GridGeometry& grid,
                        const std::vector<float>& samples) = 0;
@@ -48,6 +52,9 @@ class VolumeRenderer {
   // brick or a glow pass, and the brick renderer refuses those (std::logic_error) where it finds
   // no ray caster.
   virtual RaycastRenderer* raycaster() { return nullptr; }
+
+ protected:
+  ClipRegion clip_;
 };
 
 }  // namespace sortlast

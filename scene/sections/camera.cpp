@@ -11,7 +11,9 @@ std::vector<sortlast::SceneKey> sortlast::cameraKeys() {
     {"camera.position", "auto",
      "Eye position. `auto`: along (0.55, 0.35, 1) from `camera.look_at`, just far enough that "
      "the bounding sphere of the scene's bounds (the volume box, grown to hold the particles' "
-     "domain) fits the vertical and the horizontal field of view. Must lie outside the volume.",
+     "domain) fits the vertical and the horizontal field of view. May lie inside the volume (rays "
+     "start at the eye; slicing draws the slices in front of the near plane), not inside the "
+     "particles' domain, the surfaces' or the glow box.",
      Vector<glm::dvec3>{member<&Scene::camera, &Camera::position>, {kCoordinate}},
      AutoValue{member<&Scene::camera_auto>}},
     {"camera.look_at", "auto",
@@ -27,6 +29,20 @@ std::vector<sortlast::SceneKey> sortlast::cameraKeys() {
     {"camera.fov", "35", "Vertical field of view in degrees.",
      Real{member<&Scene::camera, &Camera::fov_deg>,
           {{"in (0, 180)", "must be {allowed} degrees"}}}},
+    {"camera.projection", "perspective",
+     "`perspective` (a pinhole at `camera.position`, `camera.fov`) or `orthographic` (parallel "
+     "rays along the view direction, each from its pixel's point on the plane through "
+     "`camera.position` perpendicular to it; the view is 2 x `camera.parallel_scale` high). "
+     "Orthographic: volumes (both `render.method`s) only; particles, surfaces and glow refuse it.",
+     Choice{member<&Scene::camera, &Camera::projection>,
+            std::vector<std::pair<const char*, Projection>>{
+                {"perspective", Projection::kPerspective}, {"orthographic", Projection::kOrthographic}}}},
+    {"camera.parallel_scale", "auto",
+     "Orthographic only: half the view's height in world units (ParaView's meaning). `auto`: "
+     "what the perspective view shows at `camera.look_at`, distance x tan(fov / 2) (so the "
+     "automatic camera frames the scene the same way).",
+     Real{member<&Scene::camera, &Camera::parallel_scale>, {{"> 0"}, kLength}},
+     AutoValue{member<&Scene::parallel_scale_auto>}},
     {"camera.orbit.frames", "0",
      "0: a single view. N > 0: the paper's orbit, N frames 360/N degrees apart on a circle "
      "around `camera.look_at`, written as a numbered series (out_0000.png, ...).",
@@ -55,6 +71,16 @@ void checkCameraKeys(const Scene& s) {
   if (!size.admits(cam.width) || !size.admits(cam.height))
     throw InputError("image size " + std::to_string(cam.width) + " x " + std::to_string(cam.height) +
                      ": image.width and image.height must be " + size.phrase());
+  // The metaball ray casters, the subdivision surfaces and the glow pass take perspective rays
+  // from the eye only: refused rather than drawn wrong.
+  if (cam.orthographic()) {
+    const char* what = s.particles.enabled() ? "particles" : !s.surfaces.empty() ? "surfaces"
+                       : s.glow.enabled() ? "glow emitters" : nullptr;
+    if (what)
+      throw InputError(std::string("scene key 'camera.projection': orthographic is available for "
+                                   "volumes only, and the scene has ") + what +
+                       " (their renderers take perspective rays); use camera.projection: perspective");
+  }
   if (!s.camera_auto && s.orbit.frames == 0) {
     if (glm::length(cam.look_at - cam.position) == 0.0)
       throw InputError("camera.position equals camera.look_at: no view direction");
@@ -85,11 +111,18 @@ std::vector<Camera> Scene::frameCameras(const Box3& bounds) const {
     double dist = 1.02 * radius / std::sin(std::min(vhalf, hhalf));
     base.position = base.look_at + dist * glm::normalize(glm::dvec3(0.55, 0.35, 1.0));
   }
-  if (orbit.frames == 0) return {base};
+  // camera.parallel_scale: auto: the height the perspective view has at the look-at point.
+  auto scaled = [&](Camera c) {
+    if (parallel_scale_auto)
+      c.parallel_scale = std::max(kMinLength, glm::length(c.look_at - c.position) *
+                                                  std::tan(0.5 * c.fov_deg * 3.14159265358979323846 / 180.0));
+    return c;
+  };
+  if (orbit.frames == 0) return {scaled(base)};
   std::vector<Camera> cams;
   double radius = orbit.radius.value_or(2.0 * extent);
   for (int i = 0; i < orbit.frames; ++i)
-    cams.push_back(orbitCamera(base, base.look_at, radius, orbit.elevation, i, orbit.frames, orbit.start));
+    cams.push_back(scaled(orbitCamera(base, base.look_at, radius, orbit.elevation, i, orbit.frames, orbit.start)));
   return cams;
 }
 

@@ -44,7 +44,8 @@ open(sys.argv[1], "wb").write(struct.pack("<%df" % len(v), *v))
 PY
 expect_error "NaN in float data" "NaN at voxel [3, 4, 5]" \
   --set volume.file="$WORK/nan.raw" --set "volume.dims=[16,16,16]" --set volume.type=float32
-expect_error "camera inside the volume" "is inside the scene" --set "camera.position=[5,-3,2]"
+expect_error "camera inside the particles" "is inside the box of the particles" --set particles.procedural=layers \
+  --set "camera.position=[0.5,0.2,0.1]"
 if full; then
 expect_error "zero-size image" "image.width and image.height must be in [1, 32768]" --set image.width=0
 expect_error "unknown backend" "expected osmesa or egl" --set render.backend=vulkan

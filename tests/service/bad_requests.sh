@@ -25,7 +25,7 @@ cases=(
   '400|image\.background|{"image.background":[".nan",0,0]}'
   '400|transfer\.points|{"transfer.points":[[0,0,0,0,0],[1,1,1,1,".nan"]]}'
   '400|camera\.up|{"camera.up":[0,0,0]}'
-  '400|inside|{"camera.position":[30,30,30]}'
+  '400|camera\.parallel_scale|{"camera.parallel_scale":0}'
   '400|image\.width|{"image.width":0}'
   '400|image\.width|{"image.width":100000}'
   '400|image\.width|4096|{"image.width":5000}'
