@@ -167,7 +167,8 @@ ImageF renderIsosurfaceReference(const WholeVolume& vol, const std::vector<Isova
     for (int y; (y = next_row++) < cam.height;) {
       for (int x = 0; x < cam.width; ++x) {
         const size_t pixel = size_t(y) * cam.width + x;
-        const glm::dvec3 o = cam.position, d = cam.rayDirection(x, y);
+        const CameraRay ray = cam.pixelRay(x, y);  // from the eye, or the eye plane (orthographic)
+        const glm::dvec3 o = ray.origin, d = ray.direction;
         const bool hit_surface = stop && stop->hit(pixel);
         glm::dvec3 rgb(0.0);
         double transmit = 1.0;

@@ -104,10 +104,12 @@ ImageF projectReference(const WholeVolume& vol, const TransferFunction& tf, cons
   auto worker = [&] {
     for (int y; (y = next_row++) < cam.height;)
       for (int x = 0; x < cam.width; ++x) {
-        const glm::dvec3 o = cam.position, d = cam.rayDirection(x, y);
+        const CameraRay ray = cam.pixelRay(x, y);  // from the eye, or the eye plane (orthographic)
+        const glm::dvec3 o = ray.origin, d = ray.direction;
         double t0, t1;
         if (!intersectRayBox(o, d, box, t0, t1)) continue;
         t0 = std::max(t0, 0.0);
+        clipSpan(vol.clip, o, d, t0, t1);  // clip.planes, clip.box (common/clip.h)
         if (!(t1 > t0)) continue;
         float* p = &img.px[(size_t(y) * cam.width + x) * 4];
         if (exact && !vol.adaptive) {
