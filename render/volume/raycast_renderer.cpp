@@ -24,12 +24,15 @@ enum RaycastVariant : unsigned {
   kShading = 4,        // SHADING: render.shading
   kGlow = 8,           // GLOW: glow emitters inside the volume
   kFloatFilter = 16,    // FLOAT_FILTER: the volume filtered in float (volume_shading.h floatFilter)
+  kFieldsShift = 8,     // FIELDS n: several fields (flags >> kFieldsShift = n; raycast_fields.cpp)
 };
 
 // The fragment shader of a variant: render/volume/raycast_march.frag.glsl describes the chunks.
 ProgramSources raycastSources(unsigned v) {
   const bool glow = v & kGlow, shading = v & kShading, preint = v & kPreintegrated;
+  const unsigned fields = v >> kFieldsShift;
   ShaderSource fragment;
+  if (fields > 0) fragment.define("FIELDS", std::to_string(fields));
   fragment.defineIf(v & kAdaptive, "ADAPTIVE")
       .defineIf(preint, "PREINTEGRATED")
       .defineIf(shading, "SHADING")
@@ -40,6 +43,7 @@ ProgramSources raycastSources(unsigned v) {
       .add(glsl::volume_filter)
       .addIf(shading, glsl::volume_shading)
       .add(glsl::raycast_sample_frag)
+      .addIf(fields > 0, glsl::raycast_fields_frag)
       .addIf(preint, glsl::preintegrated_segment)
       .addIf(glow, glsl::raycast_glow_frag)
       .add(glsl::raycast_march_frag);
@@ -65,7 +69,13 @@ RaycastRenderer::RaycastRenderer(const GlContext& ctx, int width, int height, in
 
 RaycastRenderer::~RaycastRenderer() {
   for (auto& b : bricks_) {
-    if (pool_ && !b.adaptive)
+    for (auto& f : b.fields) {  // (a brick of several fields has no texture of its own: 0)
+      if (pool_) pool_->give(f.volume.texture, f.volume.brick.stored.size());
+      else gl_.DeleteTextures(1, &f.volume.texture);
+    }
+    if (!b.fields.empty())
+      ;
+    else if (pool_ && !b.adaptive)
       pool_->give(b.volume.texture, b.volume.brick.stored.size());
     else
       gl_.DeleteTextures(1, &b.volume.texture);
@@ -170,7 +180,7 @@ void RaycastRenderer::setGlobalRanges(std::vector<float> vmin, std::vector<float
 }
 
 void RaycastRenderer::classify(GpuBrick& g, float delta) {
-  const ClassKey key{table_.version(), ranges_version_, delta, settings_.adaptive_step,
+  const ClassKey key{table_.version() + field_tables_version_, ranges_version_, delta, settings_.adaptive_step,
                      settings_.adaptive_tolerance};
   if (key == g.classified) return;
   const BrickBlocks& b = g.blocks;
@@ -185,8 +195,9 @@ void RaycastRenderer::classify(GpuBrick& g, float delta) {
         // Pre-integrated segments reach up to delta/2 <= one voxel beyond the block
         // (render/volume/raycast_march.frag.glsl): the whole block's range grown by one sample
         // holds their ends.
-        visible[i] = (table_.preintegrated() && b.global ? table_.visible(b.grown_min[i], b.grown_max[i])
-                                                         : table_.visible(b.vmin[i], b.vmax[i]))
+        visible[i] = (!g.fields.empty() ? fieldsVisible(g, i)
+                      : table_.preintegrated() && b.global ? table_.visible(b.grown_min[i], b.grown_max[i])
+                                                           : table_.visible(b.vmin[i], b.vmax[i]))
                          ? 1 : 0;
         if (!visible[i]) continue;
         g.any = true;
@@ -198,7 +209,7 @@ void RaycastRenderer::classify(GpuBrick& g, float delta) {
       }
   // Adaptive steps need the whole blocks' ranges (the same m in every brick sharing a block).
   const StepRule* rule = nullptr;
-  if (settings_.adaptive_step && b.global && !global_min_.empty()) {
+  if (settings_.adaptive_step && b.global && !global_min_.empty() && g.fields.empty()) {
     ClassKey rk{table_.version(), 0, delta, true, settings_.adaptive_tolerance};
     if (!rule_ || !(rk == rule_key_)) {
       rule_ = std::make_unique<StepRule>(table_.entries(), table_.rangeLo(), table_.rangeHi(), delta,
@@ -267,10 +278,13 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
     // Adaptive blocks cannot be shaded (raycast_sample.frag.glsl sampleAt); the scene refuses it.
     if (g.adaptive && shading_.enabled)
       throw std::logic_error("ray caster: gradient shading of an adaptive brick");
+    const unsigned fields = g.fields.empty() ? 0u : unsigned(field_tables_.size());
+    if (fields > 0 && (preint || shading_.enabled || glowing || settings_.adaptive_step))
+      throw std::logic_error("ray caster: several fields with pre-integration, shading, glow or adaptive steps");
     const GlProgram& program =
         programs_.get((g.adaptive ? kAdaptive : 0) | (preint ? kPreintegrated : 0) |
                       (shading_.enabled ? kShading : 0) | (float_filter_ ? kFloatFilter : 0) |
-                      (glowing ? kGlow : 0));
+                      (glowing ? kGlow : 0) | (fields << kFieldsShift));
     gl_.UseProgram(program);
     setPixelRayUniforms(program, cam);
     if (g.adaptive) {
@@ -294,6 +308,7 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
     program.set("u_skip", 4);
     program.set("u_has_surface", has_surface ? 1 : 0);
     table_.use(program);
+    if (fields > 0) useFields(program, g);
     if (preint) table_.usePreintegrated(program, spacing);  // segments delta long
     if (shading_.enabled) setShadingUniforms(program, shading_, b, table_.function());
     if (has_surface) {

@@ -84,6 +84,7 @@ vec4 classify(float v) {
 #if defined(SHADING) && defined(ADAPTIVE)
 #error gradient shading of adaptive blocks
 #endif
+#ifndef FIELDS  // several fields: raycast_fields.frag.glsl's
 vec4 sampleAt(vec3 p) {
   vec4 e = classify(sampleVolume(p));
 #ifdef SHADING
@@ -92,3 +93,4 @@ vec4 sampleAt(vec3 p) {
 #endif
   return e;
 }
+#endif
