@@ -111,7 +111,8 @@ void checkFieldsScene(const Scene& s) {
 }  // namespace
 
 std::optional<bool> readVolumesKey(const Reader& r, const Origin& o, const YAML::Node& root, Scene& s) {
-  const YAML::Node list = r.get("volumes");
+  // The node as given (Reader::get clones it, and the clone's nodes have no line numbers).
+  const YAML::Node list = root["volumes"] ? root["volumes"] : r.get("volumes");
   if (list.IsNull() || (list.IsSequence() && list.size() == 0)) return std::nullopt;
   if (!list.IsSequence())
     throw InputError("scene key 'volumes': expected a list of fields ({file | procedural, dims, "
