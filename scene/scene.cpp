@@ -217,7 +217,7 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
   checkRenderKeys(s);
   // The rules between sections.
   if (!s.hasVolume() && !s.particles.enabled() && !s.glow.enabled() && s.surfaces.empty() &&
-      !r.get("volumes").IsSequence())
+      !(r.get("volumes").IsSequence() && r.get("volumes").size() > 0))
     throw InputError("the scene has nothing to render: volume.procedural is none with no "
                      "volume.file, neither particles.file nor particles.procedural is set, "
                      "glow.emitters is empty and there are no surfaces");

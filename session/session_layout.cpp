@@ -66,7 +66,7 @@ void checkCameraOutside(const Camera& cam, const Box3& box, const std::string& w
   }
   if (!box.contains(p)) return;
   std::snprintf(msg, sizeof msg,
-                "camera.position (%g, %g, %g)%s is inside the scene, whose box (the volume, "
+                "camera.position (%g, %g, %g)%s is inside the scene, whose box (the volume or every field of volumes, "
                 "and the particles grown by their influence radius) is "
                 "[%g, %g] x [%g, %g] x [%g, %g]; move the camera outside it",
                 p.x, p.y, p.z, which.c_str(), box.lo.x, box.hi.x, box.lo.y, box.hi.y, box.lo.z,
