@@ -3,8 +3,10 @@
 # grids (tests/data/two_fields.yaml) against the CPU reference of their mixture (45 dB); each
 # field changes the frame; empty-space skipping changes nothing; the same frame on 1-4 ranks and
 # with every compositing strategy (1/255); one field given through `volumes` gives the image of
-# the same field given as `volume`, exactly; a bad key in an entry, a raw file of the wrong size
-# and a mode several fields cannot do end every rank with a message naming the key.
+# the same field given as `volume`, exactly, and a second field transparent everywhere leaves it
+# within 1/255 (the FIELDS program against the one-field program); a bad key in an entry, a raw
+# file of the wrong size and a mode several fields cannot do end every rank with a message naming
+# the key.
 # Usage: fields.sh SORTLAST DATA_DIR
 source "$(dirname "$0")/lib.sh" "$1"
 data=$2
@@ -72,6 +74,25 @@ timeout 120 "$SORTLAST" render "$WORK/as_volumes.yaml" -q -o "$WORK/as_volumes.p
 timeout 120 "$SORTLAST" render "$WORK/as_volume.yaml" -q -o "$WORK/as_volume.png" || fail "render one field as volume"
 "$SORTLAST" compare "$WORK/as_volume.png" "$WORK/as_volumes.png" --max-diff 0 || fail "one field: volumes differs from volume"
 echo "ok: one field through volumes is the volume form"
+# The FIELDS program with a second field that is transparent everywhere (same grid, so the same
+# bricks and lattice) is the one-field program's frame: the mixture reduces to one field within
+# float rounding (tau c / tau).
+cat >"$WORK/with_clear.yaml" <<'Y'
+volumes:
+  - procedural: blobs
+    dims: [41, 25, 30]
+    spacing: [1, 1.6, 0.9]
+    transfer: {preset: default, colormap: inferno}
+  - procedural: sphere
+    dims: [41, 25, 30]
+    spacing: [1, 1.6, 0.9]
+    transfer: {points: [[0, 1, 1, 1, 0], [1, 1, 1, 1, 0]]}
+image: {width: 64, height: 64}
+Y
+timeout 120 "$SORTLAST" render "$WORK/with_clear.yaml" -q -o "$WORK/with_clear.png" || fail "render with a transparent second field"
+"$SORTLAST" compare "$WORK/as_volume.png" "$WORK/with_clear.png" --max-diff 1 ||
+  fail "a transparent second field changes the frame"
+echo "ok: a transparent second field leaves the one-field frame"
 
 expect_error() {  # expect_error RANKS "what" "message part" sortlast-args...
   local np=$1 what=$2 want=$3; shift 3
