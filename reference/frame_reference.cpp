@@ -68,7 +68,24 @@ FrameReference::FrameReference(Scene scene, int threads)
     bounds_ = reachOf(m, scene.particles.reach());
     balls_ = std::move(m);
   }
-  if (scene.hasVolume()) {
+  if (scene.hasFields()) {
+    // Every field whole, its transfer function over its own data range; the box the session's
+    // layout cuts (fieldsGrid), so both frame the same camera.
+    for (FieldSpec& f : scene.fields) {
+      try {
+        validateVolume(f.volume);
+      } catch (const InputError& e) {
+        throw InputError(fieldMessage(e.what(), f.name));
+      }
+      FieldInput in{{f.volume.grid, readWholeVolume(f.volume)}, {}};
+      auto [lo, hi] = presentRange(in.vol.samples, f.volume.file);
+      in.tf = f.transfer.build(lo, hi, f.volume.grid.minSpacing());
+      fields_.push_back(std::move(in));
+    }
+    const GridGeometry all = fieldsGrid(scene.fields);  // with the grids the files gave
+    fields_step_ = scene.reference.step * all.minSpacing();
+    bounds_ = all.worldBox();
+  } else if (scene.hasVolume()) {
     validateVolume(scene.volume);
     VolumeInput in{{scene.volume.grid, {}}, {}, 0.0};
     in.vol.samples = readWholeVolume(scene.volume);
@@ -128,6 +145,11 @@ ImageF FrameReference::render(const Camera& cam, SurfaceImage* surface_out, int 
       mergeNearest(*surface, colour, s, c);
     else
       surface = std::move(s), colour = std::move(c);
+  }
+  if (!fields_.empty()) {  // the scene refuses particles, surfaces and glow with several fields
+    if (bounds_.contains(cam.position))
+      throw InputError("camera.position is inside the fields' box; move the camera outside it");
+    return renderFieldsReference(fields_, bounds_, cam, fields_step_, threads_);
   }
   if (volume_ && !volume_->isovalues.empty()) {
     out = renderIsosurfaceReference(volume_->vol, volume_->isovalues, volume_->shading, cam, threads_,

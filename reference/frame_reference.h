@@ -17,6 +17,7 @@
 #include "io/image.h"
 #include "scene/scene.h"
 #include "io/surface_image.h"
+#include "reference/fields_reference.h"
 #include "reference/metaball_reference.h"
 #include "reference/reference.h"
 #include "reference/surface_reference.h"
@@ -31,7 +32,7 @@ class FrameReference {
   // The scene's domain: the volume box grown to hold the particles' reach (the render job frames
   // and bricks the same box).
   const Box3& bounds() const { return bounds_; }
-  bool hasVolume() const { return volume_.has_value(); }
+  bool hasVolume() const { return volume_.has_value() || !fields_.empty(); }
   bool hasParticles() const { return balls_.has_value(); }
 
   bool hasGlow() const { return glow_.enabled(); }
@@ -55,6 +56,9 @@ class FrameReference {
     std::vector<Isovalue> isovalues;  // render.blend: isosurface (reference/isosurface_reference.h)
   };
   std::optional<VolumeInput> volume_;
+  // Several fields (`volumes`): their mixture (reference/fields_reference.h) instead of volume_.
+  std::vector<FieldInput> fields_;
+  double fields_step_ = 0.0;
   std::optional<MetaballModel> balls_;
   std::optional<SurfaceReference> subdiv_;
   glm::dvec3 colour_{1.0};

@@ -185,6 +185,21 @@ int BrickRenderer::addBrick(const Brick& volume_brick, const GridGeometry& grid,
   return addHandles(h, particle_clip);
 }
 
+void BrickRenderer::setFieldTransfers(const std::vector<TransferFunction>& tfs, const std::vector<int>& table_sizes) {
+  RaycastRenderer* ray = volume_ ? volume_->raycaster() : nullptr;
+  if (!ray) throw std::logic_error("several fields need the ray caster (enableVolume)");
+  ray->setFieldTransfers(tfs, table_sizes);
+}
+
+int BrickRenderer::addFieldsBrick(const Brick& brick, const GridGeometry& grid,
+                                  const std::vector<FieldBrickPart>& parts, const Box3& clip) {
+  RaycastRenderer* ray = volume_ ? volume_->raycaster() : nullptr;
+  if (!ray) throw std::logic_error("several fields need the ray caster (enableVolume)");
+  Handles h;
+  h.volume = ray->addFieldsBrick(brick, grid, parts);
+  return addHandles(h, clip);
+}
+
 int BrickRenderer::addParticleBrick(const Box3& particle_clip, const std::vector<glm::vec3>& particles) {
   Handles h;
   if (metaballs_) h.particles = metaballs_->addBrick(particle_clip, particles);

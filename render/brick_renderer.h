@@ -84,6 +84,12 @@ class BrickRenderer {
                const Box3& particle_clip, const std::vector<glm::vec3>* particles,
                const AdaptiveBrickBlocks* adaptive = nullptr);
 
+  // Several fields (render/volume/field_bricks.h; the ray caster, after enableVolume): their
+  // transfer functions for the next frames, and a brick of the layout's grid with their parts.
+  void setFieldTransfers(const std::vector<TransferFunction>& tfs, const std::vector<int>& table_sizes);
+  int addFieldsBrick(const Brick& brick, const GridGeometry& grid, const std::vector<FieldBrickPart>& parts,
+                     const Box3& clip);
+
   // What a resident session changes between frames without re-uploading any brick.
   void setImageSize(int width, int height);
   void setTransferFunction(const TransferFunction& tf, int table_size, bool preintegrated = false);

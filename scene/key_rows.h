@@ -42,6 +42,7 @@ inline Check colourCheck() { return {"in [0, 1]", "entries must be {allowed}"}; 
 std::vector<SceneKey> volumeKeys();
 std::vector<SceneKey> particleKeys();
 std::vector<SceneKey> transferKeys();
+std::vector<SceneKey> volumesKeys();
 std::vector<SceneKey> imageKeys();
 std::vector<SceneKey> cameraKeys();
 std::vector<SceneKey> clipKeys();

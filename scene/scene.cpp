@@ -115,10 +115,16 @@ void read(const Vector<T>& vec, const std::string& key, const Reader& r, const O
 
 void read(const Structured&, const std::string&, const Reader&, const Origin&, Scene&) {}
 
+}  // namespace
+
 // Every key the table types, in the table's order: its value (`auto` leaves the field to its
-// default or to parseScene), checked, into its field.
-void readTypedKeys(const Reader& r, const Origin& o, Scene& s) {
+// default or to parseScene), checked, into its field. With `prefixes`, only the keys under them.
+void readTypedKeys(const Reader& r, const Origin& o, Scene& s, const std::vector<std::string>& prefixes) {
   for (const SceneKey& k : sceneKeys()) {
+    if (!prefixes.empty() &&
+        std::none_of(prefixes.begin(), prefixes.end(),
+                     [&](const std::string& p) { return std::string_view(k.path).starts_with(p); }))
+      continue;
     if (k.auto_value) {
       const bool is_auto = r.isAuto(k.path);
       if (k.auto_value->flag) k.auto_value->flag(s) = is_auto;
@@ -127,8 +133,6 @@ void readTypedKeys(const Reader& r, const Origin& o, Scene& s) {
     std::visit([&](const auto& type) { read(type, k.path, r, o, s); }, k.type);
   }
 }
-
-}  // namespace
 
 SceneText readSceneText(const std::string& path) {
   if (path.empty()) return {};
@@ -214,7 +218,8 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
   checkRenderKeys(s);
   s.render.isovalues = parseIsovalues(r.get("render.isovalues"));
   // The rules between sections.
-  if (!s.hasVolume() && !s.particles.enabled() && !s.glow.enabled() && s.surfaces.empty())
+  if (!s.hasVolume() && !s.particles.enabled() && !s.glow.enabled() && s.surfaces.empty() &&
+      !(r.get("volumes").IsSequence() && r.get("volumes").size() > 0))
     throw InputError("the scene has nothing to render: volume.procedural is none with no "
                      "volume.file, neither particles.file nor particles.procedural is set, "
                      "glow.emitters is empty and there are no surfaces");
@@ -223,6 +228,7 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
                      "glow is integrated in (auto takes the volume's and particles' bounds, and "
                      "there are none)");
   readTransferKeys(r, origin, s.transfer);
+  const std::optional<bool> first_preint_auto = readVolumesKey(r, origin, root, s);
   checkCameraKeys(s);
   readClipKeys(r, s);
 
@@ -232,7 +238,7 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
   if (r.isAuto("bricks.per_axis")) s.bricks.per_axis = glow_alone ? 1 : 2;
   s.adaptive.tolerance /= 100.0;  // given in percent
   // transfer.preintegrated `auto`: on where the opacity is steep and pre-integration is supported.
-  if (r.isAuto("transfer.preintegrated"))
+  if (first_preint_auto.value_or(r.isAuto("transfer.preintegrated")) && !s.hasFields())
     s.transfer.preintegrated = s.adaptive.tolerance == 0.0 && s.render.sample_spacing <= 2.0 &&
                                hasSteepOpacity(s.transfer.points);
   if (s.transfer.preintegrated && s.adaptive.tolerance > 0.0)

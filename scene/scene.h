@@ -12,6 +12,7 @@
 #include "common/clip.h"
 #include "io/particles.h"
 #include "io/volume_source.h"
+#include "scene/fields_scene.h"
 #include "scene/glow_scene.h"
 #include "scene/scene_keys.h"
 #include "scene/sections.h"
@@ -25,6 +26,9 @@ struct Scene {
   GlowSpec glow;               // glow.* (emitters: none unless given)
   std::vector<SurfaceSpec> surfaces;  // surfaces (subdivision surfaces; none unless given)
   TransferSpec transfer;
+  // Several fields (`volumes`, scene/fields_scene.h): all of them, the first also in volume and
+  // transfer; empty with one field (then in volume and transfer alone, as without `volumes`).
+  std::vector<FieldSpec> fields;
   ImageSection image;
   Camera camera;               // with image width and height
   bool camera_auto = true;     // position derived from the bounds (camera.position: auto)
@@ -41,12 +45,16 @@ struct Scene {
   ReferenceSection reference;
 
   bool hasVolume() const { return !volume.file.empty() || volume.procedural != "none"; }
+  bool hasFields() const { return fields.size() > 1; }
 
   // Cameras of every frame (one, or the orbit's), with the automatic parts resolved against the
   // scene's bounds: the volume box, grown to hold the particles' domain. An empty box (lo > hi)
   // counts as the origin with extent 1, a box of zero size as its centre with extent 1.
   std::vector<Camera> frameCameras(const Box3& bounds) const;
-  double sampleSpacingWorld() const { return render.sample_spacing * volume.grid.minSpacing(); }
+  // In units of the smallest voxel spacing of any field.
+  double sampleSpacingWorld() const {
+    return render.sample_spacing * (hasFields() ? fieldsGrid(fields).minSpacing() : volume.grid.minSpacing());
+  }
 };
 
 // A scene file's text, read once: a resident session parses it again with each request's keys, so

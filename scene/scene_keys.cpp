@@ -176,7 +176,7 @@ namespace {
 // The table: every section's rows, in the order of docs/scene.md.
 std::vector<SceneKey> makeTable() {
   std::vector<SceneKey> table;
-  for (auto rows : {volumeKeys, particleKeys, transferKeys, imageKeys, cameraKeys, clipKeys, brickKeys, renderKeys,
+  for (auto rows : {volumeKeys, particleKeys, transferKeys, volumesKeys, imageKeys, cameraKeys, clipKeys, brickKeys, renderKeys,
                     adaptiveKeys, compositingKeys, timeKeys, limitKeys, glowKeys, surfaceKeys, referenceKeys}) {
     std::vector<SceneKey> section = rows();
     table.insert(table.end(), std::make_move_iterator(section.begin()), std::make_move_iterator(section.end()));

@@ -6,6 +6,7 @@
 // scene/.
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -115,6 +116,9 @@ struct Origin {
 // message).
 void requireTable(const std::string& key, double v, const std::string& name);
 
+// Reads the keys the table types (scene.cpp), only those under `prefixes` if any are given.
+void readTypedKeys(const Reader& r, const Origin& o, Scene& s, const std::vector<std::string>& prefixes = {});
+
 // The sections' rules, each in its section's file.
 void checkVolumeKeys(const Scene& s);                                       // sections/volume.cpp
 void checkParticleKeys(const Reader& r, ParticleDesc& p);                   // sections/particles.cpp
@@ -127,5 +131,8 @@ void checkRenderKeys(const Scene& s);                                       // s
 void readTransferKeys(const Reader& r, const Origin& o, TransferSpec& tf);  // sections/transfer.cpp
 void checkCameraKeys(const Scene& s);                                       // sections/camera.cpp
 void readClipKeys(const Reader& r, Scene& s);                               // sections/clip.cpp
+// `volumes`: the fields (`root`: the scene as given, to tell whether it sets volume.* too).
+// Returns whether the first field's transfer.preintegrated is auto; nullopt without `volumes`.
+std::optional<bool> readVolumesKey(const Reader& r, const Origin& o, const YAML::Node& root, Scene& s);  // sections/volumes.cpp
 
 }  // namespace sortlast

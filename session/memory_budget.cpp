@@ -1,5 +1,7 @@
 #include "session/memory_budget.h"
 
+#include "render/volume/field_bricks.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -174,7 +176,27 @@ MemoryNeed sessionNeed(const Scene& scene, const SessionLayout& layout, long lon
   MemoryNeed n;
   const int d = scene.bricks.per_axis, bricks_all = d * d * d;
   double step_host = 0;
-  if (scene.hasVolume()) {
+  if (scene.hasFields()) {
+    // Several fields: each one's parts of this rank's bricks (session/fields_loading.h), on the
+    // host and as textures.
+    for (const FieldSpec& f : scene.fields) {
+      double samples = 0, largest = 0;
+      for (int id : layout.mine) {
+        bool present = false;
+        const IndexBox box = fieldBoxOf(f.volume.grid, layout.volume_bricks[size_t(id)].world, present);
+        const double c = present ? double(box.count()) : 0.0;
+        samples += c;
+        largest = std::max(largest, c);
+      }
+      char what[200];
+      std::snprintf(what, sizeof what, "%s: its parts of the bricks with ghosts (%d brick(s), %.3g samples, float)",
+                    f.name.c_str(), int(layout.mine.size()), samples);
+      n.add(what, 4.0 * samples);
+      n.add(f.name + ": its 3D textures (R32F)", 4.0 * samples, 4.0 * samples);
+      if (!f.volume.isProcedural()) n.add(f.name + ": one brick's file data while it is read", 8.0 * largest);
+      step_host += 4.0 * samples;
+    }
+  } else if (scene.hasVolume()) {
     double samples = 0, largest = 0;
     for (int id : layout.mine) {
       double c = double(layout.volume_bricks[size_t(id)].stored.count());

@@ -229,6 +229,7 @@ RenderSession::RenderSession(SessionOptions options, MPI_Comm comm) : s_(std::ma
     resolveFileSteps(S.base);
     S.adaptive = usesAdaptiveBlocks(S.base);
     if (S.base.hasVolume()) validateVolume(S.base.volume);
+    if (S.base.hasFields()) validateFields(S.base.fields);  // the layout's grid covers their grids
     checkGlowScene(S.base, false);
   });
   const Scene& scene = S.base;
@@ -386,6 +387,8 @@ Scene RenderSession::State::resolve(const FrameRequest& request) const {
                          : "scene key 'glow.emitters': this session was started without glow emitters, so "
                            "its bricks do not cover a glow box; start it with glow.emitters");
   sc.volume.grid = layout.grid;  // a VTK file's grid, read at start
+  for (size_t f = 0; f < sc.fields.size() && f < base.fields.size(); ++f)
+    sc.fields[f].volume.grid = base.fields[f].volume.grid;  // (`volumes` is no frame key: the same fields)
   if (sc.camera.width > opts.max_image_side || sc.camera.height > opts.max_image_side)
     throw InputError("image size " + std::to_string(sc.camera.width) + " x " + std::to_string(sc.camera.height) +
                      " is larger than this session allows (" + std::to_string(opts.max_image_side) +
@@ -435,6 +438,7 @@ void RenderSession::State::uploadBricks(const Scene& scene, StepData& d) {
   if (scene.hasVolume() && rank == 0 && scene.render.blend == VolumeBlend::kIsosurface)
     for (const std::string& w : isovalueRangeWarnings(scene.render.isovalues, d.data_min, d.data_max))
       std::fprintf(stderr, "%s\n", w.c_str());
+  if (scene.hasFields()) renderer->setFieldTransfers(fieldTransfers(scene.fields, d.fields), fieldTableSizes(scene.fields));
   if (has_particles) renderer->enableParticles(metaballSettings(scene.particles));
   renderer->enableSurfaces(scene.surfaces);
   if (scene.glow.enabled()) renderer->enableGlow();
@@ -443,6 +447,11 @@ void RenderSession::State::uploadBricks(const Scene& scene, StepData& d) {
     Box3 clip = brickBox(layout.planes, cellOf(id));
     std::vector<glm::vec3> near = has_particles ? particlesNear(d.particles, clip, margin) : std::vector<glm::vec3>();
     particles_held += double(near.size());
+    if (scene.hasFields()) {  // several fields: the scene refuses particles and glow with them
+      handles.push_back(renderer->addFieldsBrick(layout.volume_bricks[size_t(id)], layout.grid,
+                                                 fieldParts(scene.fields, d.fields, i), clip));
+      continue;
+    }
     const Brick* vb = scene.hasVolume() ? &layout.volume_bricks[size_t(id)] : nullptr;
     handles.push_back(renderer->addBrick(vb, &layout.grid, vb && !adaptive ? &d.samples[i] : nullptr, clip,
                                          has_particles ? &near : nullptr,
@@ -571,6 +580,7 @@ void RenderSession::State::applyFrameSettings(const Scene& sc, const FrameReques
                                   sc.transfer.table_size, sc.transfer.preintegrated);
     renderer->setVolumeMethodSettings(volumeMethod(sc));
     renderer->setClip(sc.clip);
+    if (sc.hasFields() && current) renderer->setFieldTransfers(fieldTransfers(sc.fields, current->fields), fieldTableSizes(sc.fields));
   }
   if (sc.particles.enabled()) renderer->setMetaballSettings(metaballSettings(sc.particles));
   const bool glow = sc.glow.enabled();

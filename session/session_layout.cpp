@@ -11,8 +11,10 @@ Box3 grow(const Box3& b, double by) { return {b.lo - by, b.hi + by}; }
 SessionLayout makeLayout(const Scene& scene, const Box3& particle_centres, int rank, int size) {
   SessionLayout L;
   const int d = scene.bricks.per_axis;
-  L.grid = scene.volume.grid;
-  if (scene.hasVolume()) L.volume_bricks = makeBricks(scene.volume.grid, d);
+  // Several fields: one grid covering them all is cut (scene/fields_scene.h fieldsGrid); each
+  // field hands each brick its part (session/fields_loading.h).
+  L.grid = scene.hasFields() ? fieldsGrid(scene.fields) : scene.volume.grid;
+  if (scene.hasVolume()) L.volume_bricks = makeBricks(L.grid, d);
   // The domain holds every particle's field: h, or the anisotropic ellipsoids' reach.
   L.particle_h = scene.particles.enabled() ? scene.particles.reach() : 0.0;
   L.particle_domain = isEmpty(particle_centres) ? noBox()
@@ -23,7 +25,7 @@ SessionLayout makeLayout(const Scene& scene, const Box3& particle_centres, int r
     L.particle_domain = isEmpty(L.particle_domain) ? surfaces : unite(L.particle_domain, surfaces);
   if (scene.hasVolume()) {
     L.planes = volumeBrickPlanes(L.volume_bricks, d);
-    L.bounds = scene.volume.grid.worldBox();
+    L.bounds = L.grid.worldBox();
     if (!isEmpty(L.particle_domain)) {
       L.planes = coverBox(L.planes, L.particle_domain);
       L.bounds = unite(L.bounds, L.particle_domain);

@@ -45,6 +45,8 @@ std::vector<Box3> rankRegions(const SessionLayout& layout, int size) {
 void StepData::dropHostCopies() {
   for (auto& s : samples) std::vector<float>().swap(s);
   for (auto& b : adaptive.bricks) b = {};
+  for (auto& f : fields)
+    for (auto& s : f.samples) std::vector<float>().swap(s);
   loaded.set = {};
   std::vector<glm::vec3>().swap(particles);
   dropped = true;
@@ -58,7 +60,14 @@ StepData loadStep(const Scene& scene, const SessionLayout& layout, bool adaptive
   StepData d;
   d.step = scene.time.step;
   d.has_volume = scene.hasVolume();
-  if (scene.hasVolume()) {
+  if (scene.hasFields()) {
+    // Several fields: each one's parts of this rank's bricks (session/fields_loading.h); the
+    // first field's range stands for the step's (stats, histogram: none).
+    std::vector<FieldSpec> fields = scene.fields;
+    collectively(comm, [&] { validateFields(fields); });
+    d.fields = loadFields(fields, layout, comm);
+    d.data_min = d.fields[0].data_min, d.data_max = d.fields[0].data_max;
+  } else if (scene.hasVolume()) {
     // Every step of a series must have the layout's grid (a VTK file brings its own).
     Scene step_scene = scene;
     VolumeDesc& desc = step_scene.volume;
@@ -104,6 +113,8 @@ StepData loadStep(const Scene& scene, const SessionLayout& layout, bool adaptive
   double mib = 0;
   for (const auto& s : d.samples) mib += double(s.size()) * sizeof(float);
   for (const auto& b : d.adaptive.bricks) mib += double(b.atlas.size()) * sizeof(float);
+  for (const auto& f : d.fields)
+    for (const auto& s : f.samples) mib += double(s.size()) * sizeof(float);
   mib += double(d.particles.size() + d.loaded.set.positions.size()) * sizeof(glm::vec3);
   mib /= 1024.0 * 1024.0;
   MPI_Allreduce(&mib, &d.cost_mib, 1, MPI_DOUBLE, MPI_MAX, comm);

@@ -11,6 +11,7 @@
 
 #include "scene/scene.h"
 #include "session/adaptive_loading.h"
+#include "session/fields_loading.h"
 #include "session/particle_loading.h"
 #include "session/session_layout.h"
 
@@ -22,6 +23,7 @@ struct StepData {
   int step = -1;
   std::vector<std::vector<float>> samples;  // per brick of layout.mine (stored box); empty: adaptive
   AdaptiveRankData adaptive;                // adaptive sampling only
+  std::vector<FieldStep> fields;            // several fields (`volumes`): each one's parts; samples empty
   bool has_volume = false;
   double data_min = 0, data_max = 0;        // over every rank
   std::vector<long long> histogram;         // rank 0: kHistogramBins bins over [data_min, data_max]

@@ -32,6 +32,7 @@ enum RaycastVariant : unsigned {
   kMipExact = 256,     // MIP_EXACT: render.mip_exact
   kIsosurface = 512,   // ISOSURFACE (and ISO_DEBUG: kIsoDebug): render.blend: isosurface
   kIsoDebug = 1024,
+  kFieldsShift = 11,   // FIELDS n: several fields (flags >> kFieldsShift = n; raycast_fields.cpp)
 };
 
 // The variant bits of a projection (0: emission-absorption).
@@ -48,8 +49,10 @@ unsigned projectionBits(VolumeBlend b, bool exact) {
 ProgramSources raycastSources(unsigned v) {
   const bool glow = v & kGlow, shading = v & kShading, preint = v & kPreintegrated;
   const unsigned projection = (v & kProjectionMask) >> kProjectionShift;
+  const unsigned fields = v >> kFieldsShift;
   ShaderSource fragment;
   if (projection) fragment.define("PROJECTION", std::to_string(projection));
+  if (fields > 0) fragment.define("FIELDS", std::to_string(fields));
   fragment.defineIf(v & kAdaptive, "ADAPTIVE")
       .defineIf(preint, "PREINTEGRATED")
       .defineIf(shading, "SHADING")
@@ -64,6 +67,7 @@ ProgramSources raycastSources(unsigned v) {
       .addIf(shading, glsl::volume_shading)
       .add(glsl::raycast_sample_frag)
       .add(glsl::volume_clip)
+      .addIf(fields > 0, glsl::raycast_fields_frag)
       .addIf(preint, glsl::preintegrated_segment)
       .addIf(glow, glsl::raycast_glow_frag)
       .addIf(projection != 0, glsl::raycast_projection_frag)
@@ -91,7 +95,13 @@ RaycastRenderer::RaycastRenderer(const GlContext& ctx, int width, int height, in
 
 RaycastRenderer::~RaycastRenderer() {
   for (auto& b : bricks_) {
-    if (pool_ && !b.adaptive)
+    for (auto& f : b.fields) {  // (a brick of several fields has no texture of its own: 0)
+      if (pool_) pool_->give(f.volume.texture, f.volume.brick.stored.size());
+      else gl_.DeleteTextures(1, &f.volume.texture);
+    }
+    if (!b.fields.empty())
+      ;
+    else if (pool_ && !b.adaptive)
       pool_->give(b.volume.texture, b.volume.brick.stored.size());
     else
       gl_.DeleteTextures(1, &b.volume.texture);
@@ -206,7 +216,7 @@ void RaycastRenderer::setGlobalRanges(std::vector<float> vmin, std::vector<float
 void RaycastRenderer::classify(GpuBrick& g, float delta) {
   std::vector<double> iso;
   for (const Isovalue& v : settings_.isovalues) iso.push_back(v.value);
-  const ClassKey key{table_.version(), ranges_version_, delta, settings_.adaptive_step,
+  const ClassKey key{table_.version() + field_tables_version_, ranges_version_, delta, settings_.adaptive_step,
                      settings_.adaptive_tolerance, int(settings_.blend) * 2 + (settings_.mip_exact ? 1 : 0), iso};
   if (key == g.classified) return;
   const bool projection_counts_all = settings_.blend == VolumeBlend::kMip ||
@@ -227,9 +237,11 @@ void RaycastRenderer::classify(GpuBrick& g, float delta) {
         // mip, minip and average count every sample whatever its opacity: no block is empty
         // for them (a block holds samples where vmin <= vmax). Additive adds c a, exactly zero
         // where the table's opacity is: its empty blocks are skipped as emission-absorption's.
-        // Isosurfaces: a block (grown by one sample) whose range holds no isovalue.
+        // Isosurfaces: a block (grown by one sample) whose range holds no isovalue. Several
+        // fields: empty under every field's transfer function.
         const bool counts_all = projection_counts_all;
-        visible[i] = (counts_all ? b.vmin[i] <= b.vmax[i]
+        visible[i] = (!g.fields.empty() ? fieldsVisible(g, i)
+                      : counts_all ? b.vmin[i] <= b.vmax[i]
                       : !iso.empty() && b.global ? isoVisible(settings_.isovalues, b.grown_min[i], b.grown_max[i])
                       : table_.preintegrated() && b.global ? table_.visible(b.grown_min[i], b.grown_max[i])
                                                            : table_.visible(b.vmin[i], b.vmax[i]))
@@ -244,7 +256,7 @@ void RaycastRenderer::classify(GpuBrick& g, float delta) {
       }
   // Adaptive steps need the whole blocks' ranges (the same m in every brick sharing a block).
   const StepRule* rule = nullptr;
-  if (settings_.adaptive_step && b.global && !global_min_.empty() && !projecting()) {
+  if (settings_.adaptive_step && b.global && !global_min_.empty() && !projecting() && g.fields.empty()) {
     ClassKey rk{table_.version(), 0, delta, true, settings_.adaptive_tolerance, 0, {}};
     if (!rule_ || !(rk == rule_key_)) {
       rule_ = std::make_unique<StepRule>(table_.entries(), table_.rangeLo(), table_.rangeHi(), delta,
@@ -324,11 +336,14 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
     // Adaptive blocks cannot be shaded (raycast_sample.frag.glsl sampleAt); the scene refuses it.
     if (g.adaptive && shading_.enabled)
       throw std::logic_error("ray caster: gradient shading of an adaptive brick");
+    const unsigned fields = g.fields.empty() ? 0u : unsigned(field_tables_.size());
+    if (fields > 0 && (preint || shading_.enabled || glowing || settings_.adaptive_step))
+      throw std::logic_error("ray caster: several fields with pre-integration, shading, glow or adaptive steps");
     const GlProgram& program =
         programs_.get((g.adaptive ? kAdaptive : 0) | (preint ? kPreintegrated : 0) |
                       (shading_.enabled && !iso ? kShading : 0) | (float_filter_ ? kFloatFilter : 0) |
                       (glowing ? kGlow : 0) | projection | (iso ? kIsosurface : 0) |
-                      (settings_.iso_debug ? kIsoDebug : 0));
+                      (settings_.iso_debug ? kIsoDebug : 0) | (fields << kFieldsShift));
     gl_.UseProgram(program);
     setPixelRayUniforms(program, cam);
     setClipUniforms(program, clip_);
@@ -354,6 +369,7 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
     program.set("u_skip", 4);
     program.set("u_has_surface", has_surface ? 1 : 0);
     table_.use(program);
+    if (fields > 0) useFields(program, g);
     if (preint) table_.usePreintegrated(program, spacing);  // segments delta long
     if (shading_.enabled && !iso) setShadingUniforms(program, shading_, b, table_.function());
     if (iso) setIsosurfaceUniforms(program, settings_.isovalues, shading_, b, volume_box_);

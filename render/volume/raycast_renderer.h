@@ -38,6 +38,7 @@
 #include "render/gl/float_target.h"
 #include "render/gl/gl_context.h"
 #include "render/gl/program_cache.h"
+#include "render/volume/field_bricks.h"
 #include "render/volume/ray_blocks.h"
 #include "render/volume/step_rule.h"
 #include "render/volume/transfer_table.h"
@@ -94,6 +95,14 @@ class RaycastRenderer : public VolumeRenderer {
   int addAdaptiveBrick(const Brick& brick, const GridGeometry& grid,
                        const AdaptiveBrickBlocks& blocks);
 
+  // Several fields (render/volume/field_bricks.h; render/volume/raycast_fields.cpp): their
+  // transfer functions for the next frames (one table each, in the scene's order), and a brick of
+  // the layout's grid `grid` holding their parts, drawn with the FIELDS variant of the program
+  // (raycast_fields.frag.glsl: the mixture per sample). Not with pre-integration, shading,
+  // adaptive steps or glow (the scene refuses them).
+  void setFieldTransfers(const std::vector<TransferFunction>& tfs, const std::vector<int>& table_sizes);
+  int addFieldsBrick(const Brick& brick, const GridGeometry& grid, const std::vector<FieldBrickPart>& parts);
+
   // This rank's part of the block ranges adaptive steps need, over the volume's block grid (x
   // fastest; +/-FLT_MAX where it holds no sample): the min of `first` and the max of `second`
   // over all ranks go to setGlobalRanges().
@@ -132,8 +141,16 @@ class RaycastRenderer : public VolumeRenderer {
     bool operator==(const ClassKey&) const = default;
   };
   VolumeTexturePool* pool_ = nullptr;
-  struct GpuBrick {
+  // One field's part of a brick: its texture and transform, and its range per block of the brick.
+  struct FieldGpu {
+    int field = 0;
     VolumeBrick volume;
+    Box3 box;  // the field's world box
+    std::vector<float> vmin, vmax;
+  };
+  struct GpuBrick {
+    VolumeBrick volume;  // several fields: no texture (0), the brick alone
+    std::vector<FieldGpu> fields;
     BrickBlocks blocks;
     unsigned planes = 0;  // block planes: R32F, (largest block count + 1) x 3
     unsigned skip = 0;    // per block: RG8UI (distance to the nearest non-empty block, log2 m)
@@ -149,6 +166,10 @@ class RaycastRenderer : public VolumeRenderer {
   int addGpuBrick(GpuBrick g);
   // Classifies the brick's blocks for the current table, spacing and settings, if not done yet.
   void classify(GpuBrick& g, float delta);
+  // Several fields (raycast_fields.cpp): whether block i is non-empty under some field's table,
+  // and the FIELDS program's textures and uniforms for brick g.
+  bool fieldsVisible(const GpuBrick& g, size_t i) const;
+  void useFields(const GlProgram& program, const GpuBrick& g) const;
 
   const GlApi& gl_;
   bool float_filter_;  // volume_shading.h: floatFilter
@@ -164,6 +185,8 @@ class RaycastRenderer : public VolumeRenderer {
   ClassKey rule_key_;
   FloatTarget target_;
   TransferTable table_;
+  std::vector<std::unique_ptr<TransferTable>> field_tables_;  // several fields: one each
+  int field_tables_version_ = 0;  // the sum of their versions: changes when any changes
   // The program's variants (raycast_renderer.cpp's recipe: kAdaptive, kPreintegrated, kShading,
   // kGlow): the plain one linked with the renderer, the adaptive one with the first adaptive brick,
   // the others when first drawn.

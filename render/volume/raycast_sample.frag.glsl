@@ -93,6 +93,7 @@ vec4 classify(float v) {
 #if defined(SHADING) && defined(ADAPTIVE)
 #error gradient shading of adaptive blocks
 #endif
+#ifndef FIELDS  // several fields: raycast_fields.frag.glsl's
 vec4 sampleAt(vec3 p) {
   vec4 e = classify(sampleVolume(p));
 #ifdef SHADING
@@ -101,3 +102,4 @@ vec4 sampleAt(vec3 p) {
 #endif
   return e;
 }
+#endif

@@ -54,6 +54,11 @@ void TransferTable::use(const GlProgram& program) const {
   gl_.BindTexture(GL_TEXTURE_1D, texture_);
 }
 
+void TransferTable::bindTo(int unit) const {
+  gl_.ActiveTexture(GLenum(GL_TEXTURE0 + unit));
+  gl_.BindTexture(GL_TEXTURE_1D, texture_);
+}
+
 void TransferTable::usePreintegrated(const GlProgram& program, double base_length) {
   const int n = PreintegrationTable::kDefaultSize;
   gl_.ActiveTexture(GL_TEXTURE6);

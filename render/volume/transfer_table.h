@@ -44,6 +44,9 @@ class TransferTable {
   // texture unit 6 and sets `program`'s u_preint, u_preint_map and u_preint_length.
   void usePreintegrated(const GlProgram& program, double base_length);
   const TransferFunction& function() const { return tf_; }
+  // Entries of the 1D table, and binding it to texture unit `unit` (several fields' tables).
+  int size() const { return size_; }
+  void bindTo(int unit) const;
 
  private:
   const GlApi& gl_;
