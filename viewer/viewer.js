@@ -7,6 +7,7 @@ import { FrameClient } from './connection.js';
 import { PRESETS, sampleKnots, cssGradient } from './colormaps.js';
 import { TransferEditor } from './transfer_editor.js';
 import * as cam from './orbit.js';
+import { valueScale, drawLegend } from './value_scale.js';
 
 const $ = (id) => document.getElementById(id);
 const params = new URLSearchParams(location.search);
@@ -276,8 +277,9 @@ function showHistogram() {
   $('tf-hi').textContent = fmt(Math.abs(hi) < tiny ? 0 : hi);
   if (scene.histogram && Array.isArray(scene.histogram.counts)) {
     const [hlo, hhi] = scene.histogram.range || scene.data_range || [lo, hi];
-    const span = hi - lo || 1;
-    tf.setHistogram(scene.histogram.counts, (hlo - lo) / span, (hhi - lo) / span);
+    // The bins are even in data units; each is drawn where transfer.scale puts its edges.
+    const sc = valueScale([lo, hi], tfScale(), tfLinearWidth());
+    tf.setHistogram(scene.histogram.counts, 0, 1, (f) => sc.place(hlo + f * (hhi - hlo)));
   } else {
     tf.setHistogram(null);
   }
@@ -290,6 +292,26 @@ function layoutFrame() {
   if (!(s > 0)) return;
   canvas.style.width = `${Math.floor(canvas.width * s)}px`;
   canvas.style.height = `${Math.floor(canvas.height * s)}px`;
+  showLegend();
+}
+
+// image.legend: drawn over the frame from the transfer function the viewer holds (the frames the
+// server sends have none; the written ones get theirs on the server).
+function showLegend() {
+  const overlay = $('legend');
+  if (!overlay) return;
+  const settings = (state.scene && state.scene.settings) || {};
+  const legend = settings['image.legend'] || {};
+  overlay.hidden = !legend.position || legend.position === 'none';
+  if (overlay.hidden) return;
+  const w = Math.floor(canvas.width * (parseFloat(canvas.style.width) / canvas.width || 1));
+  const h = Math.floor(canvas.height * (parseFloat(canvas.style.height) / canvas.height || 1));
+  overlay.width = w; overlay.height = h;
+  overlay.style.width = `${w}px`; overlay.style.height = `${h}px`;
+  const r = canvas.getBoundingClientRect(), v = $('view').getBoundingClientRect();
+  overlay.style.left = `${r.left - v.left}px`; overlay.style.top = `${r.top - v.top}px`;
+  const knots = currentKnots();
+  drawLegend(overlay, legend, tfRange(), tfScale(), tfLinearWidth(), (x) => sampleKnots(knots, x));
 }
 new ResizeObserver(layoutFrame).observe($('view'));
 
@@ -509,8 +531,7 @@ const tf = new TransferEditor($('tf-canvas'), {
   onHover: (x, a) => {
     const el = $('tf-readout');
     if (x === null) { el.textContent = ''; return; }
-    const [lo, hi] = tfRange();
-    const v = lo + (hi - lo) * x;
+    const v = valueScale(tfRange(), tfScale(), tfLinearWidth()).value(x);
     el.textContent = `value ${fmt(v)} · opacity ${a.toFixed(2)}`;
   },
 });
@@ -528,6 +549,15 @@ function tfRange() {
   return (state.scene && state.scene.data_range) || [0, 1];
 }
 
+function tfScale() {
+  const s = state.scene && state.scene.settings && state.scene.settings['transfer.scale'];
+  return s === 'log' || s === 'symlog' ? s : 'linear';
+}
+function tfLinearWidth() {
+  const w = state.scene && state.scene.settings && state.scene.settings['transfer.linear_width'];
+  return Number.isFinite(w) && w > 0 ? w : 1;
+}
+
 function currentKnots() {
   const name = $('colormap').value;
   return name === 'scene' ? state.sceneKnots : PRESETS[name];
@@ -537,6 +567,7 @@ $('colormap').addEventListener('change', () => {
   tf.setColormap(currentKnots());
   $('colormap-preview').style.background = cssGradient(currentKnots());
   state.tfEdited = true;
+  showLegend();
   submit('full');
 });
 $('tf-reset').addEventListener('click', () => {
