@@ -735,7 +735,10 @@ nlohmann::json RenderSession::describe(const std::vector<std::string>& base) con
   } else if (b.hasVolume() && S.current) {
     j["data_range"] = {S.current->data_min, S.current->data_max};
     if (!S.current->histogram.empty())
-      j["histogram"] = {{"range", {S.current->data_min, S.current->data_max}}, {"counts", S.current->histogram}};
+      j["histogram"] = {{"range", {S.current->histogram_lo, S.current->histogram_hi}},
+                        {"scale", std::string(nameOf(S.current->histogram_scale.kind))},
+                        {"linear_width", S.current->histogram_scale.linear_width},
+                        {"counts", S.current->histogram}};
   }
   nlohmann::json points = nlohmann::json::array();
   for (const TfPoint& p : b.transfer.points) points.push_back({p.value, p.r, p.g, p.b, p.a});

@@ -277,9 +277,12 @@ function showHistogram() {
   $('tf-hi').textContent = fmt(Math.abs(hi) < tiny ? 0 : hi);
   if (scene.histogram && Array.isArray(scene.histogram.counts)) {
     const [hlo, hhi] = scene.histogram.range || scene.data_range || [lo, hi];
-    // The bins are even in data units; each is drawn where transfer.scale puts its edges.
+    // The bins are even in the histogram's own scale (the scene's transfer.scale when it was
+    // loaded); each is drawn where the current transfer.scale puts its edges.
     const sc = valueScale([lo, hi], tfScale(), tfLinearWidth());
-    tf.setHistogram(scene.histogram.counts, 0, 1, (f) => sc.place(hlo + f * (hhi - hlo)));
+    const h = scene.histogram;
+    const hs = valueScale([hlo, hhi], h.scale || 'linear', Number.isFinite(h.linear_width) ? h.linear_width : 1);
+    tf.setHistogram(h.counts, 0, 1, (f) => sc.place(hs.value(f)));
   } else {
     tf.setHistogram(null);
   }
