@@ -9,7 +9,9 @@
 #include <fstream>
 #include <memory>
 
+#include "app/frame_output.h"
 #include "io/frame_writer.h"
+#include "io/movie_writer.h"
 #include "scene/scene.h"
 #include "session/collective.h"
 #include "app/compare.h"
@@ -69,7 +71,7 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
     so.overrides = opts.overrides;
     so.quiet = opts.quiet;
     collectively(comm, [&] {
-      checkOutputFormat(opts.output);
+      if (!isMoviePath(opts.output)) checkOutputFormat(opts.output);
       so.scene = readSceneText(opts.scene);
     });
     RenderSession session(std::move(so), comm);
@@ -95,6 +97,11 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
     // holds a third): at 1024² that is 12 MiB of pixels at most, and one frame of slack for a
     // write that takes longer once (a slow disk) before the render waits for it.
     FrameWriter writer(opts.sync_output ? 0 : 2);
+    // Image files or a movie (app/frame_output.h), with the legend drawn in on the writer thread.
+    std::unique_ptr<FrameOutput> output;
+    collectively(comm, [&] {
+      if (rank == 0) output = std::make_unique<FrameOutput>(opts.output, scene, frames, writer);
+    });
     Progress progress(frames, opts.quiet);
     for (int f = 0; f < frames; ++f) {
       FrameRequest request;
@@ -112,12 +119,10 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
       // predecessors) is thrown here and so stops every rank.
       collectively(comm, [&] {
         if (rank != 0) return;
-        const std::string file = frameFileName(opts.output, f, frames);
-        const glm::dvec3 background = scene.image.background;
         if (float_output)
-          writer.push(file, [file, background, image = std::move(result.image_f)] { writeImage(file, image, background); });
+          output->push(f, std::move(result.image_f));
         else
-          writer.push(file, [file, background, image = std::move(result.image)] { writeImage(file, image, background); });
+          output->push(f, std::move(result.image), scene.hasVolume() ? session.transferFunction() : TransferFunction());
         if (request.surface && (scene.particles.enabled() || !scene.surfaces.empty())) {
           const std::string surface_file = frameFileName(opts.surface_out, f, frames);
           writer.push(surface_file, [surface_file, surface = std::move(result.surface)] {
@@ -135,7 +140,10 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
     }
     // The last frames are written before the job ends well, and before the stats, which say so.
     collectively(comm, [&] {
-      if (rank == 0) writer.finish();
+      if (rank == 0) {
+        output->close();
+        writer.finish();
+      }
     });
     if (stats_out.is_open()) {
       nlohmann::json top{{"ranks", size},

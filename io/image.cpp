@@ -115,7 +115,7 @@ std::vector<uint8_t> opaqueRGB8(const ImageRGBA8& img, const glm::dvec3& bg) {
 
 void checkOutputFormat(const std::string& path) {
   if (files::formatOf(path) == files::Format::other)
-    throw InputError("output " + path + ": no image writer for this file extension (.png, .jpg, .ppm or .exr)");
+    throw InputError("output " + path + ": no image writer for this file extension (.png, .jpg, .ppm or .exr; movies: .mp4 or .webm)");
 }
 
 namespace {

@@ -155,6 +155,7 @@ bool isFrameKey(const std::string& path) {
                           "render.shading", "render.shading_ambient", "render.shading_diffuse",
                           "render.shading_specular", "render.shading_shininess",
                           "render.adaptive_step", "render.adaptive_tolerance", "render.pipeline",
+                          "render.blend", "render.mip_exact", "render.isovalues",
                           "particles.radius", "particles.influence", "particles.threshold",
                           "particles.color", "particles.step", "particles.max_samples",
                           "particles.refine_iterations", "particles.cull", "particles.samples_per_pass",

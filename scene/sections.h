@@ -116,8 +116,30 @@ struct ReferenceSection {
 };
 
 // image.* (image.width and image.height are the camera's: Camera carries the image size).
+// image.legend.position: where the colour legend is drawn into written frames (none: no legend;
+// session/frame_legend.h).
+enum class LegendPosition { kNone, kRight, kLeft, kBottom, kTop };
+template <>
+inline constexpr std::array kEnumNames<LegendPosition>{"none", "right", "left", "bottom", "top"};
+
+struct LegendSpec {
+  LegendPosition position = LegendPosition::kNone;
+  std::string title;  // above the bar; empty: none
+  int ticks = 5;      // about this many labelled ticks
+  std::string units;  // after the title, in brackets; empty: none
+  bool enabled() const { return position != LegendPosition::kNone; }
+};
+
+// movie.*: a movie output (-o NAME.mp4 / NAME.webm; io/movie_writer.h).
+struct MovieSpec {
+  int frame_rate = 30;                  // frames per second
+  std::optional<double> quality;        // the codec's CRF; unset: its default (23 H.264, 31 VP9)
+};
+
 struct ImageSection {
   glm::dvec3 background{0.0};  // what the frame is composited over when written
+  LegendSpec legend;
+  MovieSpec movie;
 };
 
 // camera.orbit.*
@@ -154,6 +176,8 @@ struct TransferSpec {
   std::optional<double> unit_length;               // unset: the smallest voxel spacing
   int table_size = 4096;
   bool preintegrated = false;  // segments from a pre-integrated 2D table (transfer/preintegration.h)
+  ValueScaleKind scale = ValueScaleKind::kLinear;  // transfer.scale (transfer/value_scale.h)
+  double linear_width = 1.0;                       // transfer.linear_width: symlog's w
 
   // Resolves the automatic parts against the data.
   TransferFunction build(double data_min, double data_max, double min_spacing) const;

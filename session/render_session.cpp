@@ -327,6 +327,10 @@ void RenderSession::setExternalStep(ExternalStep step) {
 RenderSession::~RenderSession() = default;
 
 const Scene& RenderSession::baseScene() const { return s_->base; }
+TransferFunction RenderSession::transferFunction() const {
+  const auto [lo, hi] = s_->dataRange();
+  return s_->base.transfer.build(lo, hi, s_->layout.grid.minSpacing());
+}
 MPI_Comm RenderSession::comm() const { return s_->comm; }
 std::string RenderSession::rendererDescription() const { return s_->renderer->description(); }
 const GlDeviceInfo& RenderSession::deviceInfo() const { return s_->renderer->deviceInfo(); }
@@ -519,7 +523,8 @@ std::vector<double> RenderSession::State::spacingKey(const Scene& sc, std::pair<
                           sc.adaptive.tolerance, double(!sc.render.raycast()),
                           double(sc.transfer.table_size), sc.image.background.x, sc.image.background.y, sc.image.background.z};
   const TransferFunction tf = sc.transfer.build(lo, hi, layout.grid.minSpacing());
-  key.insert(key.end(), {tf.rangeLo(), tf.rangeHi(), tf.unitLength()});
+  key.insert(key.end(), {tf.rangeLo(), tf.rangeHi(), tf.unitLength(), double(tf.scale().kind),
+                         tf.scale().linear_width});
   for (const TfPoint& p : tf.points()) key.insert(key.end(), {p.value, p.r, p.g, p.b, p.a});
   key.insert(key.end(), {double(probe.first), double(probe.second)});
   return key;
@@ -765,7 +770,10 @@ nlohmann::json RenderSession::describe(const std::vector<std::string>& base) con
   } else if (b.hasVolume() && S.current) {
     j["data_range"] = {S.current->data_min, S.current->data_max};
     if (!S.current->histogram.empty())
-      j["histogram"] = {{"range", {S.current->data_min, S.current->data_max}}, {"counts", S.current->histogram}};
+      j["histogram"] = {{"range", {S.current->histogram_lo, S.current->histogram_hi}},
+                        {"scale", std::string(nameOf(S.current->histogram_scale.kind))},
+                        {"linear_width", S.current->histogram_scale.linear_width},
+                        {"counts", S.current->histogram}};
   }
   nlohmann::json points = nlohmann::json::array();
   for (const TfPoint& p : b.transfer.points) points.push_back({p.value, p.r, p.g, p.b, p.a});
@@ -773,6 +781,11 @@ nlohmann::json RenderSession::describe(const std::vector<std::string>& base) con
                    {"transfer.colormap", b.transfer.colormap},
                    {"transfer.range", b.transfer.range ? nlohmann::json{b.transfer.range->first, b.transfer.range->second}
                                                        : nlohmann::json("auto")},
+                   {"transfer.scale", std::string(nameOf(b.transfer.scale))},
+                   {"transfer.linear_width", b.transfer.linear_width},
+                   {"image.legend", {{"position", std::string(nameOf(b.image.legend.position))},
+                                     {"title", b.image.legend.title}, {"ticks", b.image.legend.ticks},
+                                     {"units", b.image.legend.units}}},
                    {"image.width", b.camera.width},
                    {"image.height", b.camera.height},
                    {"image.background", vec3Json(b.image.background)},

@@ -105,6 +105,9 @@ class RenderSession {
 
   const Scene& baseScene() const;
   int orbitFrames() const;                // cameras of the base scene (1 without an orbit)
+  // The base scene's transfer function against the current step's data range (what the legend
+  // of a written frame shows).
+  TransferFunction transferFunction() const;
   long long particleCount() const;        // of the current step
   int currentStep() const;                // the step on the GPU
   std::string rendererDescription() const;

@@ -26,7 +26,12 @@ struct StepData {
   std::vector<FieldStep> fields;            // several fields (`volumes`): each one's parts; samples empty
   bool has_volume = false;
   double data_min = 0, data_max = 0;        // over every rank
-  std::vector<long long> histogram;         // rank 0: kHistogramBins bins over [data_min, data_max]
+  // Rank 0: kHistogramBins bins even in histogram_scale (the scene's transfer.scale) over
+  // [histogram_lo, histogram_hi]: the data's range, its low end the given transfer.range's under a
+  // log scale over data through zero (samples <= 0 in bin 0); linear where log has no positive end.
+  std::vector<long long> histogram;
+  ValueScale histogram_scale;
+  double histogram_lo = 0, histogram_hi = 0;
   LoadedParticles loaded;  // rank 0: the whole set, or (HDF5) each rank its share: to scatter anew
   std::vector<glm::vec3> particles;         // this rank's region's particles and ghosts
   double scattered_h = 0;                   // the ghost margin `particles` were chosen with

@@ -8,14 +8,17 @@ namespace sortlast {
 
 namespace {
 
-// tau and colour of a normalised value (the transfer function's own evaluation).
+// tau and colour of a normalised value (the transfer function's own evaluation). The table is
+// over normalised values, i.e. in the domain of transfer.scale: a segment's value is taken to go
+// linearly in s(v) (log10 v under log), not in v.
 struct Emission {
   double tau;
   std::array<double, 3> c;
 };
 Emission emissionAt(const TransferFunction& tf, double x) {
-  const double v = tf.rangeLo() + x * (tf.rangeHi() - tf.rangeLo());
-  return {tf.extinction(v), tf.colour(v)};
+  const auto e = tf.atNormalised(x);
+  return {-std::log1p(-std::min(e[3], TransferFunction::kMaxOpacity)) / tf.unitLength(),
+          {e[0], e[1], e[2]}};
 }
 
 // Per fine cell: the integral of tau and of c * tau over the cell (normalised value units).
@@ -142,7 +145,7 @@ std::vector<float> PreintegrationTable::texels() const {
 
 bool sameTransferFunction(const TransferFunction& a, const TransferFunction& b) {
   if (a.rangeLo() != b.rangeLo() || a.rangeHi() != b.rangeHi() || a.unitLength() != b.unitLength() ||
-      a.points().size() != b.points().size())
+      !(a.scale() == b.scale()) || a.points().size() != b.points().size())
     return false;
   for (size_t i = 0; i < a.points().size(); ++i) {
     const TfPoint &p = a.points()[i], &q = b.points()[i];

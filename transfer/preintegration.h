@@ -7,6 +7,8 @@
 // with self-attenuation inside the segment. The table holds (C_r, C_g, C_b, D) for every pair
 // (front, back) of n x n normalised values i / (n - 1), at one base length L0 (the renderers'
 // sample step), in double; the GL renderers upload it as a linearly filtered RGBA32F texture.
+// "Linearly" is in the domain of transfer.scale (transfer/value_scale.h): under log the segment's
+// log10 v goes linearly from front to back (its v geometrically), as the table's axes are.
 //
 // How an entry is integrated: the value axis is cut into (n - 1) * kSubsteps fine cells; each
 // cell gets its exact mean extinction (integral of tau over the cell, Gauss-Legendre on each

@@ -8,8 +8,8 @@
 namespace sortlast {
 
 TransferFunction::TransferFunction(std::vector<TfPoint> points, double range_lo, double range_hi,
-                                   double unit_length)
-    : pts_(std::move(points)), lo_(range_lo), hi_(range_hi), unit_(unit_length) {
+                                   double unit_length, ValueScale scale)
+    : pts_(std::move(points)), lo_(range_lo), hi_(range_hi), unit_(unit_length), scale_(scale) {
   if (pts_.empty()) throw InputError("transfer.points: needs at least one control point");
   for (size_t i = 0; i < pts_.size(); ++i) {
     const TfPoint& p = pts_[i];
@@ -25,6 +25,13 @@ TransferFunction::TransferFunction(std::vector<TfPoint> points, double range_lo,
     throw InputError("transfer.range: needs lo < hi (got " + std::to_string(range_lo) + ", " +
                      std::to_string(range_hi) + ")");
   if (!(unit_length > 0.0)) throw InputError("transfer.unit_length: must be > 0");
+  if (scale_.kind == ValueScaleKind::kLog && !(range_lo > 0.0))
+    throw InputError("transfer.range: [" + std::to_string(range_lo) + ", " + std::to_string(range_hi) +
+                     "] has an end <= 0, which transfer.scale: log cannot map (use symlog)");
+  if (scale_.kind == ValueScaleKind::kSymlog && !(scale_.linear_width > 0.0))
+    throw InputError("transfer.linear_width: must be > 0");
+  slo_ = scale_.apply(lo_);
+  shi_ = scale_.apply(hi_);
 }
 
 std::vector<TfPoint> TransferFunction::preset(const std::string& name) {
@@ -40,7 +47,19 @@ std::vector<TfPoint> TransferFunction::preset(const std::string& name) {
 }
 
 double TransferFunction::normalise(double v) const {
-  return std::clamp((v - lo_) / (hi_ - lo_), 0.0, 1.0);
+  if (scale_.kind == ValueScaleKind::kLinear) return std::clamp((v - lo_) / (hi_ - lo_), 0.0, 1.0);
+  if (scale_.kind == ValueScaleKind::kLog && !(v > 0.0)) return 0.0;  // below the range
+  return std::clamp((scale_.apply(v) - slo_) / (shi_ - slo_), 0.0, 1.0);
+}
+
+double TransferFunction::denormalise(double x) const {
+  if (scale_.kind == ValueScaleKind::kLinear) return lo_ + x * (hi_ - lo_);
+  return scale_.inverse(slo_ + x * (shi_ - slo_));
+}
+
+std::array<double, 2> TransferFunction::scaledValueMap() const {
+  const double d = shi_ - slo_;
+  return {1.0 / d, -slo_ / d};
 }
 
 std::array<double, 4> TransferFunction::evalNormalised(double x) const {
@@ -66,7 +85,10 @@ double TransferFunction::extinction(double v) const {
 }
 
 double TransferFunction::maxOpacity(double lo, double hi) const {
-  double xl = normalise(lo), xh = normalise(hi);
+  return maxOpacityNormalised(normalise(lo), normalise(hi));
+}
+
+double TransferFunction::maxOpacityNormalised(double xl, double xh) const {
   double m = std::max(evalNormalised(xl)[3], evalNormalised(xh)[3]);
   for (const TfPoint& p : pts_)
     if (p.value > xl && p.value < xh) m = std::max(m, p.a);
@@ -89,12 +111,12 @@ bool TransferFunction::tableSpanVisible(int n, double vmin, double vmax) const {
   // A value on an entry reads that entry alone, so a block of the volume's lowest value under a
   // ramp is empty (a pad of one entry either side, the rule before, kept 63 % of the engine's
   // blocks of 8 cells). The entries are the function at i / (n - 1), so its largest opacity
-  // between the first and last entry read bounds them.
+  // between the first and last entry read bounds them. The scale is increasing, so the block's
+  // min and max map to the least and greatest table coordinates of its samples.
   if (!(vmin <= vmax)) return false;  // a span of no samples (all missing), or NaN
-  const double range = hi_ - lo_, last = n - 1;
-  auto coordinate = [&](double v) { return std::clamp((v - lo_) / range, 0.0, 1.0) * last; };
-  const double i0 = std::floor(coordinate(vmin)), i1 = std::ceil(coordinate(vmax));
-  return maxOpacity(lo_ + i0 / last * range, lo_ + i1 / last * range) > 0.0;
+  const double last = n - 1;
+  const double i0 = std::floor(normalise(vmin) * last), i1 = std::ceil(normalise(vmax) * last);
+  return maxOpacityNormalised(i0 / last, i1 / last) > 0.0;
 }
 
 }  // namespace sortlast

@@ -1,7 +1,9 @@
 #pragma once
 // Transfer function: colour and opacity as piecewise-linear functions of the data value, given by
 // control points over the normalised range [0, 1] (0 = range.lo, 1 = range.hi; values outside the
-// range clamp to its ends).
+// range clamp to its ends). The range is in data units; a value's normalised place in it is
+// measured in the domain of its scale (transfer/value_scale.h: linear, log or symlog), so under
+// log the points and the table are evenly spaced in log10 of the value.
 //
 // Opacity a(v) is the opacity of a slab of thickness `unit_length` (world units). A sample that
 // stands for a ray segment of length ds gets a = 1 - (1 - a(v))^(ds / unit_length), which is the
@@ -11,6 +13,8 @@
 #include <array>
 #include <string>
 #include <vector>
+
+#include "transfer/value_scale.h"
 
 namespace sortlast {
 
@@ -22,12 +26,14 @@ struct TfPoint {
 class TransferFunction {
  public:
   TransferFunction() = default;
+  // Under log scale the range needs lo > 0 (throws InputError naming transfer.range).
   TransferFunction(std::vector<TfPoint> points, double range_lo, double range_hi,
-                   double unit_length);
+                   double unit_length, ValueScale scale = {});
 
   static std::vector<TfPoint> preset(const std::string& name);  // throws InputError if unknown
 
-  double normalise(double v) const;               // data value -> [0, 1] (clamped)
+  double normalise(double v) const;               // data value -> [0, 1] (clamped), in the scale
+  double denormalise(double x) const;             // [0, 1] -> data value (the scale's inverse)
   std::array<double, 3> colour(double v) const;   // of the raw data value
   double opacity(double v) const;                 // per unit_length, of the raw data value
   double extinction(double v) const;              // tau, per world unit
@@ -35,6 +41,10 @@ class TransferFunction {
   // Largest opacity over raw data values in [lo, hi]: zero means a brick whose samples all lie in
   // [lo, hi] is invisible.
   double maxOpacity(double lo, double hi) const;
+  // The function at a normalised place x in [0, 1]: (r, g, b, opacity).
+  std::array<double, 4> atNormalised(double x) const { return evalNormalised(x); }
+  // (a, b) with normalised x = s(v) a + b, s the scale (the GLSL classifiers' u_value_map).
+  std::array<double, 2> scaledValueMap() const;
 
   // Lookup table of n entries (r, g, b, tau); entry i is the value at normalised i / (n - 1), so
   // a linearly filtered texture addressed at (x * (n - 1) + 0.5) / n reproduces the table's ends.
@@ -49,6 +59,7 @@ class TransferFunction {
   double rangeLo() const { return lo_; }
   double rangeHi() const { return hi_; }
   double unitLength() const { return unit_; }
+  const ValueScale& scale() const { return scale_; }
   const std::vector<TfPoint>& points() const { return pts_; }
 
   // Largest extinction any value can have: opacity is capped just below 1 so tau stays finite.
@@ -56,8 +67,11 @@ class TransferFunction {
 
  private:
   std::array<double, 4> evalNormalised(double x) const;
+  double maxOpacityNormalised(double xl, double xh) const;
   std::vector<TfPoint> pts_;
   double lo_ = 0.0, hi_ = 1.0, unit_ = 1.0;
+  ValueScale scale_;
+  double slo_ = 0.0, shi_ = 1.0;  // the range's ends in the scale's domain
 };
 
 }  // namespace sortlast

@@ -56,7 +56,12 @@ export class TransferEditor {
 
   setColormap(knots) { this.knots = knots; this.draw(); }
 
-  setHistogram(counts, x0 = 0, x1 = 1) { this.hist = counts && counts.length ? { counts, x0, x1 } : null; this.draw(); }
+  // place(f), if given: the normalised x of the histogram's edge at fraction f of its range (a log
+  // or symlog transfer.scale puts even bins at uneven places).
+  setHistogram(counts, x0 = 0, x1 = 1, place = null) {
+    this.hist = counts && counts.length ? { counts, x0, x1, place } : null;
+    this.draw();
+  }
 
   // Opacity at x: linear between points, constant beyond the first and last.
   opacity(x) {
@@ -184,14 +189,15 @@ export class TransferEditor {
 
     // histogram, log scale
     if (this.hist) {
-      const { counts, x0, x1 } = this.hist;
+      const { counts, x0, x1, place } = this.hist;
       const max = Math.log1p(Math.max(...counts));
       if (max > 0) {
         g.fillStyle = 'rgba(170,180,195,0.45)';
         const n = counts.length;
         for (let i = 0; i < n; i++) {
           if (!counts[i]) continue;
-          const bx0 = x0 + ((x1 - x0) * i) / n, bx1 = x0 + ((x1 - x0) * (i + 1)) / n;
+          const bx0 = place ? place(i / n) : x0 + ((x1 - x0) * i) / n;
+          const bx1 = place ? place((i + 1) / n) : x0 + ((x1 - x0) * (i + 1)) / n;
           if (bx1 < 0 || bx0 > 1) continue;
           const sx0 = a.x + Math.max(bx0, 0) * a.w, sx1 = a.x + Math.min(bx1, 1) * a.w;
           const bh = (Math.log1p(counts[i]) / max) * a.h;

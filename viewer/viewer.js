@@ -9,6 +9,7 @@ import { PRESETS, sampleKnots, cssGradient } from './colormaps.js';
 import { TransferEditor } from './transfer_editor.js';
 import * as cam from './orbit.js';
 import * as modes from './volume_modes.js';
+import { valueScale, drawLegend } from './value_scale.js';
 
 const $ = (id) => document.getElementById(id);
 const params = new URLSearchParams(location.search);
@@ -279,8 +280,12 @@ function showHistogram() {
   $('tf-hi').textContent = fmt(Math.abs(hi) < tiny ? 0 : hi);
   if (scene.histogram && Array.isArray(scene.histogram.counts)) {
     const [hlo, hhi] = scene.histogram.range || scene.data_range || [lo, hi];
-    const span = hi - lo || 1;
-    tf.setHistogram(scene.histogram.counts, (hlo - lo) / span, (hhi - lo) / span);
+    // The bins are even in the histogram's own scale (the scene's transfer.scale when it was
+    // loaded); each is drawn where the current transfer.scale puts its edges.
+    const sc = valueScale([lo, hi], tfScale(), tfLinearWidth());
+    const h = scene.histogram;
+    const hs = valueScale([hlo, hhi], h.scale || 'linear', Number.isFinite(h.linear_width) ? h.linear_width : 1);
+    tf.setHistogram(h.counts, 0, 1, (f) => sc.place(hs.value(f)));
   } else {
     tf.setHistogram(null);
   }
@@ -293,6 +298,29 @@ function layoutFrame() {
   if (!(s > 0)) return;
   canvas.style.width = `${Math.floor(canvas.width * s)}px`;
   canvas.style.height = `${Math.floor(canvas.height * s)}px`;
+  showLegend();
+}
+
+// image.legend: drawn over the frame from the transfer function the viewer holds (the frames the
+// server sends have none; the written ones get theirs on the server).
+function showLegend() {
+  const overlay = $('legend');
+  if (!overlay) return;
+  const settings = (state.scene && state.scene.settings) || {};
+  // The scene's image.legend, or (the Legend box ticked without one) a bar on the right.
+  let legend = settings['image.legend'] || {};
+  if (!$('legend-on').checked) legend = { position: 'none' };
+  else if (!legend.position || legend.position === 'none') legend = { ...legend, position: 'right' };
+  overlay.hidden = legend.position === 'none';
+  if (overlay.hidden) return;
+  const w = Math.floor(canvas.width * (parseFloat(canvas.style.width) / canvas.width || 1));
+  const h = Math.floor(canvas.height * (parseFloat(canvas.style.height) / canvas.height || 1));
+  overlay.width = w; overlay.height = h;
+  overlay.style.width = `${w}px`; overlay.style.height = `${h}px`;
+  const r = canvas.getBoundingClientRect(), v = $('view').getBoundingClientRect();
+  overlay.style.left = `${r.left - v.left}px`; overlay.style.top = `${r.top - v.top}px`;
+  const knots = currentKnots();
+  drawLegend(overlay, legend, tfRange(), tfScale(), tfLinearWidth(), (x) => sampleKnots(knots, x));
 }
 new ResizeObserver(layoutFrame).observe($('view'));
 
@@ -449,16 +477,14 @@ for (const id of ['size', 'method', 'strategy', 'shading', 'preint']) $(id).addE
 // the volume's modes (volume_modes.js)
 function keepOut(c) { return modes.flyInside() ? c : cam.keepOutside(c, state.bounds); }
 for (const id of ['blend', 'projection', 'clip-on', 'clip-axis', 'clip-flip', 'tf-scale']) {
-  $(id).addEventListener('change', () => { modes.showModeControls(); showHistogram(); submit('full'); });
+  $(id).addEventListener('change', () => { modes.showModeControls(); showHistogram(); showLegend(); submit('full'); });
 }
 $('fly-inside').addEventListener('change', () => { state.camera = keepOut(state.camera); submit('full'); });
 $('legend-on').addEventListener('change', showLegend);
 trackSlider($('iso-value'), () => {});
 trackSlider($('iso-opacity'), () => {});
 trackSlider($('clip-pos'), () => {});
-function showLegend() {
-  modes.drawLegend($('legend'), { knots: currentKnots(), range: tfRange(), scale: $('tf-scale').value, fmt });
-}
+
 
 // sample spacing: a log slider and a number box, 0.01 .. 100
 const SPACING_MIN = 0.01, SPACING_MAX = 100;
@@ -534,8 +560,7 @@ const tf = new TransferEditor($('tf-canvas'), {
   onHover: (x, a) => {
     const el = $('tf-readout');
     if (x === null) { el.textContent = ''; return; }
-    const [lo, hi] = tfRange();
-    const v = lo + (hi - lo) * x;
+    const v = valueScale(tfRange(), tfScale(), tfLinearWidth()).value(x);
     el.textContent = `value ${fmt(v)} · opacity ${a.toFixed(2)}`;
   },
 });
@@ -551,6 +576,16 @@ function tfRange() {
   const r = state.scene && state.scene.settings && state.scene.settings['transfer.range'];
   if (Array.isArray(r) && r.length === 2 && r.every(Number.isFinite)) return r;
   return (state.scene && state.scene.data_range) || [0, 1];
+}
+
+// The scale the viewer asks for (its Scale control, set from the scene's transfer.scale).
+function tfScale() {
+  const s = $('tf-scale').value;
+  return s === 'log' || s === 'symlog' ? s : 'linear';
+}
+function tfLinearWidth() {
+  const w = state.scene && state.scene.settings && state.scene.settings['transfer.linear_width'];
+  return Number.isFinite(w) && w > 0 ? w : 1;
 }
 
 function currentKnots() {

@@ -1,10 +1,9 @@
 // The volume's modes in the viewer: blend mode (emission-absorption, the projections, isosurface
 // with one isovalue), projection (perspective or orthographic), one clip plane (an axis or the view
 // direction, moved by its slider or by Alt-dragging the frame), the transfer function's scale, and
-// a colour legend drawn over the frame. Each control becomes scene keys of the frame request
+// whether the colour legend (value_scale.js) is drawn over the frame. Each control becomes scene keys of the frame request
 // (docs/scene.md); keys the server does not take (its request_keys) are dropped by the caller.
 import * as cam from './orbit.js';
-import { sampleKnots } from './colormaps.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -77,6 +76,8 @@ export function applyModeSettings(settings) {
   pick($('blend'), settings['render.blend'] || 'composite');
   pick($('projection'), settings['camera.projection'] || 'perspective');
   pick($('tf-scale'), settings['transfer.scale'] || 'linear');
+  const legend = settings['image.legend'];
+  $('legend-on').checked = !!(legend && legend.position && legend.position !== 'none');
   const planes = settings['clip.planes'];
   $('clip-on').checked = Array.isArray(planes) && planes.length > 0;
   showModeControls();
@@ -85,60 +86,4 @@ export function applyModeSettings(settings) {
 export function showModeControls() {
   $('iso-controls').hidden = $('blend').value !== 'isosurface';
   $('clip-controls').hidden = !$('clip-on').checked;
-}
-
-// The scaled position (0..1) of value v in [lo, hi] under transfer.scale (linear, log, symlog
-// with linear width w), as the server lays out its table.
-export function scaled(v, lo, hi, scale, w = 1) {
-  const f = scale === 'log' ? Math.log10 : scale === 'symlog' ? (x) => Math.sign(x) * Math.log10(1 + Math.abs(x) / w) : (x) => x;
-  const a = f(lo), b = f(hi);
-  return b > a ? (f(v) - a) / (b - a) : 0;
-}
-
-// The legend over the frame: the colour map from bottom (range lo) to top (hi), ticks at five
-// evenly spaced positions of the scaled domain labelled in data units.
-export function drawLegend(canvas, { knots, range, scale, fmt }) {
-  const show = $('legend-on').checked && knots && knots.length > 0;
-  canvas.hidden = !show;
-  if (!show) return;
-  const ratio = window.devicePixelRatio || 1;
-  const w = 96, h = 220;
-  canvas.width = w * ratio; canvas.height = h * ratio;
-  canvas.style.width = `${w}px`; canvas.style.height = `${h}px`;
-  const g = canvas.getContext('2d');
-  g.setTransform(ratio, 0, 0, ratio, 0, 0);
-  g.clearRect(0, 0, w, h);
-  g.fillStyle = 'rgba(12, 14, 18, 0.72)';
-  g.fillRect(0, 0, w, h);
-  const bar = { x: 10, y: 12, w: 18, h: h - 24 };
-  for (let i = 0; i < bar.h; i++) {
-    const x = 1 - (i + 0.5) / bar.h;  // top row: the high end
-    const c = sampleKnots(knots, x).map((v) => Math.round(255 * Math.min(1, Math.max(0, v))));
-    g.fillStyle = `rgb(${c[0]}, ${c[1]}, ${c[2]})`;
-    g.fillRect(bar.x, bar.y + i, bar.w, 1);
-  }
-  g.strokeStyle = 'rgba(255, 255, 255, 0.5)';
-  g.strokeRect(bar.x + 0.5, bar.y + 0.5, bar.w - 1, bar.h - 1);
-  g.fillStyle = '#dde2ea';
-  g.font = '11px ui-monospace, "DejaVu Sans Mono", monospace';
-  g.textBaseline = 'middle';
-  const [lo, hi] = range;
-  for (let k = 0; k <= 4; k++) {
-    const s = k / 4;
-    const v = unscaled(s, lo, hi, scale);
-    const y = bar.y + bar.h * (1 - s);
-    g.fillRect(bar.x + bar.w, Math.round(y), 4, 1);
-    g.fillText(fmt(v), bar.x + bar.w + 7, y);
-  }
-}
-
-// The data value at scaled position s of [lo, hi] (the inverse of scaled()).
-function unscaled(s, lo, hi, scale, w = 1) {
-  if (scale === 'log' && lo > 0 && hi > 0) return 10 ** (Math.log10(lo) + s * (Math.log10(hi) - Math.log10(lo)));
-  if (scale === 'symlog') {
-    const f = (x) => Math.sign(x) * Math.log10(1 + Math.abs(x) / w);
-    const y = f(lo) + s * (f(hi) - f(lo));
-    return Math.sign(y) * w * (10 ** Math.abs(y) - 1);
-  }
-  return lo + s * (hi - lo);
 }

@@ -9,7 +9,7 @@ uniform float u_preint_length;
 // (front) to vb (back): the 2D table, its optical depth scaled to len (exact for the opacity) and
 // its colour by the ratio of the opacities (transfer/preintegration.h states the error).
 vec4 segment(float vf, float vb, float len) {
-  vec2 x = clamp(vec2(vf, vb) * u_value_map.x + u_value_map.y, 0.0, 1.0);
+  vec2 x = clamp(vec2(scaledValue(vf), scaledValue(vb)) * u_value_map.x + u_value_map.y, 0.0, 1.0);
   vec4 e = texture(u_preint, x * u_preint_map.x + u_preint_map.y);
   if (len == u_preint_length) return vec4(e.rgb, 1.0 - exp(-e.a));  // the table's own length
   float r = len / u_preint_length;

@@ -64,6 +64,7 @@ ProgramSources raycastSources(unsigned v) {
       .addIf(glow, glsl::glow_segment)
       .addIf(glow, glsl::glow_emitters)
       .add(glsl::volume_filter)
+      .add(glsl::value_scale)
       .addIf(shading, glsl::volume_shading)
       .add(glsl::raycast_sample_frag)
       .add(glsl::volume_clip)
@@ -261,7 +262,8 @@ void RaycastRenderer::classify(GpuBrick& g, float delta) {
     if (!rule_ || !(rk == rule_key_)) {
       rule_ = std::make_unique<StepRule>(table_.entries(), table_.rangeLo(), table_.rangeHi(), delta,
                                          settings_.adaptive_tolerance,
-                                         StepRule::maxMultiple(delta, min_spacing_));
+                                         StepRule::maxMultiple(delta, min_spacing_),
+                                         table_.function().scale());
       rule_key_ = rk;
     }
     rule = rule_.get();

@@ -16,7 +16,7 @@ uniform int u_orthographic;     // 1: parallel rays from the eye plane (Camera::
 uniform vec2 u_pixel_scale;     // 2 / width, 2 / height
 uniform float u_delta;          // lattice step along every ray (world units)
 uniform float u_ert;            // stop at this opacity; > 1: never
-uniform vec2 u_value_map;       // normalised value = v * x + y
+uniform vec2 u_value_map;       // normalised value = scaledValue(v) * x + y
 uniform vec2 u_table_map;       // table coordinate = normalised * x + y (texel centres at the ends)
 uniform sampler2D u_surface;    // particle surface (t, normal) per pixel, t = 1e30 on a miss
 uniform int u_has_surface;
@@ -80,7 +80,7 @@ int blockStep(ivec3 idx, uint g) { return 1 << int(g - 1u); }
 // stencil touches a missing sample (io/volume_source.h), is transparent.
 vec4 classify(float v) {
   if (isnan(v)) return vec4(0.0);
-  float x = clamp(v * u_value_map.x + u_value_map.y, 0.0, 1.0);
+  float x = clamp(scaledValue(v) * u_value_map.x + u_value_map.y, 0.0, 1.0);
   return texture(u_table, x * u_table_map.x + u_table_map.y);
 }
 

@@ -31,7 +31,7 @@ vec4 shadedSample(vec3 p) {
   vec3 tc = p * u_tex_scale + u_tex_offset;
   float v = volumeAt(u_volume, tc);
   if (isnan(v)) return vec4(0.0);  // its trilinear stencil touches a missing sample
-  float x = clamp(v * u_value_map.x + u_value_map.y, 0.0, 1.0);
+  float x = clamp(scaledValue(v) * u_value_map.x + u_value_map.y, 0.0, 1.0);
   vec4 e = texture(u_table, x * u_table_map.x + u_table_map.y);
 #ifdef SHADING
   if (e.a > 0.0) e.rgb = shadeColour(e.rgb, u_volume, tc, normalize(rayTo(p)));

@@ -27,6 +27,7 @@ ProgramSources slicingSources(unsigned v) {
       .defineIf(shading, "SHADING")
       .defineIf(v & kFloatFilter, "FLOAT_FILTER")
       .add(glsl::volume_filter)
+      .add(glsl::value_scale)
       .addIf(shading, glsl::volume_shading)
       .add(glsl::slicing_inputs_frag)
       .add(glsl::volume_clip)

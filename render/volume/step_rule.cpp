@@ -6,8 +6,9 @@
 namespace sortlast {
 
 StepRule::StepRule(const std::vector<float>& table, double lo, double hi, double delta,
-                   double tolerance, int max_multiple)
-    : n_(int(table.size() / 4)), lo_(lo), hi_(hi), delta_(delta), tolerance_(tolerance), max_level_(0) {
+                   double tolerance, int max_multiple, ValueScale scale)
+    : n_(int(table.size() / 4)), lo_(lo), hi_(hi), delta_(delta), tolerance_(tolerance),
+      scale_(scale), slo_(scale.apply(lo)), shi_(scale.apply(hi)), max_level_(0) {
   while ((2 << max_level_) <= max_multiple) ++max_level_;
   for (int c = 0; c < 4; ++c) {
     // Channel c of the emission-absorption pair: tau, then colour times tau.
@@ -47,7 +48,12 @@ int StepRule::level(float vmin, float vmax) const {
   if (max_level_ == 0 || !(vmin <= vmax)) return 0;
   // Table coordinate of a value (entries at integers), clamped as the shader clamps; the filtered
   // lookup blends the entries on either side of it.
-  auto coord = [&](double v) { return std::clamp((v - lo_) / (hi_ - lo_), 0.0, 1.0) * (n_ - 1); };
+  // The scale is increasing (log: v <= 0 below the range), so min and max bound the coordinates.
+  auto coord = [&](double v) {
+    if (scale_.kind == ValueScaleKind::kLinear) return std::clamp((v - lo_) / (hi_ - lo_), 0.0, 1.0) * (n_ - 1);
+    if (scale_.kind == ValueScaleKind::kLog && !(v > 0.0)) return 0.0;
+    return std::clamp((scale_.apply(v) - slo_) / (shi_ - slo_), 0.0, 1.0) * (n_ - 1);
+  };
   const int i0 = std::max(0, int(std::floor(coord(vmin)))), i1 = std::min(n_ - 1, int(std::ceil(coord(vmax))));
   const double osc = oscillation(i0, i1);
   int j = 0;

@@ -17,14 +17,17 @@
 // its coarse segments, each weighted by the transparency in front of it.
 #include <vector>
 
+#include "transfer/value_scale.h"
+
 namespace sortlast {
 
 class StepRule {
  public:
   // table: n entries (r, g, b, tau), tau per world unit, entry i at value lo + (hi - lo) i / (n - 1);
   // delta: the lattice step (world units); max_multiple: a power of two >= 1.
+  // scale: transfer.scale, the domain the entries are evenly spaced in (lo, hi in data units).
   StepRule(const std::vector<float>& table, double lo, double hi, double delta, double tolerance,
-           int max_multiple);
+           int max_multiple, ValueScale scale = {});
   // log2 m for a block whose segments see only values in [vmin, vmax].
   int level(float vmin, float vmax) const;
 
@@ -36,6 +39,8 @@ class StepRule {
   double oscillation(int i0, int i1) const;
   int n_;
   double lo_, hi_, delta_, tolerance_;
+  ValueScale scale_;
+  double slo_, shi_;  // lo, hi in the scale's domain
   int max_level_;
   std::vector<std::vector<float>> min_[4], max_[4];  // [channel][level][i]: over entries i .. i + 2^level - 1
 };

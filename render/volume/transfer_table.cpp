@@ -46,8 +46,10 @@ bool TransferTable::visible(float vmin, float vmax) const {
 
 void TransferTable::use(const GlProgram& program) const {
   program.set("u_table", 1);
-  double range = tf_.rangeHi() - tf_.rangeLo();
-  program.set("u_value_map", glm::vec2(float(1.0 / range), float(-tf_.rangeLo() / range)));
+  const std::array<double, 2> m = tf_.scaledValueMap();
+  program.set("u_value_map", glm::vec2(float(m[0]), float(m[1])));
+  program.set("u_scale", int(tf_.scale().kind));
+  program.set("u_linear_width", float(tf_.scale().linear_width));
   double n = size_;
   program.set("u_table_map", glm::vec2(float((n - 1) / n), float(0.5 / n)));
   gl_.ActiveTexture(GL_TEXTURE1);

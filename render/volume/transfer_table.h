@@ -38,7 +38,8 @@ class TransferTable {
   // Whether any value in [vmin, vmax] can have non-zero opacity through the filtered table (the
   // 2D one too: a segment between two values in the range).
   bool visible(float vmin, float vmax) const;
-  // Binds the table to texture unit 1 and sets `program`'s u_table, u_value_map and u_table_map.
+  // Binds the table to texture unit 1 and sets `program`'s u_table, u_value_map, u_scale,
+  // u_linear_width (render/volume/value_scale.glsl) and u_table_map.
   void use(const GlProgram& program) const;
   // Builds the 2D table for segments of `base_length` (world units) if it is stale, binds it to
   // texture unit 6 and sets `program`'s u_preint, u_preint_map and u_preint_length.

@@ -38,6 +38,19 @@ std::vector<sortlast::SceneKey> sortlast::transferKeys() {
      "Data values `[lo, hi]` that map to 0 and 1. `auto`: the volume's minimum and maximum.",
      Structured{"`auto` or [lo, hi]",
                 {{"in [-1e38, 1e38]", "{value} is beyond float's range (+-3.4e38)"}}}},
+    {"transfer.scale", "linear",
+     "Domain the transfer function is laid out in: `linear`, `log` (log10 of the value) or "
+     "`symlog` (matplotlib's SymLogNorm, base 10, linscale 1: linear within "
+     "+-`transfer.linear_width` of zero, logarithmic beyond; it takes zero and negative values). "
+     "`transfer.range` stays in data units; the points' values (and the colour map) are places "
+     "in the scaled range, so the table is evenly spaced in the scale, and each sample is scaled "
+     "after trilinear interpolation. `log` needs a range with both ends > 0 (given, or the data's "
+     "with `transfer.range: auto`); samples <= 0 map below the range.",
+     Choice{member<&Scene::transfer, &TransferSpec::scale>}},
+    {"transfer.linear_width", "1",
+     "`transfer.scale: symlog`: the half-width of the linear part around zero, in data units "
+     "(SymLogNorm's linthresh).",
+     Real{member<&Scene::transfer, &TransferSpec::linear_width>, {{"> 0"}}}},
     {"transfer.unit_length", "auto",
      "World length over which a sample has the opacity `a` of the transfer function; other "
      "sample spacings are corrected with 1 - (1 - a)^(ds / unit_length). `auto`: the "
@@ -90,6 +103,10 @@ void readTransferKeys(const Reader& r, const Origin& o, TransferSpec& tf) {
       throw InputError("scene key 'transfer.range': [" + numText(v[0]) + ", " + numText(v[1]) +
                        "] is narrower than float precision at that magnitude (hi - lo must be at "
                        "least 1e-6 of |hi|)");
+    if (tf.scale == ValueScaleKind::kLog && !(v[0] > 0.0))
+      throw InputError("scene key 'transfer.range': [" + numText(v[0]) + ", " + numText(v[1]) +
+                       "] has an end <= 0, which transfer.scale: log cannot map (use "
+                       "transfer.scale: symlog for data through zero)");
     tf.range = std::make_pair(v[0], v[1]);
   }
   // Validate the points now (range and unit length are placeholders until the data is known).
@@ -112,7 +129,12 @@ void readTransferKeys(const Reader& r, const Origin& o, TransferSpec& tf) {
 TransferFunction TransferSpec::build(double data_min, double data_max, double min_spacing) const {
   double lo = range ? range->first : data_min, hi = range ? range->second : data_max;
   if (!range && !(hi > lo)) hi = lo + 1.0;  // constant volume: any non-empty range will do
-  return TransferFunction(points, lo, hi, unit_length.value_or(min_spacing));
+  if (!range && scale == ValueScaleKind::kLog && !(lo > 0.0))
+    throw InputError("transfer.scale: log needs a range with both ends > 0, and transfer.range "
+                     "is auto while the data's range is [" + numText(lo) + ", " + numText(hi) +
+                     "]: give transfer.range: [lo, hi] with lo > 0 (samples <= 0 then map below "
+                     "it), or use transfer.scale: symlog");
+  return TransferFunction(points, lo, hi, unit_length.value_or(min_spacing), ValueScale{scale, linear_width});
 }
 
 bool hasSteepOpacity(const std::vector<TfPoint>& points) {
