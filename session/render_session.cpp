@@ -526,6 +526,10 @@ std::vector<double> RenderSession::State::spacingKey(const Scene& sc, std::pair<
   key.insert(key.end(), {tf.rangeLo(), tf.rangeHi(), tf.unitLength(), double(tf.scale().kind),
                          tf.scale().linear_width});
   for (const TfPoint& p : tf.points()) key.insert(key.end(), {p.value, p.r, p.g, p.b, p.a});
+  // The blend mode, the projection and the clip region change what the probes see.
+  key.insert(key.end(), {double(sc.render.blend), double(sc.render.mip_exact), double(sc.camera.projection),
+                         sc.camera.parallel_scale});
+  for (const ClipPlane& c : sc.clip.halfSpaces()) key.insert(key.end(), {c.normal.x, c.normal.y, c.normal.z, c.offset});
   key.insert(key.end(), {double(probe.first), double(probe.second)});
   return key;
 }
