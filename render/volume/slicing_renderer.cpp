@@ -152,7 +152,7 @@ RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spac
   // mip and minip blend with GL_MAX (minip of the negated values, slicing.frag.glsl): the
   // target starts at the operator's identity in the value channel, -FLT_MAX, below any sample
   // (cleared again over begin()'s zeros, within the same scissor); the weight channel stays 0
-  // where no fragment lands, and finishProjection() makes those pixels all zero, as the ray
+  // where no fragment lands, and finishExtremum() makes those pixels all zero, as the ray
   // caster leaves them.
   const bool max_blend = projection == 1 || projection == 2;
   if (max_blend) {
