@@ -20,6 +20,7 @@ VolumeMethod volumeMethod(const Scene& scene) {
   if (scene.render.projection()) {
     m.raycast_settings.blend = scene.render.blend;
     m.raycast_settings.mip_exact = scene.render.mip_exact;
+    m.slicing_settings.blend = scene.render.blend;  // (the scene refuses mip_exact with slicing)
   }
   if (scene.render.blend == VolumeBlend::kIsosurface) m.raycast_settings.isovalues = scene.render.isovalues;
   return m;
@@ -63,7 +64,7 @@ void BrickRenderer::enableVolume(const TransferFunction& tf, int table_size, int
     volume_ = std::make_unique<RaycastRenderer>(*ctx_, width_, height_, method.ray_block_cells,
                                                 method.raycast_settings, textures_.get());
   else
-    volume_ = std::make_unique<SlicingRenderer>(*ctx_, width_, height_, block_cells);
+    volume_ = std::make_unique<SlicingRenderer>(*ctx_, width_, height_, block_cells, method.slicing_settings);
   volume_->setTransferFunction(tf, table_size, preintegrated);
   volume_->setShading(method.shading);
   // The image stays in the target until readBack(): the draw's timer ends before any read-back.
@@ -133,6 +134,7 @@ void BrickRenderer::setTransferFunction(const TransferFunction& tf, int table_si
 void BrickRenderer::setVolumeMethodSettings(const VolumeMethod& method) {
   if (!volume_) return;
   if (RaycastRenderer* ray = volume_->raycaster()) ray->setSettings(method.raycast_settings);
+  if (SlicingRenderer* slicing = volume_->slicer()) slicing->setSettings(method.slicing_settings);
   volume_->setShading(method.shading);
 }
 

@@ -36,6 +36,7 @@ struct Scene;
 struct VolumeMethod {
   bool raycast = false;  // false: 3D-texture slicing
   RaycastSettings raycast_settings;
+  SlicingSettings slicing_settings;
   Shading shading;       // either renderer
   int ray_block_cells = 8;  // the ray caster's blocks (the slicing renderer takes block_cells)
 };

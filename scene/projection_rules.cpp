@@ -10,12 +10,14 @@ void checkProjectionKeys(const Scene& s) {
   const std::string mode(nameOf(s.render.blend));
   if (s.render.mip_exact && s.render.blend != VolumeBlend::kMip && s.render.blend != VolumeBlend::kMinip)
     throw InputError("scene key 'render.mip_exact': only with render.blend: mip or minip (got " + mode + ")");
+  if (s.render.mip_exact && !s.render.raycast())
+    throw InputError("scene keys 'render.mip_exact' and 'render.method: slicing' cannot go together: "
+                     "the exact extremum walks each ray's cells, which only the ray caster follows "
+                     "(render.method: raycast); slicing takes the samples on its slice planes");
   if (!s.render.projection()) return;
   auto refuse = [&](const std::string& key, const std::string& why) {
     throw InputError("scene keys 'render.blend: " + mode + "' and '" + key + "' cannot go together: " + why);
   };
-  if (!s.render.raycast())
-    refuse("render.method: slicing", "projections are built in the ray caster only (render.method: raycast)");
   if (s.compositing.precision == Precision::kRgba8)
     refuse("compositing.precision: rgba8",
            "a projection's partial results are values, sums and counts, not colours; 8-bit "

@@ -1,6 +1,7 @@
 #include "render/volume/slicing_renderer.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <stdexcept>
 #include <string>
 
@@ -17,12 +18,42 @@ enum SlicingVariant : unsigned {
   kPreintegrated = 1,  // PREINTEGRATED: transfer.preintegrated
   kShading = 2,        // SHADING: render.shading
   kFloatFilter = 4,     // FLOAT_FILTER: the volume filtered in float (volume_shading.h floatFilter)
+  // PROJECTION = 1 mip, 2 minip, 3 average, 4 additive (bits 3-5; render/volume/slicing.frag.glsl)
+  kProjectionShift = 3,
+  kProjectionMask = 7u << kProjectionShift,
 };
+
+// The PROJECTION define of a blend mode (0: emission-absorption), the ray caster's numbering.
+unsigned projectionOf(VolumeBlend b) {
+  switch (b) {
+    case VolumeBlend::kComposite: return 0;
+    case VolumeBlend::kMip: return 1;
+    case VolumeBlend::kMinip: return 2;
+    case VolumeBlend::kAverage: return 3;
+    case VolumeBlend::kAdditive: return 4;
+    default: throw std::logic_error("slicing: render.blend isosurface is the ray caster's only");
+  }
+}
+
+// mip / minip pixels read back from the GL_MAX target into compositing/projection_pixels.h's
+// format: a pixel no fragment reached (weight 0, value -FLT_MAX) becomes (0, 0, 0, 0), and
+// minip's negated values (`negated`) are turned back.
+void finishExtremum(std::vector<float>& px, bool negated) {
+  for (size_t i = 0; i < px.size(); i += 4) {
+    float* p = &px[i];
+    if (!(p[3] > 0.0f))
+      p[0] = p[1] = p[2] = p[3] = 0.0f;
+    else if (negated)
+      p[0] = -p[0];  // exact: a sign flip
+  }
+}
 
 // A variant's sources: render/volume/slicing.frag.glsl describes the chunks.
 ProgramSources slicingSources(unsigned v) {
   const bool preint = v & kPreintegrated, shading = v & kShading;
+  const unsigned projection = (v & kProjectionMask) >> kProjectionShift;
   ShaderSource fragment;
+  if (projection) fragment.define("PROJECTION", std::to_string(projection));
   fragment.defineIf(preint, "PREINTEGRATED")
       .defineIf(shading, "SHADING")
       .defineIf(v & kFloatFilter, "FLOAT_FILTER")
@@ -37,12 +68,14 @@ ProgramSources slicingSources(unsigned v) {
 }
 }  // namespace
 
-SlicingRenderer::SlicingRenderer(const GlContext& ctx, int width, int height, int block_cells)
+SlicingRenderer::SlicingRenderer(const GlContext& ctx, int width, int height, int block_cells,
+                                 const SlicingSettings& settings)
     : gl_(ctx.gl()),
       float_filter_(floatFilter(ctx.info())),
       block_cells_(std::max(1, block_cells)),
       target_(gl_, width, height),
       table_(gl_),
+      settings_(settings),
       programs_(gl_, slicingSources) {
   programs_.get(float_filter_ ? kFloatFilter : 0);  // the plain program now: a driver that cannot build it fails here
   gl_.GenVertexArrays(1, &vao_);
@@ -81,7 +114,15 @@ RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spac
                                       const SurfaceLayer* surface) {
   const VolumeBrick& b = bricks_.at(size_t(handle));
   RenderedBrick out;
-  const bool preint = table_.preintegrated();
+  const unsigned projection = projectionOf(settings_.blend);
+  const bool has_surface = surface && !surface->rect.empty();
+  if (projection && (has_surface || shading_.enabled))  // the scene refuses these
+    throw std::logic_error("slicing: a projection with a surface or shading");
+  const bool preint = table_.preintegrated() && !projection;  // segments mean nothing to a projection
+  // mip, minip and average count every sample whatever its opacity: every block holding samples
+  // is drawn. Additive adds c a, exactly zero where the table's opacity is: its empty blocks are
+  // skipped as emission-absorption's (the ray caster's rule, raycast_renderer.cpp classify).
+  const bool counts_all = projection >= 1 && projection <= 3;
   glm::dvec3 eye = cam.position, fwd = cam.forward();
   // Visible blocks, back to front (orthographic: by the view direction, common/visibility.h
   // orderEye), and the box around them (which sets the output rectangle).
@@ -92,7 +133,10 @@ RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spac
   for (int id : backToFrontOrder(b.block_planes, orderEye(cam, brick_box))) {
     const VolumeBlock& blk = b.blocks[size_t(id)];
     // Pre-integrated segments reach ds/2 beyond the block: its range grown by one voxel.
-    if (preint ? !table_.visible(blk.gmin, blk.gmax) : !table_.visible(blk.vmin, blk.vmax)) continue;
+    if (counts_all ? !(blk.vmin <= blk.vmax)
+        : preint   ? !table_.visible(blk.gmin, blk.gmax)
+                   : !table_.visible(blk.vmin, blk.vmax))
+      continue;
     if (clip_.culls(blk.world)) continue;  // wholly outside clip.planes / clip.box
     bound.lo = glm::min(bound.lo, blk.world.lo);
     bound.hi = glm::max(bound.hi, blk.world.hi);
@@ -101,17 +145,33 @@ RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spac
     tris.insert(tris.end(), t.begin(), t.end());
   }
   Rect r = tris.empty() ? Rect{} : clippedRectOf(cam, bound, clip_);
-  const bool has_surface = surface && !surface->rect.empty();
   if (has_surface) r = r.empty() ? surface->rect : unite(r, surface->rect);
   if (r.empty()) return out;
 
   target_.begin(r, has_surface ? surface : nullptr);
+  // mip and minip blend with GL_MAX (minip of the negated values, slicing.frag.glsl): the
+  // target starts at the operator's identity in the value channel, -FLT_MAX, below any sample
+  // (cleared again over begin()'s zeros, within the same scissor); the weight channel stays 0
+  // where no fragment lands, and finishExtremum() makes those pixels all zero, as the ray
+  // caster leaves them.
+  const bool max_blend = projection == 1 || projection == 2;
+  if (max_blend) {
+    gl_.ClearColor(-FLT_MAX, 0.0f, 0.0f, 0.0f);
+    gl_.Clear(GL_COLOR_BUFFER_BIT);
+    gl_.ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+  }
   if (!tris.empty()) {
     gl_.Enable(GL_BLEND);
-    gl_.BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // premultiplied "over", back to front
+    if (max_blend) {
+      gl_.BlendEquation(GL_MAX);  // (the blend factors do not apply to GL_MAX)
+    } else if (projection) {
+      gl_.BlendFunc(GL_ONE, GL_ONE);  // sums: average's (value, count), additive's (c a, a)
+    } else {
+      gl_.BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // premultiplied "over", back to front
+    }
     const GlProgram& program =
-        programs_.get((preint ? kPreintegrated : 0) |
-                      (shading_.enabled ? kShading : 0) | (float_filter_ ? kFloatFilter : 0));
+        programs_.get((preint ? kPreintegrated : 0) | (shading_.enabled ? kShading : 0) |
+                      (float_filter_ ? kFloatFilter : 0) | (projection << kProjectionShift));
     gl_.UseProgram(program);
     glm::mat4 vp = cam.viewProjection(near_plane, far_plane);
     program.set("u_view_proj", vp);
@@ -140,10 +200,16 @@ RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spac
     gl_.BindBuffer(GL_ARRAY_BUFFER, vbo_);
     gl_.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(tris.size() * sizeof(float)), tris.data(), GL_STREAM_DRAW);
     gl_.DrawArrays(GL_TRIANGLES, 0, GLsizei(tris.size() / 3));
+    gl_.BlendEquation(GL_FUNC_ADD);  // the default the other renderers of the context assume
     gl_.Disable(GL_BLEND);
   }
   out.rect = r;
-  target_.finish(r, out);
+  if (projection) {  // a projection's pixels are values and sums: float
+    out.pixels_f = target_.finishFloat(r);
+    if (max_blend) finishExtremum(out.pixels_f, projection == 2);
+  } else {
+    target_.finish(r, out);
+  }
   return out;
 }
 

@@ -9,11 +9,19 @@
 // the blocks that are. Visible blocks are drawn in back-to-front block order, each with its part
 // of the shared slice planes; "over" is associative, so this equals slicing the whole brick (up to
 // float rounding) while rasterising no fragment in empty blocks.
+//
+// Projections (SlicingSettings::blend: mip, minip, average, additive; docs/volumes.md): the
+// same slices, blended by an order-free equation instead of "over" (GL_MAX for mip and minip,
+// GL_FUNC_ADD for average and additive), into the ray caster's partial-image format
+// (compositing/projection_pixels.h), read back in float (RenderedBrick::pixels_f). The result is
+// over the slice planes' samples of each ray, not the ray caster's lattice of distances: both
+// converge to the reference's as the step shrinks (render/volume/slicing.frag.glsl says how).
 #include <vector>
 
 #include "common/brick.h"
 #include "common/camera.h"
 #include "io/image.h"
+#include "scene/sections.h"
 #include "transfer/shading.h"
 #include "transfer/transfer_function.h"
 #include "render/gl/brick_output.h"
@@ -26,9 +34,16 @@
 
 namespace sortlast {
 
+struct SlicingSettings {
+  // render.blend: a projection (mip, minip, average, additive) or emission-absorption
+  // (composite); isosurfaces are the ray caster's only (std::logic_error here).
+  VolumeBlend blend = VolumeBlend::kComposite;
+};
+
 class SlicingRenderer : public VolumeRenderer {
  public:
-  SlicingRenderer(const GlContext& ctx, int width, int height, int block_cells = 64);
+  SlicingRenderer(const GlContext& ctx, int width, int height, int block_cells = 64,
+                  const SlicingSettings& settings = {});
   ~SlicingRenderer() override;
   SlicingRenderer(const SlicingRenderer&) = delete;
   SlicingRenderer& operator=(const SlicingRenderer&) = delete;
@@ -40,6 +55,9 @@ class SlicingRenderer : public VolumeRenderer {
   void setDeferredReadback(bool on) override { target_.setDeferred(on); }
   // Gradient shading (transfer/shading.h) for the next frames.
   void setShading(const Shading& shading) override { shading_ = shading; }
+  // The blend mode for the next frames.
+  void setSettings(const SlicingSettings& settings) { settings_ = settings; }
+  SlicingRenderer* slicer() override { return this; }
   // Uploads a brick's stored samples (x fastest); returns a handle for render(). The samples'
   // min and max are kept so invisible bricks can be skipped.
   int addBrick(const Brick& brick, const GridGeometry& grid, const std::vector<float>& samples) override;
@@ -47,7 +65,8 @@ class SlicingRenderer : public VolumeRenderer {
 
   // Renders one brick for `cam`; `spacing` is the world distance between slice planes and
   // [near_plane, far_plane] must enclose the whole volume (the same for all bricks of a frame).
-  // Slice fragments at or behind `surface` are not drawn.
+  // Slice fragments at or behind `surface` are not drawn. A projection's image comes back in
+  // float (`pixels_f`), not with a surface (the scene refuses it) or shading.
   RenderedBrick render(int handle, const Camera& cam, double spacing, double near_plane,
                        double far_plane, const SurfaceLayer* surface = nullptr) override;
 
@@ -58,7 +77,9 @@ class SlicingRenderer : public VolumeRenderer {
   FloatTarget target_;
   TransferTable table_;
   Shading shading_;
-  // The program's variants (slicing_renderer.cpp's recipe: kPreintegrated, kShading): the plain
+  SlicingSettings settings_;
+  // The program's variants (slicing_renderer.cpp's recipe: kPreintegrated, kShading,
+  // kFloatFilter, the projection's bits): the plain
   // one linked with the renderer, the others when first drawn.
   ProgramCache programs_;
   unsigned vao_ = 0, vbo_ = 0;

@@ -16,6 +16,7 @@
 namespace sortlast {
 
 class RaycastRenderer;
+class SlicingRenderer;
 
 class VolumeRenderer {
  public:
@@ -52,6 +53,9 @@ class VolumeRenderer {
   // brick or a glow pass, and the brick renderer refuses those (std::logic_error) where it finds
   // no ray caster.
   virtual RaycastRenderer* raycaster() { return nullptr; }
+  // The slicing renderer behind this interface, or null (ray casting): its own settings
+  // (SlicingRenderer::setSettings) are reached through it.
+  virtual SlicingRenderer* slicer() { return nullptr; }
 
  protected:
   ClipRegion clip_;

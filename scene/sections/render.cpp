@@ -58,7 +58,8 @@ std::vector<sortlast::SceneKey> sortlast::renderKeys() {
      "final value, through the transfer function: the pixel is (c(v) a(v), a(v)), c the table's "
      "colour and a(v) its opacity (`transfer.opacity` at v, per `transfer.unit_length`); a pixel "
      "no sample reached stays transparent. Projections never stop early (no early ray "
-     "termination) and combine bricks with max / min / sum (docs/volumes.md). Ray casting only, "
+     "termination) and combine bricks with max / min / sum (docs/volumes.md). With "
+     "`render.method: slicing` the samples are where the ray crosses the slice planes. "
      "compositing.precision float, without particles, surfaces, glow, shading, adaptive "
      "sampling or adaptive steps; transfer.preintegrated does not apply.",
      Choice{member<&Scene::render, &RenderSection::blend>}},
@@ -67,7 +68,8 @@ std::vector<sortlast::SceneKey> sortlast::renderKeys() {
      "along each ray inside the volume, instead of the largest / smallest sample's: the ray "
      "walks the volume's cells, and in each the field on the ray is a cubic in t whose extremum "
      "is at an end or at a root of its quadratic derivative (closed form). Thin features between "
-     "samples keep their peak; it costs more per ray than sampling (docs/volumes.md).",
+     "samples keep their peak; it costs more per ray than sampling (docs/volumes.md). Ray "
+     "casting only.",
      Flag{member<&Scene::render, &RenderSection::mip_exact>}},
     {"render.isovalues", "[]",
      "With `render.blend: isosurface` (ray casting only): the isosurfaces, a list of up to 8 maps "
