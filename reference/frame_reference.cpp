@@ -84,6 +84,7 @@ FrameReference::FrameReference(Scene scene, int threads)
     }
     const GridGeometry all = fieldsGrid(scene.fields);  // with the grids the files gave
     fields_step_ = scene.reference.step * all.minSpacing();
+    fields_clip_ = scene.clip;
     bounds_ = all.worldBox();
   } else if (scene.hasVolume()) {
     validateVolume(scene.volume);
@@ -146,11 +147,8 @@ ImageF FrameReference::render(const Camera& cam, SurfaceImage* surface_out, int 
     else
       surface = std::move(s), colour = std::move(c);
   }
-  if (!fields_.empty()) {  // the scene refuses particles, surfaces and glow with several fields
-    if (bounds_.contains(cam.position))
-      throw InputError("camera.position is inside the fields' box; move the camera outside it");
-    return renderFieldsReference(fields_, bounds_, cam, fields_step_, threads_);
-  }
+  if (!fields_.empty())  // the scene refuses particles, surfaces and glow with several fields
+    return renderFieldsReference(fields_, bounds_, cam, fields_step_, threads_, fields_clip_);
   if (volume_ && !volume_->isovalues.empty()) {
     out = renderIsosurfaceReference(volume_->vol, volume_->isovalues, volume_->shading, cam, threads_,
                                     surface ? &*surface : nullptr, surface ? &colour : nullptr);
