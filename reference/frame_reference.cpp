@@ -33,7 +33,8 @@ void addGlowOnly(ImageF& img, const Camera& cam, const GlowRays& g, const Surfac
     for (int x = 0; x < cam.width; ++x) {
       const size_t pixel = size_t(y) * cam.width + x;
       const double t_stop = stop && stop->hit(pixel) ? double(stop->t[pixel]) : HUGE_VAL;
-      const glm::dvec3 r = g.radiance(cam.position, cam.rayDirection(x, y), 0.0, t_stop);
+      const CameraRay ray = cam.pixelRay(x, y);  // from the eye, or the eye plane (orthographic)
+      const glm::dvec3 r = g.radiance(ray.origin, ray.direction, 0.0, t_stop);
       for (int k = 0; k < 3; ++k) img.px[4 * pixel + k] += float(r[k]);
     }
 }
