@@ -4,16 +4,12 @@
 #include <cctype>
 #include <filesystem>
 
-extern "C" {
-#include <libavcodec/avcodec.h>
-#include <libavformat/avformat.h>
-#include <libavutil/imgutils.h>
-#include <libavutil/log.h>
-#include <libavutil/opt.h>
-#include <libswscale/swscale.h>
-}
+#include <dlfcn.h>
+
+#include <cstdlib>
 
 #include "common/error.h"
+#include "io/movie_module_abi.h"
 
 namespace sortlast {
 
@@ -23,12 +19,6 @@ std::string extensionOf(const std::string& path) {
   std::string e = std::filesystem::path(path).extension().string();
   std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   return e;
-}
-
-std::string avError(int code) {
-  char buf[AV_ERROR_MAX_STRING_SIZE] = {0};
-  av_strerror(code, buf, sizeof buf);
-  return buf;
 }
 
 }  // namespace
@@ -44,26 +34,70 @@ const char* MovieWriter::encoderName(const std::string& path) {
   return extensionOf(path) == ".webm" ? "libvpx-vp9" : "libx264";
 }
 
-struct MovieWriter::State {
-  AVFormatContext* format = nullptr;
-  AVCodecContext* codec = nullptr;
-  AVStream* stream = nullptr;
-  AVFrame* frame = nullptr;
-  AVPacket* packet = nullptr;
-  SwsContext* sws = nullptr;
-  std::vector<uint8_t> padded;  // the RGB frame at the encoded (even) size
-  int64_t next_pts = 0;
-  bool header_written = false, finished = false;
+// The FFmpeg module, loaded once per process on the first movie (io/movie_module_abi.h says why).
+namespace {
 
-  ~State() {
-    sws_freeContext(sws);
-    av_packet_free(&packet);
-    av_frame_free(&frame);
-    avcodec_free_context(&codec);
-    if (format) {
-      if (format->pb) avio_closep(&format->pb);
-      avformat_free_context(format);
+struct LoadedModule {
+  const SortlastMovieApi* api = nullptr;
+  std::string error;  // why it could not be loaded (every place tried)
+};
+
+// Where the module may be: SORTLAST_MOVIE_MODULE (a file), beside the program (the build tree:
+// build/sortlast and build/libsortlast_movie.so), the installed layout (bin/../lib/sortlast/), and
+// the build tree and install prefix configured in (test programs, the Python module).
+std::vector<std::string> moduleCandidates() {
+  std::vector<std::string> c;
+  if (const char* env = std::getenv("SORTLAST_MOVIE_MODULE"); env && *env) c.push_back(env);
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    c.push_back((exe.parent_path() / SORTLAST_MOVIE_MODULE_NAME).string());
+    c.push_back((exe.parent_path() / ".." / SORTLAST_MOVIE_MODULE_INSTALL_SUBDIR / SORTLAST_MOVIE_MODULE_NAME).string());
+  }
+  c.push_back(SORTLAST_MOVIE_MODULE_BUILD_PATH);
+  c.push_back(SORTLAST_MOVIE_MODULE_INSTALL_PATH);
+  return c;
+}
+
+const LoadedModule& movieModule() {
+  static const LoadedModule module = [] {
+    LoadedModule m;
+    for (const std::string& path : moduleCandidates()) {
+      if (!std::filesystem::exists(path)) {
+        m.error += "\n  " + path + ": no such file";
+        continue;
+      }
+      void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+      if (!handle) {
+        const char* why = dlerror();
+        m.error += "\n  " + path + ": " + (why ? why : "dlopen failed");
+        continue;
+      }
+      auto entry = reinterpret_cast<const SortlastMovieApi* (*)()>(dlsym(handle, kSortlastMovieApiSymbol));
+      const SortlastMovieApi* api = entry ? entry() : nullptr;
+      if (!api || api->version != kSortlastMovieApiVersion) {
+        m.error += "\n  " + path + ": not this program's movie module (another version)";
+        dlclose(handle);
+        continue;
+      }
+      m.api = api;  // kept loaded for the process's life
+      m.error.clear();
+      break;
     }
+    return m;
+  }();
+  return module;
+}
+
+}  // namespace
+
+struct MovieWriter::State {
+  const SortlastMovieApi* api = nullptr;
+  SortlastMovie* movie = nullptr;
+  std::vector<uint8_t> padded;  // the RGB frame at the encoded (even) size
+  bool finished = false;
+  ~State() {
+    if (movie) api->close(movie);
   }
 };
 
@@ -83,78 +117,19 @@ MovieWriter::MovieWriter(std::string path, int width, int height, int frame_rate
     fail("movie.quality " + std::to_string(crf) + " is outside " + encoder + "'s CRF range [0, " +
          std::to_string(max_quality) + "]");
   if (frame_rate < 1) fail("movie.frame_rate must be >= 1");
-
-  // libx264 prints its settings and statistics at FFmpeg's default level: errors only.
-  av_log_set_level(AV_LOG_ERROR);
-  int rc = avformat_alloc_output_context2(&s_->format, nullptr, webm ? "webm" : "mp4", path_.c_str());
-  if (rc < 0 || !s_->format) fail("FFmpeg has no " + ext + " muxer (" + avError(rc) + ")");
-  const AVCodec* codec = avcodec_find_encoder_by_name(encoder);
-  if (!codec) fail(std::string("this FFmpeg's libavcodec has no ") + encoder + " encoder");
-  s_->stream = avformat_new_stream(s_->format, nullptr);
-  s_->codec = avcodec_alloc_context3(codec);
-  if (!s_->stream || !s_->codec) fail("out of memory opening the encoder");
-  AVCodecContext* c = s_->codec;
-  c->width = encodedWidth();
-  c->height = encodedHeight();
-  c->time_base = AVRational{1, frame_rate};
-  c->framerate = AVRational{frame_rate, 1};
-  c->pix_fmt = AV_PIX_FMT_YUV420P;
-  c->gop_size = std::max(1, frame_rate * 2);  // a key frame every two seconds: seeking stays cheap
-  c->thread_count = 1;  // the writer thread is one thread; the ranks' renderers have the cores
-  if (s_->format->oformat->flags & AVFMT_GLOBALHEADER) c->flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
-  av_opt_set_int(c->priv_data, "crf", crf, 0);
-  if (webm) {
-    // libvpx's constant-quality mode is CRF with no bit-rate target (b = 0); "good" deadline at
-    // cpu-used 4, libvpx's faster end of good quality.
-    c->bit_rate = 0;
-    av_opt_set(c->priv_data, "deadline", "good", 0);
-    av_opt_set_int(c->priv_data, "cpu-used", 4, 0);
-  }
-  rc = avcodec_open2(c, codec, nullptr);
-  if (rc < 0) fail(std::string("cannot open ") + encoder + ": " + avError(rc));
-  rc = avcodec_parameters_from_context(s_->stream->codecpar, c);
-  if (rc < 0) fail("cannot set the stream's parameters: " + avError(rc));
-  s_->stream->time_base = c->time_base;
-  rc = avio_open(&s_->format->pb, path_.c_str(), AVIO_FLAG_WRITE);
-  if (rc < 0) fail("cannot open for writing: " + avError(rc));
-  rc = avformat_write_header(s_->format, nullptr);
-  if (rc < 0) fail("cannot write the header: " + avError(rc));
-  s_->header_written = true;
-
-  s_->frame = av_frame_alloc();
-  s_->packet = av_packet_alloc();
-  if (!s_->frame || !s_->packet) fail("out of memory");
-  s_->frame->format = c->pix_fmt;
-  s_->frame->width = c->width;
-  s_->frame->height = c->height;
-  rc = av_frame_get_buffer(s_->frame, 0);
-  if (rc < 0) fail("cannot allocate a frame: " + avError(rc));
-  s_->sws = sws_getContext(c->width, c->height, AV_PIX_FMT_RGB24, c->width, c->height, c->pix_fmt,
-                           SWS_BICUBIC, nullptr, nullptr, nullptr);
-  if (!s_->sws) fail("libswscale cannot convert RGB24 to yuv420p");
-  s_->padded.resize(size_t(c->width) * c->height * 3);
+  const LoadedModule& module = movieModule();
+  if (!module.api)
+    fail(std::string("movies are written by the module ") + SORTLAST_MOVIE_MODULE_NAME +
+         " (FFmpeg), which could not be loaded (set SORTLAST_MOVIE_MODULE to its path):" + module.error);
+  s_->api = module.api;
+  char err[512] = {0};
+  s_->movie = s_->api->open(path_.c_str(), encodedWidth(), encodedHeight(), frame_rate, crf, webm ? 1 : 0,
+                            err, sizeof err);
+  if (!s_->movie) fail(err);
+  s_->padded.resize(size_t(encodedWidth()) * encodedHeight() * 3);
 }
 
 MovieWriter::~MovieWriter() = default;
-
-namespace {
-
-// Sends `frame` (null: the end) and writes every packet the encoder has ready.
-void encode(AVFormatContext* format, AVCodecContext* c, AVStream* st, AVFrame* frame, AVPacket* pkt,
-            const std::string& path) {
-  int rc = avcodec_send_frame(c, frame);
-  if (rc < 0) throw InputError("output " + path + ": encoding failed: " + avError(rc));
-  while ((rc = avcodec_receive_packet(c, pkt)) >= 0) {
-    av_packet_rescale_ts(pkt, c->time_base, st->time_base);
-    pkt->stream_index = st->index;
-    rc = av_interleaved_write_frame(format, pkt);
-    if (rc < 0) throw InputError("output " + path + ": writing failed: " + avError(rc));
-  }
-  if (rc != AVERROR(EAGAIN) && rc != AVERROR_EOF)
-    throw InputError("output " + path + ": encoding failed: " + avError(rc));
-}
-
-}  // namespace
 
 void MovieWriter::addFrame(const std::vector<uint8_t>& rgb) {
   if (rgb.size() != size_t(width_) * height_ * 3)
@@ -167,22 +142,16 @@ void MovieWriter::addFrame(const std::vector<uint8_t>& rgb) {
     std::copy(src, src + size_t(width_) * 3, dst);
     if (w > width_) std::copy(src + size_t(width_ - 1) * 3, src + size_t(width_) * 3, dst + size_t(width_) * 3);
   }
-  int rc = av_frame_make_writable(s_->frame);
-  if (rc < 0) throw InputError("output " + path_ + ": " + avError(rc));
-  const uint8_t* in[1] = {s_->padded.data()};
-  const int stride[1] = {w * 3};
-  sws_scale(s_->sws, in, stride, 0, h, s_->frame->data, s_->frame->linesize);
-  s_->frame->pts = s_->next_pts++;
-  encode(s_->format, s_->codec, s_->stream, s_->frame, s_->packet, path_);
+  char err[512] = {0};
+  if (s_->api->add_frame(s_->movie, s_->padded.data(), err, sizeof err) != 0)
+    throw InputError("output " + path_ + ": " + err);
 }
 
 void MovieWriter::finish() {
   if (s_->finished) return;
   s_->finished = true;
-  encode(s_->format, s_->codec, s_->stream, nullptr, s_->packet, path_);
-  const int rc = av_write_trailer(s_->format);
-  if (rc < 0) throw InputError("output " + path_ + ": cannot write the trailer: " + avError(rc));
-  avio_closep(&s_->format->pb);
+  char err[512] = {0};
+  if (s_->api->finish(s_->movie, err, sizeof err) != 0) throw InputError("output " + path_ + ": " + err);
 }
 
 }  // namespace sortlast

@@ -20,8 +20,6 @@ void setIsosurfaceUniforms(const GlProgram& program, const std::vector<Isovalue>
   program.set("u_iso_phong", glm::vec3(float(shading.ambient), float(shading.diffuse), float(shading.specular)));
   program.set("u_iso_shininess", float(shading.shininess));
   program.set("u_iso_inv_spacing", glm::vec3(1.0 / b.spacing));
-  program.set("u_vol_lo", glm::vec3(volume.lo));
-  program.set("u_vol_hi", glm::vec3(volume.hi));
 }
 
 bool isoVisible(const std::vector<Isovalue>& isovalues, float lo, float hi) {

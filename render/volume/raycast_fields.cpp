@@ -36,6 +36,7 @@ int RaycastRenderer::addFieldsBrick(const Brick& brick, const GridGeometry& grid
   GpuBrick g;
   g.volume.brick = brick;
   g.volume.spacing = grid.spacing;
+  volume_box_ = grid.worldBox();  // the layout grid's: where every ray's lattice span starts and ends
   // The blocks: the layout grid's ray blocks cut by the brick's faces (as cutBrickBlocks cuts
   // them), each block's range per field below.
   const RayBlockGrid rg = rayBlockGrid(grid, block_cells_);

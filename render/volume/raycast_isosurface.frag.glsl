@@ -37,8 +37,7 @@ uniform vec4 u_iso_colour[8];     // rgb, opacity
 uniform vec3 u_iso_phong;         // ka, kd, ks
 uniform float u_iso_shininess;    // p
 uniform vec3 u_iso_inv_spacing;   // 1 / world spacing per axis
-uniform vec3 u_vol_lo;            // the whole volume's world box (floats of the same doubles as
-uniform vec3 u_vol_hi;            //   the brick planes at the volume's faces)
+// (u_vol_lo, u_vol_hi: the whole volume's box, raycast_sample.frag.glsl.)
 
 float g_vol_t0, g_vol_t1;  // where the ray enters and leaves the volume
 #ifdef ISO_DEBUG

@@ -150,6 +150,7 @@ int RaycastRenderer::addAdaptiveBrick(const Brick& brick, const GridGeometry& gr
                                       const AdaptiveBrickBlocks& blocks) {
   programs_.get(kAdaptive);
   AdaptiveGpuBrick a = uploadAdaptiveBrick(gl_, brick, grid, blocks);
+  volume_box_ = grid.worldBox();
   GpuBrick g;
   g.volume = std::move(a.volume);
   g.adaptive = true;
@@ -363,6 +364,10 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
       program.set("u_tex_offset", b.tex_offset);
     }
     program.set("u_delta", float(spacing));
+    // Where rays enter and leave the whole volume: the span's end segments (raycast_march.frag.glsl
+    // stepsLength) and the isosurfaces' first and last intervals.
+    program.set("u_vol_lo", glm::vec3(volume_box_.lo));
+    program.set("u_vol_hi", glm::vec3(volume_box_.hi));
     // Isosurfaces: a ray stops at an opaque hit only (isoHit makes its opacity exactly 1).
     program.set("u_ert", iso ? 1.0f : settings_.ert_threshold < 1.0 ? float(settings_.ert_threshold) : 2.0f);
     program.set("u_volume", 0);

@@ -177,7 +177,7 @@ class RaycastRenderer : public VolumeRenderer {
   RaycastSettings settings_;
   Shading shading_;
   double min_spacing_ = 0.0;  // of the volume's grid (the step rule's cap)
-  Box3 volume_box_;           // the volume's world box (isosurfaces: where rays enter and leave it)
+  Box3 volume_box_;           // the volume's world box (where rays enter and leave it)
   glm::ivec3 global_count_{0};  // the volume's block grid
   std::vector<float> global_min_, global_max_;  // whole blocks, grown by one sample; empty: not yet
   int ranges_version_ = 0;

@@ -21,6 +21,8 @@ uniform vec2 u_table_map;       // table coordinate = normalised * x + y (texel 
 uniform sampler2D u_surface;    // particle surface (t, normal) per pixel, t = 1e30 on a miss
 uniform int u_has_surface;
 uniform ivec4 u_surface_rect;   // x, y, w, h where u_surface is valid (stale elsewhere)
+uniform vec3 u_vol_lo;          // the whole volume's world box (floats of the same doubles as
+uniform vec3 u_vol_hi;          //   the brick planes at the volume's faces)
 out vec4 frag;
 
 vec3 g_inv;  // 1 / ray direction, per axis

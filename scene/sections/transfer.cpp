@@ -56,8 +56,10 @@ std::vector<sortlast::SceneKey> sortlast::transferKeys() {
      "sample spacings are corrected with 1 - (1 - a)^(ds / unit_length). `auto`: the "
      "smallest voxel spacing.",
      OptionalReal{member<&Scene::transfer, &TransferSpec::unit_length>, {kLength}}, AutoValue{}},
-    {"transfer.table_size", "4096", "Entries in the transfer-function lookup table used by GL.",
-     Int{member<&Scene::transfer, &TransferSpec::table_size>, {{"in [2, 65536]"}}}},
+    {"transfer.table_size", "4096",
+     "Entries in the transfer-function lookup table used by GL (a 1D texture: at most 16384, the "
+     "largest texture every OpenGL 4.5 implementation takes; llvmpipe refused 65536).",
+     Int{member<&Scene::transfer, &TransferSpec::table_size>, {{"in [2, 16384]"}}}},
     {"transfer.preintegrated", "auto",
      "`auto`: true where the opacity changes steeply (by 0.5 or more within 10 % of the range "
      "between two control points), where it pays; false on smooth functions, where it does not, "

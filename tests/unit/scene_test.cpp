@@ -405,7 +405,7 @@ TEST(SceneKeys, ErrorsKeepTheirWording) {
        "scene key 'transfer.unit_length': 0 is outside [1e-12, 1e18], the lengths float math on the GPU can hold"},
       {"transfer.unit_length=.nan",
        "scene key 'transfer.unit_length': nan is outside [1e-12, 1e18], the lengths float math on the GPU can hold"},
-      {"transfer.table_size=0", "scene key 'transfer.table_size': must be in [2, 65536]"},
+      {"transfer.table_size=0", "scene key 'transfer.table_size': must be in [2, 16384]"},
       {"image.width=0", "image size 0 x 512: image.width and image.height must be in [1, 32768]"},
       {"image.height=0", "image size 512 x 0: image.width and image.height must be in [1, 32768]"},
       {"camera.position=[0,0,0]", "camera.position equals camera.look_at: no view direction"},
