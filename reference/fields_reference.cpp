@@ -7,7 +7,7 @@
 namespace sortlast {
 
 ImageF renderFieldsReference(const std::vector<FieldInput>& fields, const Box3& box, const Camera& cam,
-                             double step, int threads) {
+                             double step, int threads, const ClipRegion& clip) {
   ImageF img(cam.width, cam.height);
   std::vector<Box3> boxes;
   for (const FieldInput& f : fields) boxes.push_back(f.vol.grid.worldBox());
@@ -15,10 +15,12 @@ ImageF renderFieldsReference(const std::vector<FieldInput>& fields, const Box3& 
   auto worker = [&] {
     for (int y; (y = next_row++) < cam.height;) {
       for (int x = 0; x < cam.width; ++x) {
-        const glm::dvec3 o = cam.position, d = cam.rayDirection(x, y);
+        const CameraRay ray = cam.pixelRay(x, y);  // from the eye, or the eye plane (orthographic)
+        const glm::dvec3 o = ray.origin, d = ray.direction;
         double rgb[3] = {0, 0, 0}, transmit = 1.0, t0, t1;
         if (intersectRayBox(o, d, box, t0, t1)) {
           t0 = std::max(t0, 0.0);
+          clipSpan(clip, o, d, t0, t1);  // clip.planes, clip.box
           const long long n = t1 > t0 ? std::max(1LL, (long long)std::ceil((t1 - t0) / step)) : 0;
           const double h = n > 0 ? (t1 - t0) / double(n) : 0.0;
           for (long long i = 0; i < n && transmit > 1e-15; ++i) {

@@ -6,12 +6,15 @@
 // media has extinction tau = sum tau_f and emits colour sum tau_f c_f / tau (each medium emits in
 // proportion to what it absorbs), so a step of length h has alpha = 1 - exp(-tau h) and colour the
 // weighted mean. With one field the step is the one-field arithmetic (tau_1 c_1 / tau_1 = c_1, up
-// to one rounding). Rays run over `box` (the session's: every field's box, fieldsGrid) in steps of
-// `step` world units, each composited with its midpoint value; a field outside its own box adds
-// nothing, a missing sample (NaN) nothing.
+// to one rounding). Rays are the camera's (Camera::pixelRay: from the eye, or parallel from the
+// eye plane), run over `box` (the session's: every field's box, fieldsGrid) from t >= 0, cut to
+// `clip` (clip.planes, clip.box: common/clip.h clipSpan) in steps of `step` world units, each
+// composited with its midpoint value; a field outside its own box adds nothing, a missing sample
+// (NaN) nothing.
 #include <vector>
 
 #include "common/camera.h"
+#include "common/clip.h"
 #include "io/image.h"
 #include "reference/reference.h"
 #include "transfer/transfer_function.h"
@@ -24,6 +27,6 @@ struct FieldInput {
 };
 
 ImageF renderFieldsReference(const std::vector<FieldInput>& fields, const Box3& box, const Camera& cam,
-                             double step, int threads);
+                             double step, int threads, const ClipRegion& clip);
 
 }  // namespace sortlast

@@ -33,7 +33,8 @@ void addGlowOnly(ImageF& img, const Camera& cam, const GlowRays& g, const Surfac
     for (int x = 0; x < cam.width; ++x) {
       const size_t pixel = size_t(y) * cam.width + x;
       const double t_stop = stop && stop->hit(pixel) ? double(stop->t[pixel]) : HUGE_VAL;
-      const glm::dvec3 r = g.radiance(cam.position, cam.rayDirection(x, y), 0.0, t_stop);
+      const CameraRay ray = cam.pixelRay(x, y);  // from the eye, or the eye plane (orthographic)
+      const glm::dvec3 r = g.radiance(ray.origin, ray.direction, 0.0, t_stop);
       for (int k = 0; k < 3; ++k) img.px[4 * pixel + k] += float(r[k]);
     }
 }
@@ -84,6 +85,7 @@ FrameReference::FrameReference(Scene scene, int threads)
     }
     const GridGeometry all = fieldsGrid(scene.fields);  // with the grids the files gave
     fields_step_ = scene.reference.step * all.minSpacing();
+    fields_clip_ = scene.clip;
     bounds_ = all.worldBox();
   } else if (scene.hasVolume()) {
     validateVolume(scene.volume);
@@ -146,11 +148,8 @@ ImageF FrameReference::render(const Camera& cam, SurfaceImage* surface_out, int 
     else
       surface = std::move(s), colour = std::move(c);
   }
-  if (!fields_.empty()) {  // the scene refuses particles, surfaces and glow with several fields
-    if (bounds_.contains(cam.position))
-      throw InputError("camera.position is inside the fields' box; move the camera outside it");
-    return renderFieldsReference(fields_, bounds_, cam, fields_step_, threads_);
-  }
+  if (!fields_.empty())  // the scene refuses particles, surfaces and glow with several fields
+    return renderFieldsReference(fields_, bounds_, cam, fields_step_, threads_, fields_clip_);
   if (volume_ && !volume_->isovalues.empty()) {
     out = renderIsosurfaceReference(volume_->vol, volume_->isovalues, volume_->shading, cam, threads_,
                                     surface ? &*surface : nullptr, surface ? &colour : nullptr);

@@ -59,6 +59,7 @@ class FrameReference {
   // Several fields (`volumes`): their mixture (reference/fields_reference.h) instead of volume_.
   std::vector<FieldInput> fields_;
   double fields_step_ = 0.0;
+  ClipRegion fields_clip_;  // clip.planes, clip.box
   std::optional<MetaballModel> balls_;
   std::optional<SurfaceReference> subdiv_;
   glm::dvec3 colour_{1.0};

@@ -328,7 +328,8 @@ SurfaceImage referenceSurface(const MetaballModel& model, const Camera& cam, con
   auto worker = [&] {
     for (int y; (y = next_row++) < cam.height;)
       for (int x = 0; x < cam.width; ++x) {
-        RayHit hit = field.firstHit(cam.position, cam.rayDirection(x, y), clip);
+        const CameraRay ray = cam.pixelRay(x, y);  // from the eye, or the eye plane (orthographic)
+        RayHit hit = field.firstHit(ray.origin, ray.direction, clip);
         if (!hit.hit()) continue;
         size_t i = size_t(y) * cam.width + x;
         img.t[i] = float(hit.t);

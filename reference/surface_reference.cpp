@@ -84,7 +84,8 @@ void SurfaceReference::render(const Camera& cam, int threads, SurfaceImage& surf
             const int iy1 = std::min(y1 - 1, behind ? H - 1 : int(std::ceil(yy1 + 0.5)));
             for (int y = iy0; y <= iy1; ++y)
               for (int x = ix0; x <= ix1; ++x) {
-                const glm::dvec3 d = cam.rayDirection(x, y);
+                const CameraRay ray = cam.pixelRay(x, y);  // from the eye, or the eye plane
+                const glm::dvec3 d = ray.direction;
                 Hit& h = hits[size_t(y) * W + x];
                 for (int tri = 0; tri < 2; ++tri) {
                   const int a = 0, b = tri == 0 ? 1 : 2, c = tri == 0 ? 2 : 3;
@@ -92,7 +93,7 @@ void SurfaceReference::render(const Camera& cam, int threads, SurfaceImage& surf
                   // are hidden anyway); an open surface is two-sided.
                   if (!open && glm::dot(glm::cross(p[b] - p[a], p[c] - p[a]), d) >= 0) continue;
                   double t, b1, b2;
-                  if (!intersect(cam.position, d, p[a], p[b], p[c], t, b1, b2) || t >= h.t) continue;
+                  if (!intersect(ray.origin, d, p[a], p[b], p[c], t, b1, b2) || t >= h.t) continue;
                   const double w0 = 1.0 - b1 - b2;
                   h = {t, k, f, (w0 * pu[a] + b1 * pu[b] + b2 * pu[c]) / n_, (w0 * pv[a] + b1 * pv[b] + b2 * pv[c]) / n_};
                 }
@@ -112,7 +113,8 @@ void SurfaceReference::render(const Camera& cam, int threads, SurfaceImage& surf
         Hit h = hits[px];
         if (h.entry < 0) continue;
         const Entry& e = entries_[size_t(h.entry)];
-        const glm::dvec3 o = cam.position, d = cam.rayDirection(x, y);
+        const CameraRay ray = cam.pixelRay(x, y);  // from the eye, or the eye plane (orthographic)
+        const glm::dvec3 o = ray.origin, d = ray.direction;
         double u = h.u, v = h.v, t = h.t;
         bool clamped = false;
         const double du = 1e-6;

@@ -1,5 +1,7 @@
 #include "session/session_layout.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "common/error.h"
@@ -72,7 +74,26 @@ void checkCameraOutside(const Camera& cam, const Box3& scene_box, const std::str
     throw InputError(msg);
   }
   const Box3& out = keep_out ? *keep_out : box;
-  if (isEmpty(out) || !out.contains(p)) return;
+  if (isEmpty(out)) return;
+  if (cam.orthographic() && !out.contains(p)) {
+    // Parallel rays start on the eye plane: one that starts inside a particle's field would find
+    // that particle's surface in one brick and miss it in the others (a brick entered inside the
+    // surface shows nothing), and the coarse mesh of a surface is cut at the near plane. So that
+    // box must lie wholly in front of the plane, as it must lie around the perspective eye.
+    double nearest = HUGE_VAL;
+    for (int c = 0; c < 8; ++c) nearest = std::min(nearest, glm::dot(out.corner(c) - p, cam.forward()));
+    if (nearest > 0.0) return;
+    std::snprintf(msg, sizeof msg,
+                  "camera.position (%g, %g, %g)%s: its orthographic eye plane (through it, "
+                  "perpendicular to the view direction) cuts or lies beyond the box of the particles "
+                  "(grown by their influence radius), surfaces and glow, [%g, %g] x [%g, %g] x [%g, %g] "
+                  "(its nearest corner %g behind the plane): their renderers need it wholly in front "
+                  "of the plane; move the camera back along the view direction",
+                  p.x, p.y, p.z, which.c_str(), out.lo.x, out.hi.x, out.lo.y, out.hi.y, out.lo.z,
+                  out.hi.z, -nearest);
+    throw InputError(msg);
+  }
+  if (!out.contains(p)) return;
   std::snprintf(msg, sizeof msg,
                 "camera.position (%g, %g, %g)%s is inside the box of the particles (grown by "
                 "their influence radius), surfaces and glow, [%g, %g] x [%g, %g] x [%g, %g]: "

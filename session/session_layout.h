@@ -32,9 +32,9 @@ SessionLayout makeLayout(const Scene& scene, const Box3& particle_centres, int r
 
 // The camera must not be too far from the scene's box (float math), and must lie outside
 // `keep_out` (default: that box): the particles', surfaces' and glow box (keepOutBox), which
-// the metaball billboards, the surfaces and the glow pass need in front of the eye. An eye inside
-// the volume is fine: rays start at it, slices are drawn in front of the near plane. Throws
-// InputError naming the position and the box.
+// the metaball billboards, the surfaces and the glow pass need in front of the eye (orthographic:
+// wholly in front of the eye plane). An eye inside the volume is fine: rays start at it, slices
+// are drawn in front of the near plane. Throws InputError naming the position and the box.
 void checkCameraOutside(const Camera& cam, const Box3& box, const std::string& which = "",
                         const Box3* keep_out = nullptr);
 // What the eye must stay out of: the particles' (and surfaces') domain and the glow box.

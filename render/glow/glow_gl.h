@@ -28,9 +28,10 @@ std::vector<float> glowEmitterTexels(const std::vector<GlowEmitter>& emitters);
 // unit `unit`, their count and core radius. Every program that includes it binds them here.
 void bindGlowEmitters(const GlApi& gl, const GlProgram& program, const GlowPass& pass, int unit);
 
-// The pixel-ray uniforms (u_eye, u_forward, u_right, u_up, u_pixel_scale) for `program` (in use),
-// shared by glow_pixel_ray.glsl and the ray caster's main(): the image plane at distance 1, pixel
-// centre (x, y) at forward + sx right + sy up, as in Camera::rayDirection.
+// The pixel-ray uniforms (u_eye, u_forward, u_right, u_up, u_orthographic, u_pixel_scale) for
+// `program` (in use), shared by glow_pixel_ray.glsl and the ray caster's main(): Camera::pixelRay,
+// pixel centre (x, y) at forward + sx right + sy up (perspective: the image plane at distance 1)
+// or, orthographic, the ray along forward from eye + sx right + sy up.
 void setPixelRayUniforms(const GlProgram& program, const Camera& cam);
 
 }  // namespace sortlast

@@ -8,15 +8,16 @@ uniform int u_has_surface;
 uniform ivec4 u_surface_rect;
 out vec4 frag;
 void main() {
-  vec3 dir = glowPixelRay();
+  vec3 o;
+  vec3 dir = glowPixelRay(o);
   float t0, t1;
   vec3 sum = vec3(0.0);
-  if (glowSpan(u_eye, dir, u_box_lo, u_box_hi, u_box_hi_open, t0, t1)) {
+  if (glowSpan(o, dir, u_box_lo, u_box_hi, u_box_hi_open, t0, t1)) {
     ivec2 px = ivec2(gl_FragCoord.xy);
     if (u_has_surface != 0 && all(greaterThanEqual(px, u_surface_rect.xy)) &&
         all(lessThan(px, u_surface_rect.xy + u_surface_rect.zw)))
       t1 = min(t1, texelFetch(u_surface, px, 0).x);
-    sum = glowAlong(u_eye, dir, t0, t1);
+    sum = glowAlong(o, dir, t0, t1);
   }
   frag = vec4(u_intensity * sum, 0.0);  // added to what the target holds: no opacity
 }

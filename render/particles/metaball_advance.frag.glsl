@@ -8,7 +8,7 @@ void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
   float t_next = texelFetch(u_state, p, 0).x;
   if (t_next >= 0.5 * INF) discard;
-  vec3 d = rayDir(gl_FragCoord.xy);
+  vec3 d = pixelRay(gl_FragCoord.xy);
   vec3 oc = v_centre - u_eye;
   float tb = dot(d, oc);
   if (tb < t_next) discard;  // eq. 3: its candidate region ends before the next sample

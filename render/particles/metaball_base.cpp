@@ -8,11 +8,12 @@ namespace sortlast {
 void setRayUniforms(const GlApi& gl, const GlProgram& p, const Camera& cam, int width, int height,
                     const MetaballSettings& s, const Box3& clip) {
   gl.UseProgram(p);
-  double th = std::tan(0.5 * cam.fov_deg * 3.14159265358979323846 / 180.0);
+  const glm::dvec2 scale = cam.screenScale();  // tan(fov / 2) (x aspect), or parallel_scale (x aspect)
   p.set("u_eye", glm::vec3(cam.position));
   p.set("u_fwd", glm::vec3(cam.forward()));
-  p.set("u_right_s", glm::vec3(cam.right() * th * (double(cam.width) / cam.height)));
-  p.set("u_up_s", glm::vec3(cam.trueUp() * th));
+  p.set("u_right_s", glm::vec3(cam.right() * scale.x));
+  p.set("u_up_s", glm::vec3(cam.trueUp() * scale.y));
+  p.set("u_orthographic", cam.orthographic() ? 1 : 0);
   p.set("u_size", glm::vec2(float(width), float(height)));
   p.set("u_h", float(s.h));
   p.set("u_T", float(s.threshold));

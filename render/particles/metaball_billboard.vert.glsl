@@ -2,6 +2,10 @@
 // (the front face of the paper's bounding cube), drawn as an instanced 4-vertex strip. With
 // culling on, a particle whose distance range [d - h, d + h] cannot meet any pixel's [lo, hi]
 // in the tile it covers is moved off screen before rasterisation (§4.3).
+// Orthographic: the square faces the view direction and d is the centre's depth in front of the
+// eye plane (every parallel ray meets the sphere within [d - h, d + h] of its origin); its
+// projection does not depend on its depth, so its vertices are put at depth 0 of the clip volume,
+// drawn whatever the near and far planes.
 layout(location = 0) in vec3 a_centre;
 uniform mat4 u_view_proj;
 uniform sampler2D u_pyramid;
@@ -11,9 +15,9 @@ uniform ivec4 u_rect;        // x, y, w, h of the brick's screen rectangle
 flat out vec3 v_centre;
 void main() {
   vec3 c = a_centre;
-  vec3 n = c - u_eye;
-  float dist = length(n);
-  n /= dist;
+  vec3 n = c - cameraEye();
+  float dist = u_orthographic != 0 ? dot(n, u_fwd) : length(n);
+  n = u_orthographic != 0 ? u_fwd : n / dist;
   vec3 a = abs(n.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0);
   vec3 u = normalize(cross(n, a)), v = cross(n, u);
   vec3 f = c - u_h * n;
@@ -29,6 +33,7 @@ void main() {
     lo = min(lo, s);
     hi = max(hi, s);
   }
+  if (u_orthographic != 0) mine.z = 0.0;  // w = 1: inside the clip volume's depth range
   gl_Position = mine;
   v_centre = c;
   if (u_levels > 0 && !behind) {

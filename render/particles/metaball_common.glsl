@@ -14,12 +14,14 @@
 //                     blending, §4.2; pot2 holds samples 4-7 of an 8-sample window)
 //   pyramid (rg32f, mipmapped): per pixel [lo, hi] of the distances a pass needs, reduced 2x2 by
 //                     min/max so one fetch bounds a whole tile (§4.3 culling)
-// Distances t are along the unit ray from the eye; samples sit on the lattice t = k*w, shared by
-// every brick, so bricks sample the same points a single brick would.
-uniform vec3 u_eye;
+// Distances t are along the unit ray from its origin (the eye; orthographic: the pixel's point on
+// the eye plane, Camera::pixelRay); samples sit on the lattice t = k*w, shared by every brick, so
+// bricks sample the same points a single brick would.
+uniform vec3 u_eye;       // the eye (orthographic: the centre of the eye plane)
 uniform vec3 u_fwd;
-uniform vec3 u_right_s;   // camera right * tan(fov/2) * aspect
-uniform vec3 u_up_s;      // camera up * tan(fov/2)
+uniform vec3 u_right_s;   // camera right * tan(fov/2) * aspect (orthographic: parallel_scale * aspect)
+uniform vec3 u_up_s;      // camera up * tan(fov/2) (orthographic: parallel_scale)
+uniform int u_orthographic;  // 1: parallel rays along u_fwd, each from its pixel's eye-plane point
 uniform vec2 u_size;      // image width, height
 uniform float u_h;        // influence radius
 uniform float u_T;        // threshold
@@ -30,10 +32,22 @@ uniform float u_lookahead;  // how far past a pixel's next sample the advance pa
 uniform int u_window;       // samples per window: 4 (one RGBA target, the paper) or 8 (two)
 const float INF = 1e30;
 
-// The ray of the pixel whose centre is fc (gl_FragCoord.xy); the same formula as
-// Camera::rayDirection, so GL and the CPU reference trace the same rays.
-vec3 rayDir(vec2 fc) {
+// The ray of the pixel whose centre is fc (gl_FragCoord.xy), Camera::pixelRay's formula, so GL and
+// the CPU reference trace the same rays: pixelRay() sets its origin g_eye (the eye, or the pixel's
+// point on the eye plane when orthographic) and returns its unit direction. Every fragment pass
+// calls it before anything else that follows a ray, and from here on u_eye means that origin (as
+// in the volume ray caster, render/volume/raycast_sample.frag.glsl); the billboards' vertex shader
+// (no pixel yet) reads the camera through cameraEye().
+vec3 cameraEye() { return u_eye; }
+vec3 g_eye;
+#define u_eye g_eye
+vec3 pixelRay(vec2 fc) {
   vec2 s = vec2(2.0 * fc.x / u_size.x - 1.0, 1.0 - 2.0 * fc.y / u_size.y);
+  g_eye = cameraEye();
+  if (u_orthographic != 0) {
+    g_eye += s.x * u_right_s + s.y * u_up_s;
+    return u_fwd;
+  }
   return normalize(u_fwd + s.x * u_right_s + s.y * u_up_s);
 }
 // [t_in, t_out] of the ray inside the clip box; t_in >= t_out: no overlap. Two bricks sharing a

@@ -161,7 +161,7 @@ void sumProbes(float q[4], vec3 d) {
 void main() {
   o_colour = vec4(0.0);
   o_surface = vec4(INF, 0.0, 0.0, 0.0);
-  vec3 d = safeDir(rayDir(gl_FragCoord.xy));
+  vec3 d = safeDir(pixelRay(gl_FragCoord.xy));
   // Beyond the grid's box the field is 0: nothing to find outside [g0, g1].
   vec4 iv;
   if (!rayStretch(d, gridInterval(d), iv)) return;

@@ -4,7 +4,7 @@ layout(rgba32f, binding = 1) uniform writeonly image2D i_hit;
 layout(rg32f, binding = 2) uniform writeonly image2D i_base;
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
-  vec2 iv = clipInterval(rayDir(gl_FragCoord.xy));
+  vec2 iv = clipInterval(pixelRay(gl_FragCoord.xy));
   bool inside = iv.x < iv.y;
   // Before the first sample the field is taken as 0 (I = -T): if the box entry lies inside a
   // sphere of influence, the first window starts exactly there and measures it.

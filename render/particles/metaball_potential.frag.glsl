@@ -20,7 +20,7 @@ void main() {
   } else if (texelFetch(u_hit, p, 0).z <= 0.0) {
     discard;
   }
-  vec3 d = rayDir(gl_FragCoord.xy);
+  vec3 d = pixelRay(gl_FragCoord.xy);
   vec3 oc = v_centre - u_eye;
   float tb = dot(d, oc);
   vec3 perp = oc - tb * d;

@@ -13,7 +13,7 @@ void main() {
     o_colour = vec4(0.0);
     return;
   }
-  vec3 d = rayDir(gl_FragCoord.xy);
+  vec3 d = pixelRay(gl_FragCoord.xy);
   vec3 n;
   o_colour = shade(u_colour, texelFetch(u_pot, p, 0).xyz, d, n);
   imageStore(i_surface, p, vec4(texelFetch(u_next, p, 0).x, n));

@@ -55,7 +55,7 @@ vec2 gridInterval(vec3 d) {
 void main() {
   o_colour = vec4(0.0);
   o_surface = vec4(INF, 0.0, 0.0, 0.0);
-  vec3 d = safeDir(rayDir(gl_FragCoord.xy));
+  vec3 d = safeDir(pixelRay(gl_FragCoord.xy));
   vec4 iv;
   if (!rayStretch(d, gridInterval(d), iv)) return;
   float t_in = iv.x, t_out = iv.y, g0 = iv.z, g1 = iv.w;

@@ -13,7 +13,7 @@ void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
   vec4 st = imageLoad(i_state, p);
   if (st.x >= 0.5 * INF) discard;
-  vec2 iv = clipInterval(rayDir(gl_FragCoord.xy));
+  vec2 iv = clipInterval(pixelRay(gl_FragCoord.xy));
   if (st.x < 0.0) {
     // Skipped ahead this round (see the window pass): still searching, nothing sampled.
     float t_next = -st.x;

@@ -7,7 +7,7 @@ void main() {
   vec4 st = imageLoad(i_state, p);
   vec2 base = vec2(INF, -INF);
   if (st.x < 0.5 * INF) {
-    float t_out = clipInterval(rayDir(gl_FragCoord.xy)).y;
+    float t_out = clipInterval(pixelRay(gl_FragCoord.xy)).y;
     float s0 = texelFetch(u_next, p, 0).x;
     float ahead = lookaheadEnd(st.x, t_out);
     if (s0 > ahead && ahead >= t_out) {

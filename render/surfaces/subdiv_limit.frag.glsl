@@ -7,9 +7,12 @@ layout(std430, binding = 1) readonly buffer Positions { vec4 positions[]; };
 layout(std430, binding = 2) readonly buffer Tangents { vec4 tangents[]; };
 layout(std430, binding = 3) readonly buffer Neighbours { ivec4 neighbours[]; };  // across edge c: face * 4 + its edge
 uniform vec3 eye, clip_lo, clip_hi, colour, centre, light_dir, stripe_axis;
-// The pixel's ray, as Camera::rayDirection: forward + sx * right + sy * up (right and up scaled by
-// the half field of view), independent of the near and far planes, so every brick sees one ray.
+// The pixel's ray, as Camera::pixelRay: from `eye` along forward + sx * right + sy * up (right and
+// up scaled by the half field of view) or, orthographic, along forward from eye + sx * right +
+// sy * up (scaled by parallel_scale); independent of the near and far planes, so every brick sees
+// one ray. Distances t and the view direction are measured from the ray's origin.
 uniform vec3 ray_forward, ray_right, ray_up;
+uniform int orthographic;
 uniform vec2 image_size;
 // Pass 1's nearest coarse fragment of this surface per pixel: (u, v, face, 1).
 uniform sampler2D coarse;
@@ -117,7 +120,9 @@ void main() {
   // Newton steps move (u, v) until the limit point lies on this pixel's ray, so the pixel shows
   // the surface where its ray meets it, whatever the coarse level.
   vec2 ndc = 2.0 * gl_FragCoord.xy / image_size - 1.0;
-  vec3 dir = normalize(ray_forward + ndc.x * ray_right - ndc.y * ray_up);
+  vec3 o = eye, dir = ray_forward;
+  if (orthographic != 0) o += ndc.x * ray_right - ndc.y * ray_up;
+  else dir = normalize(ray_forward + ndc.x * ray_right - ndc.y * ray_up);
   vec3 e1 = normalize(abs(dir.x) < 0.9 ? cross(dir, vec3(1, 0, 0)) : cross(dir, vec3(0, 1, 0)));
   vec3 e2 = cross(dir, e1);
   // Each round evaluates the limit point at (u, v); the loop ends with p that of the final (u, v):
@@ -126,7 +131,7 @@ void main() {
   for (int i = 0; i <= newton_steps; ++i) {
     evaluatePoint(face, u, v, p, su, sv);
     if (i == newton_steps) break;
-    vec2 f = vec2(dot(e1, p - eye), dot(e2, p - eye));
+    vec2 f = vec2(dot(e1, p - o), dot(e2, p - o));
     if (dot(f, f) <= 1e-12 * size * size) break;
     mat2 J = mat2(dot(e1, su), dot(e2, su), dot(e1, sv), dot(e2, sv));  // columns: d/du, d/dv
     if (abs(determinant(J)) < 1e-20) break;
@@ -151,9 +156,9 @@ void main() {
   evaluateTangents(face, u, v, ds, dt);
   // The brick owns the fragment whose exact limit point it holds (half-open box).
   if (any(lessThan(p, clip_lo)) || any(greaterThanEqual(p, clip_hi))) discard;
-  if (texelFetch(nearest, px, 0).x <= length(p - eye)) discard;
+  if (texelFetch(nearest, px, 0).x <= length(p - o)) discard;
   vec3 n = normalize(cross(ds, dt));
-  vec3 view = normalize(p - eye);
+  vec3 view = normalize(p - o);
   vec3 rgb;
   if (reflection_lines == 1) {
     // The reflected view ray against a striped planar light facing the surface.
@@ -179,6 +184,6 @@ void main() {
     rgb = colour * (0.15 + 0.85 * diffuse) + 0.25 * vec3(specular);
   }
   out_colour = vec4(clamp(rgb, 0.0, 1.0), 1.0);
-  out_surface = vec4(length(p - eye), n);
+  out_surface = vec4(length(p - o), n);
   out_param = vec4(float(face), u, v, 1.0);  // after the Newton steps
 }

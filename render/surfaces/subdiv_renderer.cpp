@@ -195,8 +195,7 @@ void SubdivRenderer::draw(const Camera& cam, const Box3& clip, double near_plane
                          GL_TEXTURE_2D, 0, r.x, r.y, 0, r.w, r.h, 1);
   }
   const glm::mat4 vp = cam.viewProjection(near_plane, far_plane);
-  const double th = std::tan(0.5 * cam.fov_deg * std::numbers::pi / 180.0),
-               aspect = double(cam.width) / cam.height;
+  const glm::dvec2 scale = cam.screenScale();  // tan(fov / 2) (x aspect), or parallel_scale (x aspect)
   gl_.Enable(GL_STENCIL_TEST);
   for (const GpuSurface& g : surfaces_) {
     // A surface none of whose limit points the brick can hold draws nothing here: both passes
@@ -246,8 +245,9 @@ void SubdivRenderer::draw(const Camera& cam, const Box3& clip, double near_plane
     gl_.UseProgram(program_);
     program_.set("eye", glm::vec3(cam.position));
     program_.set("ray_forward", glm::vec3(cam.forward()));
-    program_.set("ray_right", glm::vec3(cam.right() * (th * aspect)));
-    program_.set("ray_up", glm::vec3(cam.trueUp() * th));
+    program_.set("ray_right", glm::vec3(cam.right() * scale.x));
+    program_.set("ray_up", glm::vec3(cam.trueUp() * scale.y));
+    program_.set("orthographic", cam.orthographic() ? 1 : 0);
     program_.set("image_size", glm::vec2(float(cam.width), float(cam.height)));
     program_.set("clip_lo", glm::vec3(clip.lo));
     program_.set("clip_hi", glm::vec3(clip.hi));

@@ -33,7 +33,8 @@ std::vector<sortlast::SceneKey> sortlast::cameraKeys() {
      "`perspective` (a pinhole at `camera.position`, `camera.fov`) or `orthographic` (parallel "
      "rays along the view direction, each from its pixel's point on the plane through "
      "`camera.position` perpendicular to it; the view is 2 x `camera.parallel_scale` high). "
-     "Orthographic: volumes (both `render.method`s) only; particles, surfaces and glow refuse it.",
+     "Every renderer takes it; the box of the particles, surfaces and glow must then lie wholly in "
+     "front of that plane (as it must lie around the perspective eye).",
      Choice{member<&Scene::camera, &Camera::projection>,
             std::vector<std::pair<const char*, Projection>>{
                 {"perspective", Projection::kPerspective}, {"orthographic", Projection::kOrthographic}}}},
@@ -71,16 +72,6 @@ void checkCameraKeys(const Scene& s) {
   if (!size.admits(cam.width) || !size.admits(cam.height))
     throw InputError("image size " + std::to_string(cam.width) + " x " + std::to_string(cam.height) +
                      ": image.width and image.height must be " + size.phrase());
-  // The metaball ray casters, the subdivision surfaces and the glow pass take perspective rays
-  // from the eye only: refused rather than drawn wrong.
-  if (cam.orthographic()) {
-    const char* what = s.particles.enabled() ? "particles" : !s.surfaces.empty() ? "surfaces"
-                       : s.glow.enabled() ? "glow emitters" : nullptr;
-    if (what)
-      throw InputError(std::string("scene key 'camera.projection': orthographic is available for "
-                                   "volumes only, and the scene has ") + what +
-                       " (their renderers take perspective rays); use camera.projection: perspective");
-  }
   if (!s.camera_auto && s.orbit.frames == 0) {
     if (glm::length(cam.look_at - cam.position) == 0.0)
       throw InputError("camera.position equals camera.look_at: no view direction");

@@ -96,11 +96,6 @@ void checkFieldsScene(const Scene& s) {
   if (s.particles.enabled()) refuse("particles", several + " is rendered without particles");
   if (!s.surfaces.empty()) refuse("surfaces", several + " is rendered without surfaces");
   if (s.glow.enabled()) refuse("glow.emitters", several + " is rendered without glow");
-  // The mixture's reference (reference/fields_reference.h) takes perspective rays over the whole
-  // box: clipping and parallel rays are not built for it.
-  if (s.clip.active()) refuse("clip", several + " is rendered unclipped; remove clip.planes and clip.box");
-  if (s.camera.projection == Projection::kOrthographic)
-    refuse("camera.projection: orthographic", several + " is rendered in perspective only");
   for (const FieldSpec& f : s.fields) {
     if (f.transfer.preintegrated)
       throw InputError("scene key '" + fieldMessage("transfer.preintegrated", f.name) +

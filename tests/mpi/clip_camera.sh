@@ -90,7 +90,6 @@ ranks)
   bad clip.planes zero --set "clip.planes=[{normal: [0, 0, 0], offset: 1}]"
   bad clip.box empty --set "clip.box=[[0, 0, 0], [1, 1, 0]]"
   bad camera.parallel_scale "> 0" --set camera.parallel_scale=0
-  bad camera.projection particles "${ORTHO[@]}" --set particles.procedural=layers
   ;;
 *) fail "unknown mode $3" ;;
 esac

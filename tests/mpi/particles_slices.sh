@@ -8,7 +8,8 @@
 #   sphere  one particle at the default s = 1/4 and at s = 1/16: depth, extra hits, holes
 #   dam     the dam break at the default s: holes, extra hits, depth outliers
 #   ranks   1-4 ranks and 1, 8, 27 bricks give the same image (particles on brick faces too)
-#   mixed   a volume with particles inside: against the mixed reference, and 1 against 3 ranks
+#   mixed   a volume with particles inside: against the mixed reference, and 1 against 3 ranks;
+#           the same orthographic
 #   bad     a bad particles.slice_spacing is refused, naming the key
 source "$(dirname "$0")/lib.sh" "$1"
 DATA=$2
@@ -86,6 +87,17 @@ mixed)
   mixed_vs_reference "$scene" 42 --depth-tolerance 0.341 --max-depth-outliers 50
   render 3 "$scene"
   "$S" compare "$WORK/one.png" "$WORK/gl.png" --max-diff 1 || fail "mixed: 3 ranks differ from 1"
+  # Orthographic at 128^2 (parallel rays from the eye plane, as the reference's): measured
+  # 47.9 dB, no hole or extra hit, depth beyond 0.1 h on none of 687 pixels; 3 ranks identical.
+  ortho=(--set camera.projection=orthographic --set image.width=128 --set image.height=128)
+  reference "$scene" "${ortho[@]}"
+  render 1 "$scene" "${ortho[@]}"
+  mv "$WORK/gl.png" "$WORK/one.png"
+  "$S" compare "$WORK/ref.png" "$WORK/one.png" --min-psnr 45 || fail "mixed, orthographic, against the reference"
+  "$S" compare-surface "$WORK/ref.exr" "$WORK/gl.exr" --ignore-edges --max-holes 0 --max-extra 0 \
+    --depth-tolerance 0.341 --max-depth-outliers 20 || fail "mixed, orthographic: surface"
+  render 3 "$scene" "${ortho[@]}"
+  "$S" compare "$WORK/one.png" "$WORK/gl.png" --max-diff 1 || fail "mixed, orthographic: 3 ranks differ from 1"
   ;;
 bad)
   expect_error() {  # expect_error PATTERN ARGS...: exit 1 and PATTERN in stderr

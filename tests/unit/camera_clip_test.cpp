@@ -235,10 +235,11 @@ TEST(Clip, SceneKeysAndBadInput) {
   EXPECT_TRUE(has(m, "camera.parallel_scale")) << m;
   m = inputErrorOf([] { loadScene("", {"camera.projection=fisheye"}); });
   EXPECT_TRUE(has(m, "camera.projection") && has(m, "orthographic")) << m;
-  m = inputErrorOf([] {
-    loadScene("", {"camera.projection=orthographic", "particles.procedural=layers"});
-  });
-  EXPECT_TRUE(has(m, "camera.projection") && has(m, "particles")) << m;
+  // Every renderer takes parallel rays: particles, surfaces and glow are accepted.
+  EXPECT_NO_THROW(loadScene("", {"camera.projection=orthographic", "particles.procedural=layers"}));
+  EXPECT_NO_THROW(loadScene("", {"camera.projection=orthographic", "surfaces=[{procedural: pole5}]"}));
+  EXPECT_NO_THROW(loadScene("", {"camera.projection=orthographic", "glow.emitters=[{center: [0, 0, 0]}]",
+                                 "glow.box=[[-1, -1, -1], [1, 1, 1]]"}));
   // parallel_scale auto: the perspective view's half height at the look-at point.
   Scene o = loadScene("", {"camera.projection=orthographic", "camera.position=[0, 0, 4]", "camera.look_at=[0, 0, 0]", "camera.fov=90"});
   const Camera c = o.frameCameras(Box3{{-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5}})[0];

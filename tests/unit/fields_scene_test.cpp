@@ -234,8 +234,8 @@ TEST(FieldsReference, OneFieldIsTheOneFieldReference) {
   Camera cam;
   cam.position = {20, 14, 30};
   cam.width = cam.height = 24;
-  const ImageF one = renderReference(vol, tf, cam, 0.1, 2);
-  const ImageF mixed = renderFieldsReference({{vol, tf}}, d.grid.worldBox(), cam, 0.1, 2);
+  const ImageF one = renderReference(vol, tf, cam, 0.1, 2, {});
+  const ImageF mixed = renderFieldsReference({{vol, tf}}, d.grid.worldBox(), cam, 0.1, 2, {});
   double worst = 0, sum = 0;
   for (size_t i = 0; i < one.px.size(); ++i) {
     worst = std::max(worst, double(std::abs(one.px[i] - mixed.px[i])));
@@ -243,6 +243,39 @@ TEST(FieldsReference, OneFieldIsTheOneFieldReference) {
   }
   EXPECT_LT(worst, 1e-6);  // tau c / tau = c within a double rounding, then float
   EXPECT_GT(sum, 1.0);     // not an empty image
+}
+
+// Clipped and orthographic: the same rays (Camera::pixelRay) and the same cut (clipSpan) as the
+// one-field reference, whose clipping and parallel rays its own tests check.
+TEST(FieldsReference, ClippedOrthographicIsTheOneFieldReference) {
+  VolumeDesc d;
+  d.procedural = "marschner_lobb";
+  d.grid = {{17, 13, 15}, {1.0, 1.3, 0.8}};
+  WholeVolume vol{d.grid, readWholeVolume(d)};
+  const TransferFunction tf(TransferFunction::preset("default"), 0.0, 1.0, 0.8);
+  ClipRegion clip;
+  clip.planes.push_back({{1.0, 0.4, -0.3}, 0.5});
+  clip.has_box = true;
+  clip.box = {{-9, -9, -4}, {9, 9, 9}};
+  vol.clip = clip;
+  Camera cam;
+  cam.position = {20, 14, 30};
+  cam.projection = Projection::kOrthographic;
+  cam.parallel_scale = 9.0;
+  cam.width = cam.height = 24;
+  const ImageF one = renderReference(vol, tf, cam, 0.1, 2, {});
+  const ImageF mixed = renderFieldsReference({{vol, tf}}, d.grid.worldBox(), cam, 0.1, 2, clip);
+  vol.clip = {};
+  const ImageF whole = renderFieldsReference({{vol, tf}}, d.grid.worldBox(), cam, 0.1, 2, {});
+  double worst = 0, sum = 0, cut = 0;
+  for (size_t i = 0; i < one.px.size(); ++i) {
+    worst = std::max(worst, double(std::abs(one.px[i] - mixed.px[i])));
+    cut = std::max(cut, double(std::abs(whole.px[i] - mixed.px[i])));
+    sum += one.px[i];
+  }
+  EXPECT_LT(worst, 1e-6);
+  EXPECT_GT(sum, 1.0);   // not an empty image
+  EXPECT_GT(cut, 0.05);  // and the clip region cuts something away
 }
 
 // Two fields where each is alone: the mixture is each one's own reference where the other is
@@ -257,8 +290,8 @@ TEST(FieldsReference, TwoCopiesDoubleTheExtinction) {
   Camera cam;
   cam.position = {0, 0, 25};
   cam.width = cam.height = 9;
-  const ImageF two = renderFieldsReference({{vol, tf}, {vol, tf}}, d.grid.worldBox(), cam, 0.05, 1);
-  const ImageF one = renderFieldsReference({{vol, tf}}, d.grid.worldBox(), cam, 0.05, 1);
+  const ImageF two = renderFieldsReference({{vol, tf}, {vol, tf}}, d.grid.worldBox(), cam, 0.05, 1, {});
+  const ImageF one = renderFieldsReference({{vol, tf}}, d.grid.worldBox(), cam, 0.05, 1, {});
   // Centre pixel: alpha_two = 1 - (1 - alpha_one)^2 exactly in the continuous model.
   const size_t c = (4 * 9 + 4) * 4 + 3;
   EXPECT_GT(one.px[c], 0.1);
