@@ -186,6 +186,10 @@ int main(int argc, char** argv) {
   RenderOptions render_opts;
   auto* render = app.add_subcommand("render", "Render a scene (run under mpirun -np N)");
   addSceneOptions(render, render_opts);
+  render->add_option("--steps", render_opts.steps,
+                     "Render a time series, one frame per step in order: all, A:B (A to B, both "
+                     "included) or A:B:S (every S-th); frame i takes orbit camera i (mod the orbit's "
+                     "frames). transfer.range: auto is the union of the steps' ranges (docs/usage.md)");
   render->add_option("--stats", render_opts.stats, "Write per-frame timings and byte counts as JSON");
   render->add_flag("--psnr", render_opts.psnr,
                    "Also measure each frame against the CPU reference (rank 0 loads the whole "
