@@ -36,7 +36,8 @@ echo "ok: 63x47 padded to $got"
 # --stats, frame 1 equals step 1 rendered alone with transfer.range = the union (within 1/255)
 # while step 1 alone in its own range differs (so the comparison can fail), and 3 ranks give 1
 # rank's frames; the series as a movie has one frame per step, and with a 2-frame orbit the
-# cameras go 0, 1, 0. A step beyond the series is refused naming --steps.
+# cameras go 0, 1, 0 (at 10 frames/s, where the last frame once went missing: its packet had no
+# duration). A step beyond the series is refused naming --steps.
 S=$WORK/steps
 mkdir -p "$S"
 python3 - "$S" <<'PY'
@@ -75,7 +76,7 @@ timeout 120 "$SORTLAST" render "$S/series.yaml" -q --set time.step=1 -o "$WORK/o
 "$SORTLAST" compare "$WORK/own_1.png" "$WORK/series1_0001.png" --max-diff 1 >/dev/null \
   && fail "step 1 with its own range [10, 140] looks like the series' frame: the test cannot tell the ranges apart"
 echo "ok: a series of 3 steps has one colour range [0, 200] (1 and 3 ranks)"
-run_np 3 render "$S/series.yaml" -q --steps 0:2 -o "$WORK/series.mp4" --set camera.orbit.frames=2 \
+run_np 3 render "$S/series.yaml" -q --steps 0:2 -o "$WORK/series.mp4" --set camera.orbit.frames=2 --set movie.frame_rate=10 \
   --stats "$WORK/orbit.json" || fail "--steps 0:2 as mp4 with an orbit, 3 ranks"
 got=$(probe "$WORK/series.mp4")
 [ "$got" = "h264,64,48,3" ] || fail "series.mp4: ffprobe says '$got', want 'h264,64,48,3'"
