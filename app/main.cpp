@@ -218,6 +218,9 @@ int main(int argc, char** argv) {
   serve->add_option("--data-dir", serve_opts.data_dir,
                     "Clients may load scene files from under this directory (POST /api/load); the "
                     "scene argument is then relative to it");
+  serve->add_option("--record-dir", serve_opts.record_dir,
+                    "Clients may record the frames the service sends into movie files under this "
+                    "directory (POST /api/record); refused without it");
   serve->add_option("--viewer-dir", serve_opts.viewer_dir, "Serve the web viewer from this directory");
   serve->add_option("--max-size", serve_opts.max_image_side, "Largest image side a request may ask for")
       ->check(CLI::Range(1, 32768));
