@@ -76,8 +76,8 @@ timeout 120 "$SORTLAST" render "$S/series.yaml" -q --set time.step=1 -o "$WORK/o
 "$SORTLAST" compare "$WORK/own_1.png" "$WORK/series1_0001.png" --max-diff 1 >/dev/null \
   && fail "step 1 with its own range [10, 140] looks like the series' frame: the test cannot tell the ranges apart"
 echo "ok: a series of 3 steps has one colour range [0, 200] (1 and 3 ranks)"
-run_np 3 render "$S/series.yaml" -q --steps 0:2 -o "$WORK/series.mp4" --set camera.orbit.frames=2 --set movie.frame_rate=10 \
-  --stats "$WORK/orbit.json" || fail "--steps 0:2 as mp4 with an orbit, 3 ranks"
+run_np 1 render "$S/series.yaml" -q --steps 0:2 -o "$WORK/series.mp4" --set camera.orbit.frames=2 --set movie.frame_rate=10 \
+  --stats "$WORK/orbit.json" || fail "--steps 0:2 as mp4 with an orbit"
 got=$(probe "$WORK/series.mp4")
 [ "$got" = "h264,64,48,3" ] || fail "series.mp4: ffprobe says '$got', want 'h264,64,48,3'"
 python3 - "$WORK/orbit.json" <<'PY' || fail "--steps with an orbit: frame i is not step i seen by orbit camera i mod 2"
