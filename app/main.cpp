@@ -186,6 +186,10 @@ int main(int argc, char** argv) {
   RenderOptions render_opts;
   auto* render = app.add_subcommand("render", "Render a scene (run under mpirun -np N)");
   addSceneOptions(render, render_opts);
+  render->add_option("--steps", render_opts.steps,
+                     "Render a time series, one frame per step in order: all, A:B (A to B, both "
+                     "included) or A:B:S (every S-th); frame i takes orbit camera i (mod the orbit's "
+                     "frames). transfer.range: auto is the union of the steps' ranges (docs/usage.md)");
   render->add_option("--stats", render_opts.stats, "Write per-frame timings and byte counts as JSON");
   render->add_flag("--psnr", render_opts.psnr,
                    "Also measure each frame against the CPU reference (rank 0 loads the whole "
@@ -214,6 +218,9 @@ int main(int argc, char** argv) {
   serve->add_option("--data-dir", serve_opts.data_dir,
                     "Clients may load scene files from under this directory (POST /api/load); the "
                     "scene argument is then relative to it");
+  serve->add_option("--record-dir", serve_opts.record_dir,
+                    "Clients may record the frames the service sends into movie files under this "
+                    "directory (POST /api/record); refused without it");
   serve->add_option("--viewer-dir", serve_opts.viewer_dir, "Serve the web viewer from this directory");
   serve->add_option("--max-size", serve_opts.max_image_side, "Largest image side a request may ask for")
       ->check(CLI::Range(1, 32768));

@@ -1,10 +1,12 @@
 // `sortlast render`: the simplest client of the resident session. Every rank opens the session on
-// the scene, then asks it for each camera of the orbit in turn; rank 0 writes the frames (on its
+// the scene, then asks it for each camera of the orbit in turn (or, with --steps, for each step
+// of a time series, in one colour range found before the first frame); rank 0 writes the frames (on its
 // writer thread, io/frame_writer.h, while the next frame renders), the stats and (--psnr) their
 // distance from the CPU reference.
 #include "app/render_job.h"
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -20,6 +22,44 @@
 #include "session/render_session.h"
 
 namespace sortlast {
+
+std::vector<int> parseSteps(const std::string& spec, int steps) {
+  auto bad = [&](const std::string& why) -> InputError {
+    return InputError("--steps " + spec + ": " + why);
+  };
+  std::vector<long long> v;
+  if (spec == "all") {
+    v = {0, steps > 0 ? steps - 1 : 0, 1};
+  } else {
+    size_t at = 0;
+    while (at <= spec.size()) {
+      const size_t colon = std::min(spec.find(':', at), spec.size());
+      const std::string part = spec.substr(at, colon - at);
+      size_t used = 0;
+      long long n = -1;
+      try {
+        n = std::stoll(part, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (part.empty() || used != part.size())
+        throw bad("expected all, A:B or A:B:S with whole numbers ('" + part + "' is not one)");
+      v.push_back(n);
+      at = colon + 1;
+    }
+    if (v.size() < 2 || v.size() > 3) throw bad("expected all, A:B or A:B:S");
+    if (v.size() == 2) v.push_back(1);
+  }
+  if (v[0] < 0) throw bad("the first step is below 0");
+  if (v[1] < v[0]) throw bad("the last step is before the first");
+  if (v[2] < 1) throw bad("the stride must be >= 1");
+  if (steps >= 0 && v[1] >= steps)
+    throw bad("step " + std::to_string(v[1]) + " is out of range: the scene has " + std::to_string(steps) +
+              " time step(s), 0 ... " + std::to_string(steps - 1));
+  std::vector<int> out;
+  for (long long k = v[0]; k <= v[1]; k += v[2]) out.push_back(int(k));
+  return out;
+}
 
 std::vector<Camera> firstFrames(std::vector<Camera> cameras, int max_frames) {
   if (max_frames > 0 && cameras.size() > size_t(max_frames)) cameras.resize(size_t(max_frames));
@@ -73,10 +113,45 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
     collectively(comm, [&] {
       if (!isMoviePath(opts.output)) checkOutputFormat(opts.output);
       so.scene = readSceneText(opts.scene);
+      if (!opts.steps.empty()) {
+        if (opts.psnr)
+          throw InputError("--psnr and --steps cannot go together: the CPU reference holds one time step");
+        // The session opens on the series' first step, so it is not read twice.
+        const std::vector<int> syntax = parseSteps(opts.steps, -1);
+        so.overrides.push_back("time.step=" + std::to_string(syntax.front()));
+      }
     });
     RenderSession session(std::move(so), comm);
     const Scene& scene = session.baseScene();
-    const int frames = std::min(session.orbitFrames(), opts.max_frames > 0 ? opts.max_frames : 1 << 30);
+    // A series (--steps): frame i is step steps[i] seen by orbit camera i (mod the orbit's
+    // frames, so a single view stays put and an orbit advances one camera per step). Otherwise
+    // the orbit's frames of time.step.
+    std::vector<int> steps;
+    collectively(comm, [&] {
+      if (!opts.steps.empty()) steps = parseSteps(opts.steps, scene.time.steps);
+    });
+    const int orbit = session.orbitFrames();
+    const int frames = std::min(steps.empty() ? orbit : int(steps.size()),
+                                opts.max_frames > 0 ? opts.max_frames : 1 << 30);
+    if (!steps.empty()) steps.resize(size_t(frames));
+    // One colour range for the whole series, found once before the first frame, so a value has
+    // the same colour in every frame whichever steps the series holds (a given range is kept).
+    nlohmann::json series_stats;
+    if (steps.size() > 1) {
+      series_stats = {{"steps", steps}, {"range", nullptr}, {"range_s", 0.0}};
+      if (scene.hasVolume() && !scene.transfer.range) {
+        const double t0 = MPI_Wtime();
+        const auto range = session.seriesRange(steps);
+        session.setAutoRange(range);
+        series_stats["range"] = {range.first, range.second};
+        series_stats["range_s"] = MPI_Wtime() - t0;
+        if (rank == 0 && !opts.quiet)
+          std::fprintf(stderr, "sortlast: %zu steps, one colour range for all: [%g, %g] (%.3f s to scan)\n",
+                       steps.size(), range.first, range.second, series_stats["range_s"].get<double>());
+      } else if (scene.hasVolume()) {
+        series_stats["range"] = {scene.transfer.range->first, scene.transfer.range->second};
+      }
+    }
     // An EXR output holds the frame before rounding; PNG is 8-bit.
     const bool float_output = std::filesystem::path(opts.output).extension() == ".exr";
     // --psnr: rank 0 holds the whole scene for the CPU reference of every frame.
@@ -105,7 +180,8 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
     Progress progress(frames, opts.quiet);
     for (int f = 0; f < frames; ++f) {
       FrameRequest request;
-      request.orbit_frame = f;
+      request.orbit_frame = steps.empty() ? f : f % orbit;
+      if (!steps.empty()) request.overrides.push_back("time.step=" + std::to_string(steps[size_t(f)]));
       request.float_frame = float_output;
       request.surface = !opts.surface_out.empty();
       if (f == 0) request.dump_layers = opts.dump_layers;
@@ -155,6 +231,13 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
                          {"compositing", std::string(nameOf(scene.compositing.strategy))},
                          {"particles", session.particleCount()}};
       top.update(session.jobStats());
+      // A series: its steps, the one colour range of its frames ([lo, hi]; null without a volume)
+      // and the seconds spent scanning the steps for it (0 for a given transfer.range).
+      if (!series_stats.is_null()) {
+        top["series_steps"] = series_stats["steps"];
+        top["series_range"] = series_stats["range"];
+        top["series_range_s"] = series_stats["range_s"];
+      }
       const FrameWriter::Stats written = writer.stats();
       top["output"] = {{"mode", opts.sync_output ? "sync" : "writer_thread"},
                        {"files", written.files},

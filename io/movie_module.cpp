@@ -62,6 +62,10 @@ void encode(SortlastMovie& m, AVFrame* frame) {
   int rc = avcodec_send_frame(m.codec, frame);
   if (rc < 0) throw Failure("encoding failed: " + avError(rc));
   while ((rc = avcodec_receive_packet(m.codec, m.packet)) >= 0) {
+    // libx264 leaves the duration 0; the MP4 muxer then gives the last sample no time and ends
+    // the edit list at its start, so players drop the last frame wherever the list's rounding to
+    // milliseconds does not happen to cover it (3 frames at 10 frames/s decoded as 2).
+    if (m.packet->duration <= 0) m.packet->duration = 1;  // one frame, in the codec's time base
     av_packet_rescale_ts(m.packet, m.codec->time_base, m.stream->time_base);
     m.packet->stream_index = m.stream->index;
     rc = av_interleaved_write_frame(m.format, m.packet);

@@ -20,7 +20,10 @@ bool inside(const fs::path& root, const fs::path& p) {
 
 }  // namespace
 
-fs::path resolveUnder(const fs::path& dir, const std::string& relative) {
+namespace {
+
+// dir/relative, canonical, checked to lie inside canonical(dir); it need not exist.
+fs::path resolveInside(const fs::path& dir, const std::string& relative) {
   auto fail = [&](const std::string& why) { return InputError("\"" + relative + "\": " + why); };
   if (relative.empty()) throw InputError("empty file name");
   if (relative.find('\0') != std::string::npos) throw fail("the name holds a NUL character");
@@ -37,7 +40,25 @@ fs::path resolveUnder(const fs::path& dir, const std::string& relative) {
   if (ec) throw fail(ec.message());
   // Checked before existence, so a client cannot probe which files exist outside.
   if (!inside(root, full)) throw fail("leads outside the directory (through a symbolic link?)");
-  if (!fs::exists(full, ec)) throw fail("no such file");
+  return full;
+}
+
+}  // namespace
+
+fs::path resolveUnder(const fs::path& dir, const std::string& relative) {
+  fs::path full = resolveInside(dir, relative);
+  std::error_code ec;
+  if (!fs::exists(full, ec)) throw InputError("\"" + relative + "\": no such file");
+  return full;
+}
+
+fs::path resolveNewUnder(const fs::path& dir, const std::string& relative) {
+  fs::path full = resolveInside(dir, relative);
+  auto fail = [&](const std::string& why) { return InputError("\"" + relative + "\": " + why); };
+  std::error_code ec;
+  if (full == fs::canonical(dir, ec)) throw fail("names the directory itself, not a file in it");
+  if (!fs::is_directory(full.parent_path(), ec)) throw fail("its folder does not exist");
+  if (fs::exists(full, ec) && !fs::is_regular_file(full, ec)) throw fail("exists and is not a file");
   return full;
 }
 

@@ -13,6 +13,10 @@ namespace sortlast {
 // symlink, say), or a file that does not exist.
 std::filesystem::path resolveUnder(const std::filesystem::path& dir, const std::string& relative);
 
+// The same for a file to write (a recording under --record-dir): it need not exist, but its folder
+// must (inside the directory), and an existing one must be a regular file (it is replaced).
+std::filesystem::path resolveNewUnder(const std::filesystem::path& dir, const std::string& relative);
+
 // The .yaml/.yml files under `dir` (recursive), as sorted paths relative to it; only those
 // resolveUnder accepts. Throws InputError if `dir` is not a readable directory.
 std::vector<std::string> listSceneFiles(const std::filesystem::path& dir);

@@ -32,7 +32,7 @@ nlohmann::json SceneInfo::get() const {
 }
 
 void leadFrame(ServiceRequest& req, RenderSession& session, RequestQueue& queue, MPI_Comm comm,
-               const std::vector<std::string>& prefix) {
+               const std::vector<std::string>& prefix, FrameRecorder* recorder) {
   const double t_start = MPI_Wtime();
   TranslatedRequest tr;
   FrameRequest fr;
@@ -68,7 +68,12 @@ void leadFrame(ServiceRequest& req, RenderSession& session, RequestQueue& queue,
   r.stats["format"] = tr.format;
   r.stats["dropped"] = queue.dropped(req.client);
   r.stats["dropped_total"] = queue.dropped();
+  const bool record = recorder && recorder->recording();
+  if (record) r.stats["recording"] = {{"name", recorder->name()}, {"frame", recorder->frames()}};
   req.reply(std::move(r));
+  // After the answer: the client does not wait for the hand-over (nor, with the encoder's queue
+  // full, for the encoder).
+  if (record) recorder->add(std::move(result.image), result.scene.image.background);
 }
 
 void followFrame(const CommandMessage& m, RenderSession& session) {

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "service/frame_commands.h"
+#include "service/frame_recorder.h"
 #include "service/http_server.h"
 #include "session/render_session.h"
 #include "service/request_queue.h"
@@ -32,8 +33,9 @@ class SceneInfo {
 // Rank 0: one frame request through the session on every rank, answered. Collective with
 // followFrame() on the other ranks (when the request is good enough to broadcast).
 // `prefix`: keys applied before the request's own (the in-situ live view: the first render's).
+// `recorder`: while it records, every frame answered goes to it too (after the answer).
 void leadFrame(ServiceRequest& req, RenderSession& session, RequestQueue& queue, MPI_Comm comm,
-               const std::vector<std::string>& prefix = {});
+               const std::vector<std::string>& prefix = {}, FrameRecorder* recorder = nullptr);
 
 // The other ranks: render the frame rank 0 broadcast (Command::kFrame).
 void followFrame(const CommandMessage& m, RenderSession& session);

@@ -20,6 +20,7 @@ struct ServerOptions {
   std::string token;                // non-empty: every /api/ request needs it
   std::string static_dir;           // the web viewer's files, served at /
   std::string data_dir;             // non-empty: GET /api/files and POST /api/load are allowed
+  std::string record_dir;           // non-empty: POST /api/record may write movies under it
   size_t max_body_bytes = 1 << 20;  // HTTP request bodies and WebSocket messages
   int threads = 2;
 };

@@ -5,6 +5,9 @@
 //   POST /api/frame     a JSON object of scene keys -> the image; stats in X-Sortlast-Stats
 //   GET  /api/files     {"files": [...]}                    (only with a data directory)
 //   POST /api/load      {"scene": "rel/path.yaml"} -> JSON  (only with a data directory)
+//   POST /api/record    {"path": "rel/name.mp4", "frame_rate", "quality"} starts recording the
+//                       frames sent into a movie, {"stop": true} ends it -> JSON (403 without
+//                       a record directory)
 //   GET  /api/stream    WebSocket upgrade (ws_session.cpp)
 // With a token configured, /api/ needs "Authorization: Bearer TOKEN" or ?token=TOKEN.
 #include "service/http_session.h"
@@ -64,6 +67,7 @@ constexpr Route kRoutes[] = {
     {"/api/scene", http::verb::get, false},  {"/api/health", http::verb::get, false},
     {"/api/frame", http::verb::post, false}, {"/api/stream", http::verb::get, false},
     {"/api/files", http::verb::get, true},   {"/api/load", http::verb::post, true},
+    {"/api/record", http::verb::post, false},
 };
 
 // The body as a JSON object, or the reason it is not one. An empty body is an empty object.
@@ -235,6 +239,7 @@ void HttpSession::handleApi(Request&& req, const std::string& path, std::string_
   if (auto* why = std::get_if<std::string>(&body)) return send(errorResponse(req, 400, *why));
   json& object = std::get<json>(body);
   if (path == "/api/frame") return submit(req, "frame", std::move(object));
+  if (path == "/api/record") return record(req, object);
 
   // /api/load: the scene is checked here, so the frame loop only ever sees a file inside the
   // data directory, by its absolute path.
@@ -252,6 +257,37 @@ void HttpSession::handleApi(Request&& req, const std::string& path, std::string_
   if (!fs::is_regular_file(resolved, ec))
     return send(errorResponse(req, 400, "scene \"" + scene->get<std::string>() + "\": not a file"));
   submit(req, "load", {{"scene", resolved.string()}});
+}
+
+// POST /api/record: checked here (the keys, their types, the path confined to the record
+// directory), so the frame loop only sees a file inside it, by its absolute path.
+void HttpSession::record(const Request& req, const json& object) {
+  const std::string& dir = state_->options.record_dir;
+  if (dir.empty())
+    return send(errorResponse(req, 403, "recording is off: the service was started without --record-dir DIR"));
+  for (auto it = object.begin(); it != object.end(); ++it)
+    if (it.key() != "path" && it.key() != "frame_rate" && it.key() != "quality" && it.key() != "stop")
+      return send(errorResponse(req, 400, "record: unknown key '" + it.key() +
+                                              "' (expected path, frame_rate, quality, or stop)"));
+  if (object.contains("stop")) {
+    if (object.size() != 1 || object["stop"] != true)
+      return send(errorResponse(req, 400, "record: to stop, send {\"stop\": true} alone"));
+    return submit(req, "record", {{"stop", true}});
+  }
+  auto path = object.find("path");
+  if (path == object.end() || !path->is_string())
+    return send(errorResponse(
+        req, 400, "record: expected {\"path\": \"name.mp4\", \"frame_rate\": 30} or {\"stop\": true}"));
+  for (const char* key : {"frame_rate", "quality"})
+    if (object.contains(key) && !object[key].is_number_integer())
+      return send(errorResponse(req, 400, std::string("record: ") + key + " must be a whole number"));
+  json body = object;
+  try {
+    body["file"] = resolveNewUnder(dir, path->get<std::string>()).string();
+  } catch (const InputError& e) {
+    return send(errorResponse(req, 400, std::string("record: path ") + e.what()));
+  }
+  submit(req, "record", std::move(body));
 }
 
 Response HttpSession::staticFile(const Request& req, const std::string& path) {
@@ -358,7 +394,7 @@ void HttpSession::onReply(ServiceReply reply) {
   Response res;
   if (reply.status != 200) {
     res = errorResponse(shape, unsigned(reply.status), reply.error);
-  } else if (kind_ == "load") {
+  } else if (kind_ == "load" || kind_ == "record") {
     res = jsonResponse(shape, 200, reply.stats.is_null() ? json{{"ok", true}} : reply.stats);
   } else {
     res.version(version_);

@@ -26,6 +26,7 @@ class HttpSession : public Connection, public std::enable_shared_from_this<HttpS
   void handle(Request&& req);
   void handleApi(Request&& req, const std::string& path, std::string_view query);
   Response staticFile(const Request& req, const std::string& path);
+  void record(const Request& req, const nlohmann::json& object);
   void submit(const Request& req, std::string kind, nlohmann::json body);
   void watchHangUp();
   void pollHangUp();

@@ -3,6 +3,7 @@
 // the other ranks), broadcasts the good ones, renders with everyone, encodes and answers.
 #include "service/serve_job.h"
 
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -103,6 +104,7 @@ class Frontend {
     so.token = opts_.token;
     so.static_dir = findViewerDir(opts_.viewer_dir);
     so.data_dir = opts_.data_dir;
+    so.record_dir = opts_.record_dir;
     so.max_body_bytes = opts_.max_body_bytes;
     info_.set(describe());
     server_ = std::make_unique<HttpServer>(so, queue_, [this] { return info_.get(); });
@@ -121,10 +123,21 @@ class Frontend {
       if (!req) continue;
       if (req->kind == "load")
         load(*req, comm);
+      else if (req->kind == "record")
+        record(*req);
       else
         frame(*req, comm);
     }
     queue_.close();
+    if (recorder_.recording()) {  // the movie stays playable: its trailer is written
+      try {
+        const nlohmann::json r = recorder_.stop();
+        std::fprintf(stderr, "sortlast serve: recording %s ended with the service: %d frame(s)\n",
+                     r.value("name", "").c_str(), r.value("frames", 0));
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "sortlast serve: recording: %s\n", e.what());
+      }
+    }
     server_->stop();
     sendCommand({Command::kShutdown, ""}, comm);
     if (!started) throw JobFailed{"the service could not start"};
@@ -140,11 +153,12 @@ class Frontend {
   nlohmann::json describe() const {
     nlohmann::json j = session_->describe();
     j["data_dir"] = !opts_.data_dir.empty();
+    j["record_dir"] = !opts_.record_dir.empty();
     return j;
   }
 
   void frame(ServiceRequest& req, MPI_Comm comm) {
-    leadFrame(req, *session_, queue_, comm);
+    leadFrame(req, *session_, queue_, comm, {}, &recorder_);
     const int step = session_->currentStep();
     if (step != info_step_) {
       info_step_ = step;
@@ -171,6 +185,45 @@ class Frontend {
     req.reply(std::move(r));
   }
 
+  // POST /api/record (rank 0 alone): {"stop": true}, or {"path", "file" (resolved under
+  // --record-dir by the front end), "frame_rate", "quality"}; the codec keys default to the scene's
+  // movie.frame_rate and movie.quality.
+  void record(ServiceRequest& req) {
+    const nlohmann::json& b = req.body;
+    if (b.contains("stop")) {
+      if (!recorder_.recording())
+        return req.reply(errorReply(409, "not recording: start with {\"path\": \"name.mp4\"}"));
+      ServiceReply r;
+      try {
+        r.stats = recorder_.stop();
+      } catch (const InputError& e) {
+        return req.reply(errorReply(500, e.what()));
+      }
+      r.stats["ok"] = true;
+      return req.reply(std::move(r));
+    }
+    const std::string name = b.value("path", "");
+    if (recorder_.recording())
+      return req.reply(errorReply(409, "already recording " + recorder_.name() +
+                                           ": send {\"stop\": true} first"));
+    const MovieSpec& movie = session_->baseScene().image.movie;
+    // Whole numbers (the front end checked), clamped into int before the recorder's range checks.
+    auto whole = [&](const char* key) { return int(std::clamp(b[key].get<long long>(), -1LL, 1000000LL)); };
+    const int frame_rate = b.contains("frame_rate") ? whole("frame_rate") : movie.frame_rate;
+    std::optional<int> quality;
+    if (b.contains("quality")) quality = whole("quality");
+    else if (movie.quality) quality = int(*movie.quality);
+    try {
+      recorder_.start(b.value("file", ""), name, frame_rate, quality);
+    } catch (const InputError& e) {
+      return req.reply(errorReply(400, std::string("record: ") + e.what()));
+    }
+    ServiceReply r;
+    r.stats = {{"ok", true}, {"recording", name}, {"frame_rate", frame_rate},
+               {"quality", quality.value_or(MovieWriter::defaultQuality(name))}};
+    req.reply(std::move(r));
+  }
+
   const ServeOptions& opts_;
   std::unique_ptr<RenderSession>& session_;
   const std::string initial_;  // the scene file the service started with
@@ -179,6 +232,7 @@ class Frontend {
   SceneInfo info_;
   std::unique_ptr<HttpServer> server_;
   int info_step_ = -1;
+  FrameRecorder recorder_;  // POST /api/record
 };
 
 // The other ranks: do what rank 0 says until it says stop.
@@ -240,6 +294,8 @@ int runServeJob(const ServeOptions& opts, MPI_Comm comm) {
         // The scene, given relative to the data directory, must lie inside it.
         if (!scene_path.empty()) scene_path = resolveUnder(opts.data_dir, scene_path).string();
       }
+      if (!opts.record_dir.empty() && !std::filesystem::is_directory(opts.record_dir))
+        throw InputError("--record-dir " + opts.record_dir + ": not a directory");
     });
     std::unique_ptr<RenderSession> session;
     {

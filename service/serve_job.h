@@ -17,6 +17,7 @@ struct ServeOptions {
   std::string listen = "127.0.0.1:8080";
   std::string token;                   // required unless the address is 127.0.0.1, ::1 or localhost
   std::string data_dir;                // non-empty: clients may load scene files from under it
+  std::string record_dir;              // non-empty: clients may record movies into files under it
   std::string viewer_dir;              // empty: the installed viewer, else the source tree's
   int max_image_side = 4096;
   size_t max_body_bytes = 1 << 20;

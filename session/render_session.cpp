@@ -18,6 +18,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <optional>
 
 #include "common/error.h"
@@ -36,6 +37,8 @@
 #include "session/particle_loading.h"
 #include "session/session_layout.h"
 #include "session/step_data.h"
+#include "session/volume_loading.h"
+#include "io/volume_source.h"
 #include "session/surface_gather.h"
 
 namespace sortlast {
@@ -187,8 +190,11 @@ struct RenderSession::State {
   // In situ: the step's bricks come from the caller.
   bool external = false;
   std::optional<ExternalStep> ext;
+  // setAutoRange: what transfer.range: auto stands for instead of the current step's range.
+  std::optional<std::pair<double, double>> auto_range;
 
   std::pair<double, double> dataRange() const {
+    if (auto_range) return *auto_range;
     if (ext) return {ext->data_min, ext->data_max};
     return current ? std::make_pair(current->data_min, current->data_max) : std::make_pair(0.0, 1.0);
   }
@@ -332,6 +338,46 @@ TransferFunction RenderSession::transferFunction() const {
   return s_->base.transfer.build(lo, hi, s_->layout.grid.minSpacing());
 }
 MPI_Comm RenderSession::comm() const { return s_->comm; }
+void RenderSession::setAutoRange(std::pair<double, double> range) { s_->auto_range = range; }
+
+std::pair<double, double> RenderSession::seriesRange(const std::vector<int>& steps) {
+  State& S = *s_;
+  PhaseScope phase("scanning the data range of the series");
+  collectively(S.comm, [&] {
+    if (S.external || !S.base.hasVolume() || S.base.hasFields())
+      throw std::logic_error("RenderSession::seriesRange needs the session's own one-field volume");
+  });
+  float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+  std::string files;  // named in the error when every sample is missing
+  for (int step : steps) {
+    if (S.current && S.current->has_volume && S.current->step == step) {
+      lo = std::min(lo, float(S.current->data_min));  // over every rank already; exact in float
+      hi = std::max(hi, float(S.current->data_max));
+      continue;
+    }
+    VolumeDesc desc;
+    collectively(S.comm, [&] {
+      FrameRequest r;
+      r.overrides = {"time.step=" + std::to_string(step)};
+      desc = S.resolve(r).volume;
+      validateVolume(desc);
+      if (desc.grid.dims != S.layout.grid.dims || desc.grid.spacing != S.layout.grid.spacing)
+        throw InputError("volume file " + desc.file + " (time step " + std::to_string(step) +
+                         ") has another grid than the session's first step: every step of "
+                         "volume.files needs the same dims and spacing");
+    });
+    if (files.size() < 200) files += (files.empty() ? "" : ", ") + desc.file;
+    const auto samples = loadOwnBricks(desc, S.layout.volume_bricks, S.layout.mine, S.layout.assignment, S.comm);
+    for (const auto& s : samples) widenRange(s.data(), s.size(), lo, hi);  // missing samples left out
+  }
+  double in[2] = {lo, -double(hi)}, out[2];
+  MPI_Allreduce(in, out, 2, MPI_DOUBLE, MPI_MIN, S.comm);
+  collectively(S.comm, [&] {  // the same answer on every rank: every rank throws or none
+    if (!(out[0] <= -out[1]))
+      throw InputError("every sample of the series' steps is missing (NaN): " + files);
+  });
+  return {out[0], -out[1]};
+}
 std::string RenderSession::rendererDescription() const { return s_->renderer->description(); }
 const GlDeviceInfo& RenderSession::deviceInfo() const { return s_->renderer->deviceInfo(); }
 

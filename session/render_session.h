@@ -105,9 +105,17 @@ class RenderSession {
 
   const Scene& baseScene() const;
   int orbitFrames() const;                // cameras of the base scene (1 without an orbit)
-  // The base scene's transfer function against the current step's data range (what the legend
-  // of a written frame shows).
+  // The base scene's transfer function against the current step's data range, or the range given
+  // to setAutoRange (what the legend of a written frame shows).
   TransferFunction transferFunction() const;
+  // Collective. The union of the data ranges of the given time steps (a series rendered as one
+  // movie): each rank reads its own bricks of each step (the step on the GPU gives its range from
+  // memory), takes their min/max, then one reduction over ranks. Needs a volume without `volumes`.
+  // Throws JobFailed (a step's file that cannot be read, every sample missing).
+  std::pair<double, double> seriesRange(const std::vector<int>& steps);
+  // From now on `transfer.range: auto` stands for `range` (every rank passes the same) instead of
+  // the current step's data range: the frames and transferFunction() (the legend) use it.
+  void setAutoRange(std::pair<double, double> range);
   long long particleCount() const;        // of the current step
   int currentStep() const;                // the step on the GPU
   std::string rendererDescription() const;

@@ -545,6 +545,39 @@ $('save').addEventListener('click', async () => {
   setTimeout(() => URL.revokeObjectURL(a.href), 10000);
 });
 
+// record: the service writes every frame it sends into a movie under its --record-dir
+let recording = false;
+async function postRecord(body) {
+  const res = await fetch(apiUrl('/api/record'), {
+    method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(body),
+  });
+  const j = await res.json().catch(() => ({}));
+  if (!res.ok) throw new Error(j.error || `HTTP ${res.status}`);
+  return j;
+}
+$('record').addEventListener('click', async () => {
+  try {
+    if (!recording) {
+      const stamp = new Date().toISOString().replace(/[:.]/g, '-').slice(0, 19);
+      const path = window.prompt('Movie file under the service\'s record directory (.mp4 or .webm)', `sortlast_${stamp}.mp4`);
+      if (!path) return;
+      const j = await postRecord({ path });
+      recording = true;
+      showMessage(`Recording ${j.recording} at ${j.frame_rate} frames/s`, 'info');
+      submit('full');  // the current view is the movie's first frame
+    } else {
+      const j = await postRecord({ stop: true });
+      recording = false;
+      showMessage(`Recorded ${j.frames} frame(s), ${j.width}x${j.height}, into ${j.name}`, 'info');
+    }
+  } catch (e) {
+    error(`Record: ${e.message}`);
+    if (recording && /not recording/.test(e.message)) recording = false;
+  }
+  $('record').textContent = recording ? 'Stop recording' : 'Record';
+  $('record').classList.toggle('active', recording);
+});
+
 // ---------------------------------------------------------------- transfer function
 const tf = new TransferEditor($('tf-canvas'), {
   onChange: (interactive) => {
@@ -626,6 +659,7 @@ function validVec(v) { return Array.isArray(v) && v.length === 3 && v.every(Numb
 
 function applyScene(scene) {
   state.scene = scene;
+  $('record').hidden = !scene.record_dir;  // the service allows recording (--record-dir)
   const settings = scene.settings || {};
   state.keys = Array.isArray(scene.request_keys) ? new Set(scene.request_keys) : null;
   if (scene.limits) state.limits = scene.limits;

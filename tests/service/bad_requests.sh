@@ -83,6 +83,10 @@ for m_p in "GET /api/frame" "GET /api/nothing" "DELETE /api/scene"; do
   case $code in 4??) echo "ok: $m_p -> $code" ;; *) failures+=("$m_p answered $code (expected 4xx)") ;; esac
 done
 
+# Recording without --record-dir: 403, naming the option.
+code=$(curl -s --max-time 20 -o "$WORK/bad.out" -w '%{http_code}' -X POST --data-binary '{"path":"x.mp4"}' "$BASE/api/record")
+check_reply "POST /api/record without --record-dir" "$code" "$WORK/bad.out" 403 'record-dir'
+
 # The same bad requests over the WebSocket: {"id", "status": 400, "error"}, then the valid one.
 # ws_cases NAME CASE...: one connection sends the cases one at a time, then the valid request.
 ws_cases() {

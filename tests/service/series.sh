@@ -3,7 +3,7 @@
 # `sortlast render` makes of step K's file alone (volume.file), and of the series scene with
 # --set time.step=K (within 1/255), asked for in the order 0, 2, 1, 2 (a step seen before comes from
 # the cache) over HTTP and the WebSocket; the steps differ; GET /api/scene reports 3 steps and the
-# step shown; time.step 3 is refused (400).
+# step shown; time.step 3 is refused (400). The frames recorded into a movie (POST /api/record).
 # Usage: series.sh SORTLAST [RANKS]
 source "$(dirname "$0")/service_lib.sh" "$1"
 NP=${2:-2}
@@ -40,7 +40,8 @@ bricks: {per_axis: 2}'
 printf 'volume:\n  files: "step_*.raw"\n%s\n' "$common" >"$S/series.yaml"
 for k in 0 1 2; do printf 'volume:\n  file: step_%s.raw\n%s\n' "$k" "$common" >"$S/one_$k.yaml"; done
 
-start_server "$NP" "$S/series.yaml"
+mkdir -p "$WORK/rec/sub" && ln -s "$WORK" "$WORK/rec/out"
+start_server "$NP" "$S/series.yaml" --record-dir "$WORK/rec"
 curl -s --max-time 20 "$BASE/api/scene" >"$WORK/scene.json"
 [ "$(json "$WORK/scene.json" 'j.get("steps")')" = 3 ] || bad "GET /api/scene: steps is $(json "$WORK/scene.json" 'j.get("steps")'), expected 3"
 
@@ -82,6 +83,36 @@ if command -v node >/dev/null && [ -d "$HERE/node_modules/ws" ]; then
     n=$((n + 1))
   done
 fi
+# Recording (POST /api/record): 3 frames (steps 0, 1, 2; the last at 64x56, scaled into the
+# movie's 128x112) into sub/steps.mp4 under --record-dir; ffprobe counts 3 frames of 128x112.
+# A path leaving the directory (.., a symbolic link out) is refused with 400 and a message.
+record() {  # record OUT.json JSON: POST /api/record; prints the HTTP status
+  curl -s --max-time 60 -o "$1" -w '%{http_code}' -X POST -H 'Content-Type: application/json' \
+    --data-binary "$2" "$BASE/api/record"
+}
+for bad_path in ../escape.mp4 out/escape.mp4 /tmp/escape.mp4; do
+  code=$(record "$WORK/rec.json" "{\"path\":\"$bad_path\"}")
+  if [ "$code" = 400 ] && grep -q "$bad_path" "$WORK/rec.json"; then echo "ok: record $bad_path -> 400: $(cat "$WORK/rec.json")"
+  else bad "record $bad_path answered $code: $(cat "$WORK/rec.json")"; fi
+done
+[ ! -e "$WORK/escape.mp4" ] || bad "a refused recording left $WORK/escape.mp4"
+code=$(record "$WORK/rec.json" '{"stop":true}')
+[ "$code" = 409 ] || bad "stop while not recording answered $code: $(cat "$WORK/rec.json")"
+code=$(record "$WORK/rec.json" '{"path":"sub/steps.mp4","frame_rate":10}')
+[ "$code" = 200 ] || bad "record sub/steps.mp4 answered $code: $(cat "$WORK/rec.json")"
+code=$(record "$WORK/rec2.json" '{"path":"other.mp4"}')
+[ "$code" = 409 ] || bad "a second recording while one runs answered $code: $(cat "$WORK/rec2.json")"
+for req in '{"time.step":0}' '{"time.step":1}' '{"time.step":2,"image":{"width":64,"height":56}}'; do
+  code=$(frame "$WORK/rec_frame.png" "$req")
+  [ "$code" = 200 ] || bad "frame $req while recording answered $code"
+done
+code=$(record "$WORK/rec.json" '{"stop":true}')
+[ "$code" = 200 ] || bad "stop answered $code: $(cat "$WORK/rec.json")"
+[ "$(json "$WORK/rec.json" '(j.get("frames"), j.get("frames_scaled"))')" = "(3, 1)" ] \
+  || bad "stop: $(cat "$WORK/rec.json"), expected 3 frames, 1 scaled"
+got=$(ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=codec_name,width,height,nb_read_frames \
+  -of csv=p=0 "$WORK/rec/sub/steps.mp4" 2>&1) || true
+[ "$got" = "h264,128,112,3" ] && echo "ok: recorded sub/steps.mp4: $got" || bad "recorded movie: ffprobe says '$got', want 'h264,128,112,3'"
 stop_server || bad "sortlast serve did not stop on SIGTERM"
 
 [ ${#failures[@]} = 0 ] || { printf 'FAIL: %s\n' "${failures[@]}"; exit 1; }

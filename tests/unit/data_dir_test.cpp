@@ -84,5 +84,22 @@ TEST_F(DataDir, ListsSceneFilesSortedAndOnlyThoseInside) {
   EXPECT_FALSE(inputErrorOf([&] { listSceneFiles(dir_ / "nope"); }).empty());
 }
 
+// A file to write (a recording): it need not exist, but its folder must, inside the directory.
+TEST_F(DataDir, NewFilesResolveInsideOnly) {
+  EXPECT_EQ(resolveNewUnder(data_, "new.mp4"), fs::canonical(data_) / "new.mp4");
+  EXPECT_EQ(resolveNewUnder(data_, "sub/new.mp4"), fs::canonical(data_) / "sub" / "new.mp4");
+  EXPECT_EQ(resolveNewUnder(data_, "a.yaml"), fs::canonical(data_ / "a.yaml"));  // replaced
+  fs::create_directory_symlink(dir_ / "outside", data_ / "leakdir");
+  fs::create_symlink(dir_ / "outside" / "secret.yaml", data_ / "leak.mp4");
+  EXPECT_NE(inputErrorOf([&] { resolveNewUnder(data_, "leakdir/x.mp4"); }).find("outside"), std::string::npos);
+  EXPECT_NE(inputErrorOf([&] { resolveNewUnder(data_, "leak.mp4"); }).find("outside"), std::string::npos);
+  EXPECT_NE(inputErrorOf([&] { resolveNewUnder(data_, "../x.mp4"); }).find(".."), std::string::npos);
+  EXPECT_NE(inputErrorOf([&] { resolveNewUnder(data_, "/tmp/x.mp4"); }).find("absolute"), std::string::npos);
+  EXPECT_NE(inputErrorOf([&] { resolveNewUnder(data_, "nofolder/x.mp4"); }).find("folder does not exist"),
+            std::string::npos);
+  EXPECT_NE(inputErrorOf([&] { resolveNewUnder(data_, "sub"); }).find("not a file"), std::string::npos);
+  EXPECT_NE(inputErrorOf([&] { resolveNewUnder(data_, "."); }).find("directory itself"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace sortlast

@@ -182,6 +182,8 @@ class FakeLoop {
       ServiceReply reply;
       if (r->kind == "load") {
         reply.stats = {{"ok", true}, {"scene", r->body["scene"]}};
+      } else if (r->kind == "record") {
+        reply.stats = {{"ok", true}, {"echo", r->body}};
       } else if (r->body.value("fail", false)) {
         reply.status = 422;
         reply.error = "failure requested";
@@ -441,6 +443,44 @@ TEST_F(Server, FilesAndLoadNeedADataDir) {
   auto load = post("/api/load", R"({"scene": "a.yaml"})");
   ASSERT_TRUE(load);
   EXPECT_EQ(load->result_int(), 404);
+}
+
+// POST /api/record: the front end checks the keys and confines the path to --record-dir; the
+// frame loop gets the absolute path as "file".
+TEST_F(Server, RecordStaysInsideTheRecordDir) {
+  options_.record_dir = (dir_ / "data").string();
+  start();
+  auto start_rec = post("/api/record", R"({"path": "scenes/m.mp4", "frame_rate": 12})");
+  ASSERT_TRUE(start_rec);
+  EXPECT_EQ(start_rec->result_int(), 200);
+  EXPECT_EQ(start_rec->at(http::field::content_type), "application/json");
+  json echo = json::parse(start_rec->body())["echo"];
+  EXPECT_EQ(echo["file"], (fs::canonical(dir_ / "data" / "scenes") / "m.mp4").string());
+  EXPECT_EQ(echo["path"], "scenes/m.mp4");
+  EXPECT_EQ(echo["frame_rate"], 12);
+  auto stop = post("/api/record", R"({"stop": true})");
+  ASSERT_TRUE(stop);
+  EXPECT_EQ(stop->result_int(), 200);
+  EXPECT_EQ(json::parse(stop->body())["echo"], json({{"stop", true}}));
+  const int before = loop_->started;
+  for (const char* bad : {R"({"path": "../outside/m.mp4"})", R"({"path": "/tmp/m.mp4"})",
+                          R"({"path": "nofolder/m.mp4"})", R"({"path": "scenes"})", R"({"path": 1})",
+                          R"({"path": "m.mp4", "frame_rate": "x"})", R"({"path": "m.mp4", "quality": 1.5})",
+                          R"({"stop": false})", R"({"stop": true, "path": "m.mp4"})", R"({"x": 1})", R"({})"}) {
+    auto res = post("/api/record", bad);
+    ASSERT_TRUE(res);
+    EXPECT_EQ(res->result_int(), 400) << bad;
+    EXPECT_NE(errorOf(*res).find("record"), std::string::npos) << bad;
+  }
+  EXPECT_EQ(loop_->started, before);  // none reached the frame loop
+}
+
+TEST_F(Server, RecordNeedsARecordDir) {
+  start();
+  auto res = post("/api/record", R"({"path": "m.mp4"})");
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->result_int(), 403);
+  EXPECT_NE(errorOf(*res).find("--record-dir"), std::string::npos);
 }
 
 TEST_F(Server, WebSocketRoundTrip) {

@@ -8,8 +8,10 @@
 #include <fstream>
 #include <unistd.h>
 
+#include "app/render_job.h"
 #include "common/error.h"
 #include "scene/scene.h"
+#include "service/frame_recorder.h"
 #include "service/request_translation.h"
 #include "tests/unit/input_error_of.h"
 
@@ -126,6 +128,49 @@ TEST(RequestTranslation, BadRequestsAreNamed) {
 TEST(RequestTranslation, PackRoundTrips) {
   std::vector<std::string> o = {"camera.position=[1,2,3]", "transfer.points=[[0,0,0,0,0],[1,1,1,1,1]]", "x=\"a,b\""};
   EXPECT_EQ(unpackOverrides(packOverrides(o)), o);
+}
+
+// sortlast render --steps: all, A:B (both included), A:B:S; anything else refused naming --steps.
+TEST(RenderSteps, ParsesRangesAndStrides) {
+  EXPECT_EQ(parseSteps("all", 3), (std::vector<int>{0, 1, 2}));
+  EXPECT_EQ(parseSteps("all", 1), (std::vector<int>{0}));
+  EXPECT_EQ(parseSteps("1:3", 5), (std::vector<int>{1, 2, 3}));
+  EXPECT_EQ(parseSteps("0:9:4", 10), (std::vector<int>{0, 4, 8}));
+  EXPECT_EQ(parseSteps("2:2", 3), (std::vector<int>{2}));
+  EXPECT_EQ(parseSteps("4:7", -1), (std::vector<int>{4, 5, 6, 7}));  // the count not known yet
+  EXPECT_NE(inputErrorOf([] { parseSteps("0:5", 3); }).find("--steps 0:5: step 5 is out of range"), std::string::npos);
+  EXPECT_NE(inputErrorOf([] { parseSteps("3:1", 5); }).find("before the first"), std::string::npos);
+  EXPECT_NE(inputErrorOf([] { parseSteps("0:4:0", 5); }).find("stride"), std::string::npos);
+  EXPECT_NE(inputErrorOf([] { parseSteps("-1:2", 5); }).find("below 0"), std::string::npos);
+  for (const char* bad : {"", "3", "1:", ":2", "a:b", "1:2:3:4", "1.5:2", "1:2x"})
+    EXPECT_NE(inputErrorOf([&] { parseSteps(bad, 5); }).find("--steps"), std::string::npos) << bad;
+}
+
+// A recorded frame of another size than the movie's is scaled to fit, aspect kept, centred on the
+// background.
+TEST(FrameRecorder, FitKeepsAspectOnTheBackground) {
+  const std::vector<uint8_t> red = [] {
+    std::vector<uint8_t> v(4 * 2 * 3, 0);
+    for (size_t p = 0; p < 8; ++p) v[3 * p] = 200;
+    return v;
+  }();
+  EXPECT_EQ(fitRGB8(red, 4, 2, 4, 2, glm::dvec3(0.0)), red);  // the same size: as is
+  // 4x2 into 8x8: scaled by 2 to 8x4, rows 2-5; rows 0-1 and 6-7 are the background (blue).
+  const std::vector<uint8_t> out = fitRGB8(red, 4, 2, 8, 8, glm::dvec3(0, 0, 1));
+  ASSERT_EQ(out.size(), size_t(8 * 8 * 3));
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) {
+      const uint8_t* px = &out[(size_t(y) * 8 + x) * 3];
+      const bool inside = y >= 2 && y < 6;
+      EXPECT_EQ(px[0], inside ? 200 : 0) << x << "," << y;
+      EXPECT_EQ(px[2], inside ? 0 : 255) << x << "," << y;
+    }
+  // A horizontal ramp 30 x halved: output pixel i samples the input between pixels 2i and 2i + 1
+  // (its centre at 2i + 0.5), so 30 (2i + 0.5) = 15, 75, 135, 195.
+  std::vector<uint8_t> ramp(8 * 3 * 1);
+  for (int x = 0; x < 8; ++x) ramp[3 * x] = ramp[3 * x + 1] = ramp[3 * x + 2] = uint8_t(30 * x);
+  const std::vector<uint8_t> half = fitRGB8(ramp, 8, 1, 4, 1, glm::dvec3(0.0));
+  for (int x = 0; x < 4; ++x) EXPECT_EQ(half[3 * x], 30 * (2 * x) + 15) << x;
 }
 
 }  // namespace
