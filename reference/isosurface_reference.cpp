@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "common/box.h"
+#include "common/clip.h"
 #include "common/error.h"
 
 namespace sortlast {
@@ -175,6 +176,9 @@ ImageF renderIsosurfaceReference(const WholeVolume& vol, const std::vector<Isova
         double t0, t1;
         if (intersectRayBox(o, d, box, t0, t1)) {
           t0 = std::max(t0, 0.0);
+          // The clip region (common/clip.h) cuts the span the crossings are searched in: a
+          // crossing counts only inside it (the field's side at the cut is where the search starts).
+          clipSpan(vol.clip, o, d, t0, t1);
           if (hit_surface) t1 = std::min(t1, double(stop->t[pixel]));
           for (const IsoHit& h : isoCrossings(vol, isovalues, o, d, t0, t1)) {
             const Isovalue& iso = isovalues[size_t(h.iso)];

@@ -16,7 +16,9 @@
 // The hits are composited front to back (each isovalue's colour shaded with the exact gradient of
 // the interpolant in the hit's cell, transfer/isosurface.h) up to the first opaque one, the ray's
 // end at the volume's far face or the opaque surface layer's t, whose colour goes behind, as in
-// reference/reference.h.
+// reference/reference.h. The volume's clip region (WholeVolume::clip) cuts the span first: the
+// search starts at the clip entry, whose side of each isovalue is the starting one (no surface on
+// the cut face), as the ray caster's.
 #include <vector>
 
 #include "common/camera.h"

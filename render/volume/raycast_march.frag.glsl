@@ -331,8 +331,10 @@ void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
   if (surfaceAt(px)) t1 = min(t1, texelFetch(u_surface, px, 0).x);
 #ifdef ISOSURFACE
-  isoBegin();
-  bool ends_here = t1 < span.y || span.y >= g_vol_t1;  // at the surface, or leaving the volume
+  isoBegin(dir);
+  // At the surface, or leaving the volume or the clip region (span.y and g_vol_t1 are both the
+  // min over the same clip candidates, of this brick's exit and of the volume's).
+  bool ends_here = t1 < span.y || span.y >= g_vol_t1;
 #endif
   vec4 acc = vec4(0.0);
 #ifdef MIP_EXACT  // the exact extremum over the brick's own part of the ray: no lattice
