@@ -152,9 +152,17 @@ ImageF FrameReference::render(const Camera& cam, SurfaceImage* surface_out, int 
     return renderFieldsReference(fields_, bounds_, cam, fields_step_, threads_);
   }
   if (volume_ && !volume_->isovalues.empty()) {
+    SurfaceImage iso;
     out = renderIsosurfaceReference(volume_->vol, volume_->isovalues, volume_->shading, cam, threads_,
-                                    surface ? &*surface : nullptr, surface ? &colour : nullptr);
-    if (surface && surface_out) *surface_out = std::move(*surface);
+                                    surface ? &*surface : nullptr, surface ? &colour : nullptr,
+                                    surface_out ? &iso : nullptr);
+    if (surface_out) {
+      // The opaque hits lie in front of the layer (the rays end there): the nearer per pixel.
+      if (surface)
+        for (size_t i = 0; i < iso.t.size(); ++i)
+          if (iso.hit(i) && !(surface->t[i] <= iso.t[i])) surface->t[i] = iso.t[i], surface->normal[i] = iso.normal[i];
+      *surface_out = surface ? std::move(*surface) : std::move(iso);
+    }
   } else if (!surface) {
     if (volume_ && volume_->blend != VolumeBlend::kComposite)  // the scene refuses glow with it
       out = renderProjectionReference(volume_->vol, volume_->tf, cam, volume_->step, threads_,

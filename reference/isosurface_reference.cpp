@@ -156,12 +156,14 @@ std::vector<IsoHit> isoCrossings(const WholeVolume& vol, const std::vector<Isova
 
 ImageF renderIsosurfaceReference(const WholeVolume& vol, const std::vector<Isovalue>& isovalues,
                                  const Shading& shading, const Camera& cam, int threads,
-                                 const SurfaceImage* stop, const ImageF* stop_colour) {
+                                 const SurfaceImage* stop, const ImageF* stop_colour,
+                                 SurfaceImage* opaque) {
   if (stop && (stop->width != cam.width || stop->height != cam.height || !stop_colour ||
                stop_colour->width != cam.width || stop_colour->height != cam.height))
     throw InputError("isosurface reference: the surface images are not the camera's size (" +
                      std::to_string(cam.width) + "x" + std::to_string(cam.height) + ")");
   ImageF img(cam.width, cam.height);
+  if (opaque) *opaque = SurfaceImage(cam.width, cam.height);
   const Box3 box = vol.grid.worldBox();
   std::atomic<int> next_row{0};
   auto worker = [&] {
@@ -184,6 +186,11 @@ ImageF renderIsosurfaceReference(const WholeVolume& vol, const std::vector<Isova
             const Isovalue& iso = isovalues[size_t(h.iso)];
             rgb += transmit * iso.opacity * shadeIsoHit(iso.colour, h.gradient, d, shading);
             transmit *= 1.0 - iso.opacity;
+            if (opaque && iso.opacity >= 1.0) {  // the last hit
+              const double len = glm::length(h.gradient);
+              opaque->t[pixel] = float(h.t);
+              opaque->normal[pixel] = len > 0.0 ? glm::vec3(-h.gradient / len) : glm::vec3(0.0f);
+            }
           }
         }
         double alpha = 1.0 - transmit;

@@ -42,8 +42,12 @@ std::vector<IsoHit> isoCrossings(const WholeVolume& vol, const std::vector<Isova
 
 // The image: premultiplied RGBA. `stop` / `stop_colour` (both or neither): the opaque surface
 // layer, as reference/reference.h's second overload (throws InputError on a size mismatch).
+// `opaque` (optional): the camera's size, per pixel the opaque hit that ends the ray (t, outward
+// unit normal: down the gradient, towards lower values), a miss where none does; in front of
+// `stop` wherever both are, so the nearer of the two is it (--surface-out).
 ImageF renderIsosurfaceReference(const WholeVolume& vol, const std::vector<Isovalue>& isovalues,
                                  const Shading& shading, const Camera& cam, int threads,
-                                 const SurfaceImage* stop = nullptr, const ImageF* stop_colour = nullptr);
+                                 const SurfaceImage* stop = nullptr, const ImageF* stop_colour = nullptr,
+                                 SurfaceImage* opaque = nullptr);
 
 }  // namespace sortlast

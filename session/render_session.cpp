@@ -7,6 +7,7 @@
 
 #include "scene/file_steps.h"
 #include "scene/isosurface_scene.h"
+#include "scene/surface_output.h"
 
 #include "session/auto_spacing.h"
 #include "session/brick_stages.h"
@@ -719,7 +720,7 @@ FrameResult RenderSession::render(const FrameRequest& request) {
   RankFrameStats st;
   st.particles_held = S.particles_held;
   std::vector<SurfacePiece> surfaces;
-  const bool want_surface = (sc.particles.enabled() || !sc.surfaces.empty()) && request.surface;
+  const bool want_surface = hasSurfaceImage(sc) && request.surface;
   S.drawBricks(sc, request, cam, want_surface, st, surfaces);
 
   FrameResult out;

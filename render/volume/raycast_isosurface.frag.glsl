@@ -45,6 +45,12 @@ float g_vol_t0, g_vol_t1;  // where the ray enters and leaves the volume, cut to
 // The debug output (RaycastSettings::iso_debug): the first hit's (t, unit gradient); t = 0: none.
 vec4 g_iso_first = vec4(0.0);
 #endif
+#ifdef ISO_DEPTH
+// The depth output (RaycastRenderer::renderIsoDepth, for --surface-out): the opaque hit's (t,
+// outward unit normal), the normal pointing down the gradient, towards lower values (a metaball
+// surface's outward normal, the field being higher inside); t = 0: no opaque hit in this brick.
+vec4 g_iso_opaque = vec4(0.0);
+#endif
 
 // Where the ray enters and leaves the whole volume (after brickSpan has set g_inv), cut to the
 // clip region (clip.planes, clip.box) by the clipRay every brick evaluates alike on the same
@@ -113,6 +119,9 @@ void isoHit(inout vec4 acc, int i, float t, vec3 dir) {
   if (a >= 1.0) acc.a = 1.0;
 #ifdef ISO_DEBUG
   if (g_iso_first.x == 0.0) g_iso_first = vec4(t, len > 0.0 ? g / len : vec3(0.0));
+#endif
+#ifdef ISO_DEPTH
+  if (a >= 1.0) g_iso_opaque = vec4(t, len > 0.0 ? -g / len : vec3(0.0));  // the ray ends here
 #endif
 }
 

@@ -361,6 +361,9 @@ void main() {
 #ifdef ISO_DEBUG
   acc = g_iso_first;
 #endif
+#ifdef ISO_DEPTH
+  acc = g_iso_opaque;
+#endif
 #endif
   frag = acc;
 }

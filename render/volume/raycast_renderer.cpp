@@ -32,7 +32,8 @@ enum RaycastVariant : unsigned {
   kMipExact = 256,     // MIP_EXACT: render.mip_exact
   kIsosurface = 512,   // ISOSURFACE (and ISO_DEBUG: kIsoDebug): render.blend: isosurface
   kIsoDebug = 1024,
-  kFieldsShift = 11,   // FIELDS n: several fields (flags >> kFieldsShift = n; raycast_fields.cpp)
+  kIsoDepth = 2048,    // ISO_DEPTH: the opaque hit's t and normal (renderIsoDepth)
+  kFieldsShift = 13,   // FIELDS n: several fields (flags >> kFieldsShift = n; raycast_fields.cpp)
 };
 
 // The variant bits of a projection (0: emission-absorption).
@@ -61,6 +62,7 @@ ProgramSources raycastSources(unsigned v) {
       .defineIf(v & kMipExact, "MIP_EXACT")
       .defineIf(v & kIsosurface, "ISOSURFACE")
       .defineIf(v & kIsoDebug, "ISO_DEBUG")
+      .defineIf(v & kIsoDepth, "ISO_DEPTH")
       .addIf(glow, glsl::glow_segment)
       .addIf(glow, glsl::glow_emitters)
       .add(glsl::volume_filter)
@@ -329,9 +331,10 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
   if (has_surface) r = r.empty() ? surface->rect : unite(r, surface->rect);
   if (r.empty()) return out;
 
-  target_.begin(r, has_surface ? surface : nullptr);
+  // The depth pass's pixels are (t, normal), not colours: nothing is copied under them.
+  target_.begin(r, has_surface && !iso_depth_pass_ ? surface : nullptr);
   if (g.any || glowing) {
-    if (!projection && !settings_.iso_debug) {
+    if (!projection && !settings_.iso_debug && !iso_depth_pass_) {
       gl_.Enable(GL_BLEND);
       gl_.BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // the ray's colour over the surface's
     }
@@ -345,7 +348,8 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
         programs_.get((g.adaptive ? kAdaptive : 0) | (preint ? kPreintegrated : 0) |
                       (shading_.enabled && !iso ? kShading : 0) | (float_filter_ ? kFloatFilter : 0) |
                       (glowing ? kGlow : 0) | projection | (iso ? kIsosurface : 0) |
-                      (settings_.iso_debug ? kIsoDebug : 0) | (fields << kFieldsShift));
+                      (settings_.iso_debug ? kIsoDebug : 0) | (iso_depth_pass_ ? kIsoDepth : 0) |
+                      (fields << kFieldsShift));
     gl_.UseProgram(program);
     setPixelRayUniforms(program, cam);
     setClipUniforms(program, clip_);
@@ -404,10 +408,25 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
     gl_.Disable(GL_BLEND);
   }
   out.rect = r;
-  if (glow || projection || settings_.iso_debug)  // a projection's pixels are values and sums: float
+  // A projection's pixels are values and sums, the debug and depth passes' t and normals: float.
+  if (glow || projection || settings_.iso_debug || iso_depth_pass_)
     out.pixels_f = target_.finishFloat(r);
   else
     target_.finish(r, out);
+  return out;
+}
+
+RenderedBrick RaycastRenderer::renderIsoDepth(int handle, const Camera& cam, double spacing,
+                                              const SurfaceLayer* surface) {
+  if (settings_.isovalues.empty()) throw std::logic_error("renderIsoDepth: no isovalues");
+  struct Pass {  // the flag is reset however render() leaves
+    bool& on;
+    explicit Pass(bool& f) : on(f) { on = true; }
+    ~Pass() { on = false; }
+  } pass(iso_depth_pass_);
+  RenderedBrick out = render(handle, cam, spacing, 0.0, 0.0, surface, nullptr);
+  for (size_t i = 0; i < out.pixels_f.size(); i += 4)
+    if (out.pixels_f[i] == 0.0f) out.pixels_f[i] = 1e30f;  // no opaque hit: the surface images' miss
   return out;
 }
 
