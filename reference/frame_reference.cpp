@@ -172,7 +172,10 @@ ImageF FrameReference::render(const Camera& cam, SurfaceImage* surface_out, int 
     else if (g)
       addGlowOnly(out, cam, *g, nullptr);
   } else {
-    if (volume_) {
+    if (volume_ && volume_->blend != VolumeBlend::kComposite) {  // mip / minip, bounded by the layer
+      out = renderProjectionReference(volume_->vol, volume_->tf, cam, volume_->step, threads_, volume_->blend,
+                                      volume_->mip_exact, &*surface, &colour);
+    } else if (volume_) {
       out = renderReference(volume_->vol, volume_->tf, cam, volume_->step, threads_, *surface, colour,
                             volume_->shading, g);
     } else {

@@ -254,6 +254,19 @@ void mergeIsoDepth(std::vector<float>& surface, const Rect& to, const RenderedBr
       for (int c = 0; c < 4; ++c) surface[i + c] = iso.pixels_f[i + c];
 }
 
+// The opaque layer's RGBA8 pixels as a bounded projection's partial pixels without a value
+// (compositing/projection_pixels.h: (0, r + 256 g + 65536 b, 0, 2) where it is hit, else absent),
+// the bytes the ray caster packs (raycast_projection.frag.glsl projectionPixel).
+std::vector<float> boundedLayerPixels(const ImageRGBA8& layer) {
+  std::vector<float> out(layer.px.size(), 0.0f);
+  for (size_t i = 0; i < out.size(); i += 4)
+    if (layer.px[i + 3] > 0) {
+      out[i + 1] = float(uint32_t(layer.px[i]) | uint32_t(layer.px[i + 1]) << 8 | uint32_t(layer.px[i + 2]) << 16);
+      out[i + 3] = 2.0f;
+    }
+  return out;
+}
+
 }  // namespace
 
 BrickFrame BrickRenderer::render(int handle, const Camera& cam, double slice_spacing,
@@ -297,7 +310,11 @@ BrickFrame BrickRenderer::render(int handle, const Camera& cam, double slice_spa
   }
   if (h.volume < 0) {
     out.rect = surface.rect;
-    out.pixels = std::move(surface.pixels);
+    const RaycastRenderer* ray = volume_ ? volume_->raycaster() : nullptr;
+    if (ray && ray->projecting())  // a bounded projection's partial pixels: the layer alone
+      out.pixels_f = boundedLayerPixels(surface.pixels);
+    else
+      out.pixels = std::move(surface.pixels);
     return out;
   }
   // Glow in a volume brick: the ray caster integrates it (the session refuses slicing).

@@ -130,6 +130,7 @@ struct CompositorKey {
   bool overlap = true, rle = true, float_frame = false, emission = false;
   double latency_us = 0, gbps = 0;  // auto's network
   VolumeBlend blend = VolumeBlend::kComposite;  // a projection's partial images and colouring
+  bool bounded = false;                         // ... bounded by particles or surfaces
   bool operator==(const CompositorKey&) const = default;
 };
 
@@ -605,8 +606,9 @@ void RenderSession::State::applyFrameSettings(const Scene& sc, const FrameReques
   const bool projection = sc.hasVolume() && sc.render.projection();
   if (projection)
     *projection_tf = sc.transfer.build(data_min, data_max, layout.grid.minSpacing());
+  const bool bounded = projection && projectionBounded(sc);
   CompositorKey key{c.strategy, c.radix, c.precision, c.overlap, c.rle, float_frame, glow, c.latency_us, c.bandwidth_gbps,
-                    projection ? sc.render.blend : VolumeBlend::kComposite};
+                    projection ? sc.render.blend : VolumeBlend::kComposite, bounded};
   if (compositor && key == compositor_key) return;
   CompositeOptions copts;
   copts.precision = c.precision;
@@ -615,8 +617,8 @@ void RenderSession::State::applyFrameSettings(const Scene& sc, const FrameReques
   copts.float_frame = float_frame;
   copts.emission = glow;
   if (projection) {
-    copts.projection = projectionFormat(sc.render.blend);
-    copts.colour_projection = projectionColouring(sc.render.blend, projection_tf);
+    copts.projection = projectionFormat(sc.render.blend, bounded);
+    copts.colour_projection = projectionColouring(sc.render.blend, projection_tf, bounded);
   }
   copts.network_latency_s = c.latency_us * 1e-6;
   copts.network_bandwidth_Bps = c.bandwidth_gbps * 1e9 / 8;
@@ -649,8 +651,9 @@ void RenderSession::State::drawBricks(const Scene& sc, const FrameRequest& reque
                            sc.sampleSpacingWorld(), near_plane, far_plane, want_surface,
                            sc.glow.enabled(), sc.compositing.rle,
                            sc.render.pipeline == Pipeline::kOverlapped, request.dump_layers,
-                           sc.hasVolume() && sc.render.projection() ? projectionFormat(sc.render.blend)
-                                                                    : WireFormat::RGBA8};
+                           sc.hasVolume() && sc.render.projection()
+                               ? projectionFormat(sc.render.blend, projectionBounded(sc))
+                               : WireFormat::RGBA8};
   try {
     collectively(comm, [&] {
       faults.beforeBricks();

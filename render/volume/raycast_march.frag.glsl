@@ -337,10 +337,15 @@ void main() {
   bool ends_here = t1 < span.y || span.y >= g_vol_t1;
 #endif
   vec4 acc = vec4(0.0);
+#ifdef PROJECTION  // no volume here: the opaque layer's colour alone (raycast_projection.frag.glsl)
+  if (!(t0 < t1)) {
+    frag = projectionPixel(acc, px);
+    return;
+  }
+#endif
 #ifdef MIP_EXACT  // the exact extremum over the brick's own part of the ray: no lattice
-  if (!(t0 < t1)) discard;
   projectExact(acc, t0, t1, dir);
-  frag = acc;
+  frag = projectionPixel(acc, px);
   return;
 #endif
 #ifdef GLOW
@@ -364,6 +369,9 @@ void main() {
 #ifdef ISO_DEPTH
   acc = g_iso_opaque;
 #endif
+#endif
+#ifdef PROJECTION
+  acc = projectionPixel(acc, px);
 #endif
   frag = acc;
 }

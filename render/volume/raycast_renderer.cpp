@@ -310,8 +310,12 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
   const VolumeBrick& b = g.volume;
   RenderedBrick out;
   const unsigned projection = projectionBits(settings_.blend, settings_.mip_exact);
-  if (projection && (glow || (surface && !surface->rect.empty()) || g.adaptive || shading_.enabled))
-    throw std::logic_error("ray caster: a projection with glow, a surface, adaptive blocks or shading");
+  // mip and minip are bounded by an opaque layer (raycast_projection.frag.glsl); the scene refuses
+  // average and additive with one.
+  const bool boundable = settings_.blend == VolumeBlend::kMip || settings_.blend == VolumeBlend::kMinip;
+  if (projection && (glow || (surface && !surface->rect.empty() && !boundable) || g.adaptive || shading_.enabled))
+    throw std::logic_error("ray caster: a projection with glow, adaptive blocks or shading, or average or "
+                           "additive with a surface");
   const bool preint = table_.preintegrated() && !projection;  // segments mean nothing to a projection
   if (preint && g.adaptive)  // the scene refuses this (transfer.preintegrated with adaptive.tolerance)
     throw std::logic_error("ray caster: pre-integration of adaptive bricks is not supported");
@@ -331,9 +335,11 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
   if (has_surface) r = r.empty() ? surface->rect : unite(r, surface->rect);
   if (r.empty()) return out;
 
-  // The depth pass's pixels are (t, normal), not colours: nothing is copied under them.
-  target_.begin(r, has_surface && !iso_depth_pass_ ? surface : nullptr);
-  if (g.any || glowing) {
+  // The depth pass's pixels are (t, normal), not colours: nothing is copied under them; a
+  // projection's carry the layer's colour packed (the shader writes it, also where the brick has
+  // no volume).
+  target_.begin(r, has_surface && !iso_depth_pass_ && !projection ? surface : nullptr);
+  if (g.any || glowing || (projection && has_surface)) {
     if (!projection && !settings_.iso_debug && !iso_depth_pass_) {
       gl_.Enable(GL_BLEND);
       gl_.BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // the ray's colour over the surface's
@@ -400,6 +406,9 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
       program.set("u_block_range", 12);
       gl_.ActiveTexture(GL_TEXTURE12);
       gl_.BindTexture(GL_TEXTURE_3D, g.range);
+      program.set("u_surface_colour", 13);
+      gl_.ActiveTexture(GL_TEXTURE13);
+      gl_.BindTexture(GL_TEXTURE_2D, has_surface ? surface->colour_texture : 0u);
     }
     gl_.ActiveTexture(GL_TEXTURE0);
     gl_.BindTexture(GL_TEXTURE_3D, b.texture);
