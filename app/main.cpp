@@ -201,7 +201,8 @@ int main(int argc, char** argv) {
                      "Write the first frame's brick images (packed, RLE) and their visibility "
                      "order into this directory, for bench_compositing --layers");
   render->add_option("--surface-out", render_opts.surface_out,
-                     "Also write the particle and subdivision surfaces (t, nx, ny, nz per pixel) as EXR");
+                     "Also write the particle, subdivision and opaque isosurfaces (t, nx, ny, nz per "
+                     "pixel) as EXR");
 
   ServeOptions serve_opts;
   auto* serve = app.add_subcommand(
@@ -234,7 +235,7 @@ int main(int argc, char** argv) {
   reference->add_option("--threads", threads, "Worker threads (default: all cores)");
   std::string surface_out;
   reference->add_option("--surface-out", surface_out,
-                        "Also write the metaball and subdivision surfaces (t, nx, ny, nz) as EXR");
+                        "Also write the metaball, subdivision and opaque isosurfaces (t, nx, ny, nz) as EXR");
 
   std::string img_a, img_b, diff_out;
   int max_diff = -1;

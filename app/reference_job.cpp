@@ -11,6 +11,7 @@
 #include "io/image.h"
 #include "scene/file_steps.h"
 #include "scene/scene.h"
+#include "scene/surface_output.h"
 #include "reference/frame_reference.h"
 #include "reference/metaball_reference.h"
 #include "app/progress.h"
@@ -34,9 +35,9 @@ int runReferenceJob(const RenderOptions& opts, int threads, const std::string& s
     Scene scene = loadScene(opts.scene, opts.overrides);
     resolveFileSteps(scene);
     FrameReference reference(scene, threads);
-    if (!surface_out.empty() && !reference.hasParticles() && !reference.hasSurfaces())
-      throw InputError(
-          "--surface-out: the scene has neither particles nor surfaces, so there is no surface to write");
+    if (!surface_out.empty() && !hasSurfaceImage(scene))
+      throw InputError("--surface-out: the scene has neither particles, surfaces nor isosurfaces, so "
+                       "there is no surface to write");
     auto cams = firstFrames(scene.frameCameras(reference.bounds()), opts.max_frames);
     int n = int(cams.size());
     Progress progress(n, opts.quiet);

@@ -15,6 +15,7 @@
 #include "io/frame_writer.h"
 #include "io/movie_writer.h"
 #include "scene/scene.h"
+#include "scene/surface_output.h"
 #include "session/collective.h"
 #include "app/compare.h"
 #include "reference/frame_reference.h"
@@ -199,7 +200,7 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
           output->push(f, std::move(result.image_f));
         else
           output->push(f, std::move(result.image), scene.hasVolume() ? session.transferFunction() : TransferFunction());
-        if (request.surface && (scene.particles.enabled() || !scene.surfaces.empty())) {
+        if (request.surface && hasSurfaceImage(scene)) {
           const std::string surface_file = frameFileName(opts.surface_out, f, frames);
           writer.push(surface_file, [surface_file, surface = std::move(result.surface)] {
             writeSurfaceImage(surface_file, surface);

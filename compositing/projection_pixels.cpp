@@ -15,6 +15,16 @@ namespace sortlast {
 void toProjected(WireFormat f, const float* in, uint8_t* out) {
   std::memset(out, 0, 8);
   if (!projectedPresent(f, in)) return;
+  if (isBoundedProjection(f)) {
+    const bool value = boundedHasValue(in), layer = boundedHasLayer(in);
+    if (value) std::memcpy(out, &in[0], 4);
+    if (layer) {
+      const uint32_t s = uint32_t(std::clamp(in[1], 0.0f, 16777215.0f));
+      out[4] = uint8_t(s & 0xff), out[5] = uint8_t((s >> 8) & 0xff), out[6] = uint8_t(s >> 16);
+    }
+    out[7] = uint8_t((value ? 0x80 : 0) | (layer ? 0x01 : 0));
+    return;
+  }
   if (f == WireFormat::Additive) {
     uint16_t v[4];
     for (int c = 0; c < 3; ++c) v[c] = halfBits(std::clamp(in[c], 0.0f, 65504.0f));
@@ -33,6 +43,17 @@ void toProjected(WireFormat f, const float* in, uint8_t* out) {
 void fromProjected(WireFormat f, const uint8_t* in, float* out) {
   for (int c = 0; c < 4; ++c) out[c] = 0.0f;
   if ((in[6] | in[7]) == 0) return;  // a run's pixel: absent
+  if (isBoundedProjection(f)) {
+    const bool value = in[7] & 0x80, layer = in[7] & 0x01;
+    float v;
+    std::memcpy(&v, in, 4);
+    if (value && std::isfinite(v)) out[0] = v, out[3] += kBoundedValue;  // corrupt v: no value
+    if (layer) {
+      out[1] = float(uint32_t(in[4]) | uint32_t(in[5]) << 8 | uint32_t(in[6]) << 16);
+      out[3] += kBoundedLayer;
+    }
+    return;
+  }
   if (f == WireFormat::Additive) {
     for (int c = 0; c < 4; ++c) {
       const uint16_t h = uint16_t(unsigned(in[2 * c]) | unsigned(in[2 * c + 1]) << 8);

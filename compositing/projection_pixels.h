@@ -23,6 +23,21 @@
 //     clamped to 65504.
 // The colouring through the transfer function happens once, on the final value (Compositor's
 // CompositeOptions::colour_projection).
+//
+// Bounded by an opaque layer (particles or subdivision surfaces in the frame): ValueMaxBounded and
+// ValueMinBounded. A brick's rays stop at its own opaque layer (the ray caster's per-brick surface
+// t), but samples in a brick behind another brick's surface must not count either, and the
+// layer's colour must reach the frame. So the pixel carries the layer's colour, and combine() is
+// over-like, in visibility order (every strategy blends back to front; `src` is in front of
+// `dst`): a front pixel with an opaque layer replaces what lies behind it; one without combines
+// its value with the one behind (max / min) and keeps the layer behind. Associative, not
+// commutative: grouped any way the order allows, every strategy gives the same pixels, exactly.
+//   In float: (v, s, 0, flags), flags = 1 (a value v was taken) + 2 (an opaque layer whose
+//     colour is s = r + 256 g + 65536 b, its 8-bit rgb, exact in float; its alpha is 1); 0: absent.
+//   On the wire (8 bytes, exact): float32 v (0 without a value), the layer's r, g, b bytes, and a
+//     flags byte (0x80: a value; 0x01: a layer), never 0 on a present pixel: byte 7 marks runs.
+// Average and additive have no such format (their pixel has no room for the colour): the scene
+// refuses them with particles or surfaces.
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -32,13 +47,36 @@
 
 namespace sortlast {
 
+inline bool isBoundedProjection(WireFormat f) {
+  return f == WireFormat::ValueMaxBounded || f == WireFormat::ValueMinBounded;
+}
 inline bool isProjection(WireFormat f) {
   return f == WireFormat::ValueMax || f == WireFormat::ValueMin || f == WireFormat::ValueSum ||
-         f == WireFormat::Additive;
+         f == WireFormat::Additive || isBoundedProjection(f);
 }
+
+// The bounded formats' float flags (p[3]) and the layer's packed colour (p[1]).
+inline constexpr float kBoundedValue = 1.0f, kBoundedLayer = 2.0f;
+inline bool boundedHasValue(const float* p) { return p[3] == 1.0f || p[3] == 3.0f; }
+inline bool boundedHasLayer(const float* p) { return p[3] >= 2.0f; }
 
 // dst = dst (op) src, in float, for projection format `f`.
 inline void combineProjected(WireFormat f, const float* src, float* dst) {
+  if (isBoundedProjection(f)) {  // src in front of dst
+    if (boundedHasLayer(src)) {  // the front layer hides all behind it
+      for (int c = 0; c < 4; ++c) dst[c] = src[c];
+      return;
+    }
+    if (!boundedHasValue(src)) return;  // absent: the identity
+    const bool back_layer = boundedHasLayer(dst);
+    if (!boundedHasValue(dst))
+      dst[0] = src[0];
+    else
+      dst[0] = f == WireFormat::ValueMaxBounded ? (src[0] > dst[0] ? src[0] : dst[0])
+                                                : (src[0] < dst[0] ? src[0] : dst[0]);
+    dst[3] = kBoundedValue + (back_layer ? kBoundedLayer : 0.0f);
+    return;
+  }
   if (f == WireFormat::ValueMax || f == WireFormat::ValueMin) {
     if (!(src[3] > 0.0f)) return;  // absent: the identity
     if (!(dst[3] > 0.0f)) {

@@ -138,7 +138,8 @@ ImageRGBA8 radixKComposite(std::vector<BrickImage> mine, const VisibilityOrder& 
                                 std::to_string(ranks));
 
   // 1. Own bricks, then everyone's content rectangle.
-  // A projection's brick images are combined in any order; over needs the visibility order.
+  // In the visibility order: over needs it, and so do the bounded projections' over-like
+  // operator (compositing/projection_pixels.h); for the order-free ones it does not matter.
   RectImage image = blendOwnBricks(mine, order.bricks,
                                    projection ? options.projection
                                               : options.emission ? WireFormat::Emission : WireFormat::RGBA8);

@@ -47,8 +47,9 @@ RectImage crop(const RectImage& img, const Rect& r);
 // is never 0 on a pixel that shows anything (the RLE marks runs by A = 0) and T keeps its relative
 // precision (2^-11) near 0, where it dims bright glow behind dense material.
 // ValueMax, ValueMin, ValueSum, Additive: the projection blend modes' partial images
-// (compositing/projection_pixels.h), combined by max, min or sum instead of over.
-enum class WireFormat { RGBA8, RGBA16, Emission, ValueMax, ValueMin, ValueSum, Additive };
+// (compositing/projection_pixels.h), combined by max, min or sum instead of over;
+// ValueMaxBounded, ValueMinBounded: mip and minip bounded by an opaque layer, which carry it.
+enum class WireFormat { RGBA8, RGBA16, Emission, ValueMax, ValueMin, ValueSum, Additive, ValueMaxBounded, ValueMinBounded };
 inline int pixelBytes(WireFormat f) { return f == WireFormat::RGBA8 ? 4 : 8; }
 
 // Whether a float pixel shows anything: alpha > 0, or (emission) light without opacity. Without

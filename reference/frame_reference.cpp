@@ -151,9 +151,17 @@ ImageF FrameReference::render(const Camera& cam, SurfaceImage* surface_out, int 
   if (!fields_.empty())  // the scene refuses particles, surfaces and glow with several fields
     return renderFieldsReference(fields_, bounds_, cam, fields_step_, threads_, fields_clip_);
   if (volume_ && !volume_->isovalues.empty()) {
+    SurfaceImage iso;
     out = renderIsosurfaceReference(volume_->vol, volume_->isovalues, volume_->shading, cam, threads_,
-                                    surface ? &*surface : nullptr, surface ? &colour : nullptr);
-    if (surface && surface_out) *surface_out = std::move(*surface);
+                                    surface ? &*surface : nullptr, surface ? &colour : nullptr,
+                                    surface_out ? &iso : nullptr);
+    if (surface_out) {
+      // The opaque hits lie in front of the layer (the rays end there): the nearer per pixel.
+      if (surface)
+        for (size_t i = 0; i < iso.t.size(); ++i)
+          if (iso.hit(i) && !(surface->t[i] <= iso.t[i])) surface->t[i] = iso.t[i], surface->normal[i] = iso.normal[i];
+      *surface_out = surface ? std::move(*surface) : std::move(iso);
+    }
   } else if (!surface) {
     if (volume_ && volume_->blend != VolumeBlend::kComposite)  // the scene refuses glow with it
       out = renderProjectionReference(volume_->vol, volume_->tf, cam, volume_->step, threads_,
@@ -163,7 +171,10 @@ ImageF FrameReference::render(const Camera& cam, SurfaceImage* surface_out, int 
     else if (g)
       addGlowOnly(out, cam, *g, nullptr);
   } else {
-    if (volume_) {
+    if (volume_ && volume_->blend != VolumeBlend::kComposite) {  // mip / minip, bounded by the layer
+      out = renderProjectionReference(volume_->vol, volume_->tf, cam, volume_->step, threads_, volume_->blend,
+                                      volume_->mip_exact, &*surface, &colour);
+    } else if (volume_) {
       out = renderReference(volume_->vol, volume_->tf, cam, volume_->step, threads_, *surface, colour,
                             volume_->shading, g);
     } else {

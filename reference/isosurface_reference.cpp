@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "common/box.h"
+#include "common/clip.h"
 #include "common/error.h"
 
 namespace sortlast {
@@ -155,12 +156,14 @@ std::vector<IsoHit> isoCrossings(const WholeVolume& vol, const std::vector<Isova
 
 ImageF renderIsosurfaceReference(const WholeVolume& vol, const std::vector<Isovalue>& isovalues,
                                  const Shading& shading, const Camera& cam, int threads,
-                                 const SurfaceImage* stop, const ImageF* stop_colour) {
+                                 const SurfaceImage* stop, const ImageF* stop_colour,
+                                 SurfaceImage* opaque) {
   if (stop && (stop->width != cam.width || stop->height != cam.height || !stop_colour ||
                stop_colour->width != cam.width || stop_colour->height != cam.height))
     throw InputError("isosurface reference: the surface images are not the camera's size (" +
                      std::to_string(cam.width) + "x" + std::to_string(cam.height) + ")");
   ImageF img(cam.width, cam.height);
+  if (opaque) *opaque = SurfaceImage(cam.width, cam.height);
   const Box3 box = vol.grid.worldBox();
   std::atomic<int> next_row{0};
   auto worker = [&] {
@@ -175,11 +178,19 @@ ImageF renderIsosurfaceReference(const WholeVolume& vol, const std::vector<Isova
         double t0, t1;
         if (intersectRayBox(o, d, box, t0, t1)) {
           t0 = std::max(t0, 0.0);
+          // The clip region (common/clip.h) cuts the span the crossings are searched in: a
+          // crossing counts only inside it (the field's side at the cut is where the search starts).
+          clipSpan(vol.clip, o, d, t0, t1);
           if (hit_surface) t1 = std::min(t1, double(stop->t[pixel]));
           for (const IsoHit& h : isoCrossings(vol, isovalues, o, d, t0, t1)) {
             const Isovalue& iso = isovalues[size_t(h.iso)];
             rgb += transmit * iso.opacity * shadeIsoHit(iso.colour, h.gradient, d, shading);
             transmit *= 1.0 - iso.opacity;
+            if (opaque && iso.opacity >= 1.0) {  // the last hit
+              const double len = glm::length(h.gradient);
+              opaque->t[pixel] = float(h.t);
+              opaque->normal[pixel] = len > 0.0 ? glm::vec3(-h.gradient / len) : glm::vec3(0.0f);
+            }
           }
         }
         double alpha = 1.0 - transmit;

@@ -16,7 +16,9 @@
 // The hits are composited front to back (each isovalue's colour shaded with the exact gradient of
 // the interpolant in the hit's cell, transfer/isosurface.h) up to the first opaque one, the ray's
 // end at the volume's far face or the opaque surface layer's t, whose colour goes behind, as in
-// reference/reference.h.
+// reference/reference.h. The volume's clip region (WholeVolume::clip) cuts the span first: the
+// search starts at the clip entry, whose side of each isovalue is the starting one (no surface on
+// the cut face), as the ray caster's.
 #include <vector>
 
 #include "common/camera.h"
@@ -40,8 +42,12 @@ std::vector<IsoHit> isoCrossings(const WholeVolume& vol, const std::vector<Isova
 
 // The image: premultiplied RGBA. `stop` / `stop_colour` (both or neither): the opaque surface
 // layer, as reference/reference.h's second overload (throws InputError on a size mismatch).
+// `opaque` (optional): the camera's size, per pixel the opaque hit that ends the ray (t, outward
+// unit normal: down the gradient, towards lower values), a miss where none does; in front of
+// `stop` wherever both are, so the nearer of the two is it (--surface-out).
 ImageF renderIsosurfaceReference(const WholeVolume& vol, const std::vector<Isovalue>& isovalues,
                                  const Shading& shading, const Camera& cam, int threads,
-                                 const SurfaceImage* stop = nullptr, const ImageF* stop_colour = nullptr);
+                                 const SurfaceImage* stop = nullptr, const ImageF* stop_colour = nullptr,
+                                 SurfaceImage* opaque = nullptr);
 
 }  // namespace sortlast

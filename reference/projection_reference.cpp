@@ -4,8 +4,10 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <thread>
 
+#include "common/error.h"
 #include "transfer/projection_colour.h"
 
 namespace sortlast {
@@ -96,7 +98,7 @@ double exactExtremum(const WholeVolume& vol, const glm::dvec3& o, const glm::dve
 }
 
 ImageF projectReference(const WholeVolume& vol, const TransferFunction& tf, const Camera& cam,
-                        double step, int threads, VolumeBlend blend, bool exact) {
+                        double step, int threads, VolumeBlend blend, bool exact, const SurfaceImage* stop) {
   ImageF img(cam.width, cam.height);
   const Box3 box = vol.grid.worldBox();
   const bool largest = blend == VolumeBlend::kMip;
@@ -110,6 +112,8 @@ ImageF projectReference(const WholeVolume& vol, const TransferFunction& tf, cons
         if (!intersectRayBox(o, d, box, t0, t1)) continue;
         t0 = std::max(t0, 0.0);
         clipSpan(vol.clip, o, d, t0, t1);  // clip.planes, clip.box (common/clip.h)
+        const size_t pixel = size_t(y) * cam.width + x;
+        if (stop && stop->hit(pixel)) t1 = std::min(t1, double(stop->t[pixel]));  // the first opaque hit
         if (!(t1 > t0)) continue;
         float* p = &img.px[(size_t(y) * cam.width + x) * 4];
         if (exact && !vol.adaptive) {
@@ -151,17 +155,26 @@ ImageF projectReference(const WholeVolume& vol, const TransferFunction& tf, cons
 }
 
 ImageF renderProjectionReference(const WholeVolume& vol, const TransferFunction& tf, const Camera& cam,
-                                 double step, int threads, VolumeBlend blend, bool exact) {
-  ImageF img = projectReference(vol, tf, cam, step, threads, blend, exact);
+                                 double step, int threads, VolumeBlend blend, bool exact,
+                                 const SurfaceImage* stop, const ImageF* stop_colour) {
+  if (stop && (stop->width != cam.width || stop->height != cam.height || !stop_colour ||
+               stop_colour->width != cam.width || stop_colour->height != cam.height))
+    throw InputError("projection reference: the surface images are not the camera's size (" +
+                     std::to_string(cam.width) + "x" + std::to_string(cam.height) + ")");
+  ImageF img = projectReference(vol, tf, cam, step, threads, blend, exact, stop);
   for (size_t i = 0; i < img.px.size(); i += 4) {
     float* p = &img.px[i];
     if (blend == VolumeBlend::kAdditive) {
       clampAdditive(p);
-      continue;
+    } else if (p[3] > 0.0f) {
+      const auto c = projectedColour(tf, double(p[0]));  // in double, of the float value
+      for (int k = 0; k < 4; ++k) p[k] = float(c[k]);
     }
-    if (!(p[3] > 0.0f)) continue;
-    const auto c = projectedColour(tf, double(p[0]));  // in double, of the float value
-    for (int k = 0; k < 4; ++k) p[k] = float(c[k]);
+    if (stop && stop->hit(i / 4)) {  // the projection's colour over the opaque layer's
+      const float* s = &stop_colour->px[i];
+      const double t = 1.0 - double(p[3]);
+      for (int k = 0; k < 4; ++k) p[k] = float(double(p[k]) + t * double(s[k]));
+    }
   }
   return img;
 }

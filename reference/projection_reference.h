@@ -12,6 +12,7 @@
 // MIP_EXACT variant computes in float (render/volume/raycast_projection.frag.glsl).
 #include "common/camera.h"
 #include "io/image.h"
+#include "io/surface_image.h"
 #include "reference/reference.h"
 #include "scene/sections.h"
 #include "transfer/transfer_function.h"
@@ -19,13 +20,19 @@
 namespace sortlast {
 
 // The projected pixels before colouring: (v, 0, 0, 1) for mip / minip, (mean, 0, 0, 1) for
-// average, (sum c a, sum a) for additive; zero where the ray takes no sample.
+// average, (sum c a, sum a) for additive; zero where the ray takes no sample. `stop` (optional, the
+// camera's size): the opaque layer (particles and subdivision surfaces, reference/frame_reference.h);
+// each ray's span ends at its t, so only samples in front of the first opaque hit count.
 ImageF projectReference(const WholeVolume& vol, const TransferFunction& tf, const Camera& cam,
-                        double step, int threads, VolumeBlend blend, bool exact);
+                        double step, int threads, VolumeBlend blend, bool exact,
+                        const SurfaceImage* stop = nullptr);
 
-// The frame: projectReference's values coloured (transfer/projection_colour.h).
+// The frame: projectReference's values coloured (transfer/projection_colour.h), over the opaque
+// layer's colour `stop_colour` where `stop` is hit (both or neither; throws InputError on a size
+// mismatch).
 ImageF renderProjectionReference(const WholeVolume& vol, const TransferFunction& tf, const Camera& cam,
-                                 double step, int threads, VolumeBlend blend, bool exact);
+                                 double step, int threads, VolumeBlend blend, bool exact,
+                                 const SurfaceImage* stop = nullptr, const ImageF* stop_colour = nullptr);
 
 // The exact extremum (max if `largest`, else min) of the trilinear field of `vol` along
 // o + t d, t in [t0, t1] (world units): NaN if every cell the segment crosses touches a NaN.

@@ -242,6 +242,33 @@ void recutSurface(std::vector<float>& surface, const Rect& from, const Rect& to)
   surface = std::move(cut);
 }
 
+// The isosurface's opaque hits (t, normal; t = 1e30: none) into the brick's surface floats
+// (rect `to`; empty: no particle or subdivision surface in the brick), the nearer per pixel. The
+// rays end at the opaque layer, so a hit is never behind it.
+void mergeIsoDepth(std::vector<float>& surface, const Rect& to, const RenderedBrick& iso) {
+  if (iso.rect != to) throw std::logic_error("isosurface depth: not the brick image's rectangle");
+  if (surface.empty()) {
+    surface.assign(size_t(to.area()) * 4, 0.0f);
+    for (size_t i = 0; i < surface.size(); i += 4) surface[i] = 1e30f;
+  }
+  for (size_t i = 0; i < surface.size(); i += 4)
+    if (iso.pixels_f[i] < surface[i])
+      for (int c = 0; c < 4; ++c) surface[i + c] = iso.pixels_f[i + c];
+}
+
+// The opaque layer's RGBA8 pixels as a bounded projection's partial pixels without a value
+// (compositing/projection_pixels.h: (0, r + 256 g + 65536 b, 0, 2) where it is hit, else absent),
+// the bytes the ray caster packs (raycast_projection.frag.glsl projectionPixel).
+std::vector<float> boundedLayerPixels(const ImageRGBA8& layer) {
+  std::vector<float> out(layer.px.size(), 0.0f);
+  for (size_t i = 0; i < out.size(); i += 4)
+    if (layer.px[i + 3] > 0) {
+      out[i + 1] = float(uint32_t(layer.px[i]) | uint32_t(layer.px[i + 1]) << 8 | uint32_t(layer.px[i + 2]) << 16);
+      out[i + 3] = 2.0f;
+    }
+  return out;
+}
+
 }  // namespace
 
 BrickFrame BrickRenderer::render(int handle, const Camera& cam, double slice_spacing,
@@ -285,12 +312,21 @@ BrickFrame BrickRenderer::render(int handle, const Camera& cam, double slice_spa
   }
   if (h.volume < 0) {
     out.rect = surface.rect;
-    out.pixels = std::move(surface.pixels);
+    const RaycastRenderer* ray = volume_ ? volume_->raycaster() : nullptr;
+    if (ray && ray->projecting())  // a bounded projection's partial pixels: the layer alone
+      out.pixels_f = boundedLayerPixels(surface.pixels);
+    else
+      out.pixels = std::move(surface.pixels);
     return out;
   }
   // Glow in a volume brick: the ray caster integrates it (the session refuses slicing).
   std::optional<GlowPass> glow;
   if (glow_) glow = glow_->pass(h.glow ? h.glow_box : noBox(), h.glow_whole);
+  // An isosurface's opaque hit is a surface too (--surface-out): its depth pass goes first, as
+  // render() leaves its image in the target the pass draws into.
+  RaycastRenderer* iso_ray = want_surface ? volume_->raycaster() : nullptr;
+  RenderedBrick iso_depth;
+  if (iso_ray && iso_ray->isosurfaces()) iso_depth = iso_ray->renderIsoDepth(h.volume, cam, slice_spacing, opaque);
   RenderedBrick rb;
   if (glow) {
     RaycastRenderer* ray = volume_->raycaster();
@@ -301,6 +337,7 @@ BrickFrame BrickRenderer::render(int handle, const Camera& cam, double slice_spa
   }
   // The surface floats cover the layer's rectangle; re-cut them to the brick image's rectangle.
   recutSurface(out.surface, surface.rect, rb.rect);
+  if (!iso_depth.rect.empty()) mergeIsoDepth(out.surface, rb.rect, iso_depth);
   out.rect = rb.rect;
   out.pixels = std::move(rb.pixels);
   out.pixels_f = std::move(rb.pixels_f);

@@ -91,11 +91,6 @@ void applyIsosurfaceRules(const Reader& r, Scene& s) {
   if (!s.render.raycast())
     throw InputError("scene keys 'render.blend' and 'render.method': isosurfaces are drawn by the "
                      "ray caster only; set render.method: raycast (slicing cannot do them)");
-  // A crossing is found between a lattice sample and the one before it, which may lie outside a
-  // clip region where the ray enters it: the surface would show in front of the cut.
-  if (s.clip.active())
-    throw InputError("scene keys 'render.blend' and 'clip': isosurfaces cannot be clipped yet; "
-                     "remove clip.planes and clip.box, or use render.blend: composite");
   if (s.adaptive.tolerance > 0.0)
     throw InputError("scene keys 'render.blend' and 'adaptive.tolerance': isosurfaces are not "
                      "available with adaptive sampling; set adaptive.tolerance: 0");

@@ -1,13 +1,21 @@
 #include "session/projection_frame.h"
 
+#include <array>
+#include <cstdint>
 #include <stdexcept>
 
 #include "common/pixel_threads.h"
+#include "compositing/projection_pixels.h"
 #include "transfer/projection_colour.h"
 
 namespace sortlast {
 
-WireFormat projectionFormat(VolumeBlend blend) {
+WireFormat projectionFormat(VolumeBlend blend, bool bounded) {
+  if (bounded) {
+    if (blend == VolumeBlend::kMip) return WireFormat::ValueMaxBounded;
+    if (blend == VolumeBlend::kMinip) return WireFormat::ValueMinBounded;
+    throw std::logic_error("projectionFormat: only mip and minip are bounded by opaque surfaces");
+  }
   switch (blend) {
     case VolumeBlend::kMip: return WireFormat::ValueMax;
     case VolumeBlend::kMinip: return WireFormat::ValueMin;
@@ -18,13 +26,25 @@ WireFormat projectionFormat(VolumeBlend blend) {
 }
 
 std::function<void(float*, size_t)> projectionColouring(VolumeBlend blend,
-                                                        std::shared_ptr<const TransferFunction> tf) {
-  if (projectionFormat(blend) == WireFormat::RGBA8)
+                                                        std::shared_ptr<const TransferFunction> tf,
+                                                        bool bounded) {
+  if (projectionFormat(blend, bounded) == WireFormat::RGBA8)
     throw std::logic_error("projectionColouring: not a projection");
-  return [blend, tf](float* px, size_t n) {
+  return [blend, tf, bounded](float* px, size_t n) {
     parallelFor(n, size_t(1) << 14, [&](size_t b, size_t e) {
       for (size_t i = b; i < e; ++i) {
         float* p = px + 4 * i;
+        if (bounded) {  // (v, packed layer rgb, 0, flags): compositing/projection_pixels.h
+          const bool layer = boundedHasLayer(p);
+          std::array<double, 4> c{0.0, 0.0, 0.0, 0.0};
+          if (boundedHasValue(p)) c = projectedColour(*tf, double(p[0]));
+          if (layer) {
+            const uint32_t s = uint32_t(p[1]);
+            c = overOpaque(c, {(s & 0xff) / 255.0, ((s >> 8) & 0xff) / 255.0, (s >> 16) / 255.0});
+          }
+          for (int k = 0; k < 4; ++k) p[k] = float(c[k]);
+          continue;
+        }
         if (blend == VolumeBlend::kAdditive) {
           clampAdditive(p);
           continue;

@@ -7,19 +7,28 @@
 #include <memory>
 
 #include "compositing/rect_image.h"
+#include "scene/scene.h"
 #include "scene/sections.h"
 #include "transfer/transfer_function.h"
 
 namespace sortlast {
 
+// Whether a projection is bounded by an opaque layer: particles or subdivision surfaces in the frame.
+inline bool projectionBounded(const Scene& s) { return s.particles.enabled() || !s.surfaces.empty(); }
+
 // The wire format of a projection's partial images; RGBA8 for composite (not a projection).
-WireFormat projectionFormat(VolumeBlend blend);
+// `bounded`: particles or subdivision surfaces in the frame (mip and minip only: the formats that
+// carry the opaque layer, compositing/projection_pixels.h; throws std::logic_error for the others,
+// which the scene refuses).
+WireFormat projectionFormat(VolumeBlend blend, bool bounded = false);
 
 // Colours combined pixels in place: mip / minip (v, ., ., 1) and average (sum, ., ., count) to
 // (c(v) a(v), a(v)) of v = the value or sum / count (transfer/projection_colour.h); additive sums
 // clamped to [0, 1]; an absent pixel stays transparent. `tf` is read at each call (the session
-// keeps it current as requests change the transfer function).
+// keeps it current as requests change the transfer function). `bounded` (projectionFormat's):
+// the value's colour over the opaque layer's (transfer/projection_colour.h overOpaque).
 std::function<void(float*, size_t)> projectionColouring(VolumeBlend blend,
-                                                        std::shared_ptr<const TransferFunction> tf);
+                                                        std::shared_ptr<const TransferFunction> tf,
+                                                        bool bounded = false);
 
 }  // namespace sortlast

@@ -7,6 +7,7 @@
 
 #include "scene/file_steps.h"
 #include "scene/isosurface_scene.h"
+#include "scene/surface_output.h"
 
 #include "session/auto_spacing.h"
 #include "session/brick_stages.h"
@@ -132,6 +133,7 @@ struct CompositorKey {
   bool overlap = true, rle = true, float_frame = false, emission = false;
   double latency_us = 0, gbps = 0;  // auto's network
   VolumeBlend blend = VolumeBlend::kComposite;  // a projection's partial images and colouring
+  bool bounded = false;                         // ... bounded by particles or surfaces
   bool operator==(const CompositorKey&) const = default;
 };
 
@@ -650,8 +652,9 @@ void RenderSession::State::applyFrameSettings(const Scene& sc, const FrameReques
   const bool projection = sc.hasVolume() && sc.render.projection();
   if (projection)
     *projection_tf = sc.transfer.build(data_min, data_max, layout.grid.minSpacing());
+  const bool bounded = projection && projectionBounded(sc);
   CompositorKey key{c.strategy, c.radix, c.precision, c.overlap, c.rle, float_frame, glow, c.latency_us, c.bandwidth_gbps,
-                    projection ? sc.render.blend : VolumeBlend::kComposite};
+                    projection ? sc.render.blend : VolumeBlend::kComposite, bounded};
   if (compositor && key == compositor_key) return;
   CompositeOptions copts;
   copts.precision = c.precision;
@@ -660,8 +663,8 @@ void RenderSession::State::applyFrameSettings(const Scene& sc, const FrameReques
   copts.float_frame = float_frame;
   copts.emission = glow;
   if (projection) {
-    copts.projection = projectionFormat(sc.render.blend);
-    copts.colour_projection = projectionColouring(sc.render.blend, projection_tf);
+    copts.projection = projectionFormat(sc.render.blend, bounded);
+    copts.colour_projection = projectionColouring(sc.render.blend, projection_tf, bounded);
   }
   copts.network_latency_s = c.latency_us * 1e-6;
   copts.network_bandwidth_Bps = c.bandwidth_gbps * 1e9 / 8;
@@ -694,8 +697,9 @@ void RenderSession::State::drawBricks(const Scene& sc, const FrameRequest& reque
                            sc.sampleSpacingWorld(), near_plane, far_plane, want_surface,
                            sc.glow.enabled(), sc.compositing.rle,
                            sc.render.pipeline == Pipeline::kOverlapped, request.dump_layers,
-                           sc.hasVolume() && sc.render.projection() ? projectionFormat(sc.render.blend)
-                                                                    : WireFormat::RGBA8};
+                           sc.hasVolume() && sc.render.projection()
+                               ? projectionFormat(sc.render.blend, projectionBounded(sc))
+                               : WireFormat::RGBA8};
   try {
     collectively(comm, [&] {
       faults.beforeBricks();
@@ -765,7 +769,7 @@ FrameResult RenderSession::render(const FrameRequest& request) {
   RankFrameStats st;
   st.particles_held = S.particles_held;
   std::vector<SurfacePiece> surfaces;
-  const bool want_surface = (sc.particles.enabled() || !sc.surfaces.empty()) && request.surface;
+  const bool want_surface = hasSurfaceImage(sc) && request.surface;
   S.drawBricks(sc, request, cam, want_surface, st, surfaces);
 
   FrameResult out;

@@ -11,7 +11,8 @@ SurfaceImage gatherSurface(const std::vector<SurfacePiece>& mine, int width, int
   // One float message per rank: for each piece x, y, w, h (exact in float below 2^24), then data.
   std::vector<float> packed;
   for (const SurfacePiece& p : mine) {
-    if (p.rect.empty()) continue;
+    // A brick without surface floats (no opaque surface in it) sends nothing.
+    if (p.rect.empty() || p.data.size() != size_t(p.rect.area()) * 4) continue;
     packed.insert(packed.end(), {float(p.rect.x), float(p.rect.y), float(p.rect.w), float(p.rect.h)});
     packed.insert(packed.end(), p.data.begin(), p.data.end());
   }

@@ -16,6 +16,13 @@ inline std::array<double, 4> projectedColour(const TransferFunction& tf, double 
   return {c[0] * a, c[1] * a, c[2] * a, a};
 }
 
+// A projection's colour `c` (premultiplied) in front of an opaque layer of colour `layer`: the
+// pixel of a projection bounded by particles or surfaces (its samples all lie in front of them).
+inline std::array<double, 4> overOpaque(const std::array<double, 4>& c, const std::array<double, 3>& layer) {
+  const double t = 1.0 - c[3];
+  return {c[0] + t * layer[0], c[1] + t * layer[1], c[2] + t * layer[2], 1.0};
+}
+
 // Additive sums (premultiplied emission and the sum of opacities) to a displayable pixel: each
 // channel clamped to [0, 1] (rgb <= alpha before, so after too).
 inline void clampAdditive(float* p) {

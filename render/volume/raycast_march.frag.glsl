@@ -383,14 +383,21 @@ void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
   if (surfaceAt(px)) t1 = min(t1, texelFetch(u_surface, px, 0).x);
 #ifdef ISOSURFACE
-  isoBegin();
-  bool ends_here = t1 < span.y || span.y >= g_vol_t1;  // at the surface, or leaving the volume
+  isoBegin(dir);
+  // At the surface, or leaving the volume or the clip region (span.y and g_vol_t1 are both the
+  // min over the same clip candidates, of this brick's exit and of the volume's).
+  bool ends_here = t1 < span.y || span.y >= g_vol_t1;
 #endif
   vec4 acc = vec4(0.0);
+#ifdef PROJECTION  // no volume here: the opaque layer's colour alone (raycast_projection.frag.glsl)
+  if (!(t0 < t1)) {
+    frag = projectionPixel(acc, px);
+    return;
+  }
+#endif
 #ifdef MIP_EXACT  // the exact extremum over the brick's own part of the ray: no lattice
-  if (!(t0 < t1)) discard;
   projectExact(acc, t0, t1, dir);
-  frag = acc;
+  frag = projectionPixel(acc, px);
   return;
 #endif
 #ifdef GLOW
@@ -423,6 +430,12 @@ void main() {
 #ifdef ISO_DEBUG
   acc = g_iso_first;
 #endif
+#ifdef ISO_DEPTH
+  acc = g_iso_opaque;
+#endif
+#endif
+#ifdef PROJECTION
+  acc = projectionPixel(acc, px);
 #endif
   frag = acc;
 }

@@ -17,10 +17,28 @@
 // k0 + k1 s + k2 s^2 + k3 s^3 in s in [0, 1] over the cell's segment; its extremum is at an end
 // or at a root of the derivative k1 + 2 k2 s + 3 k3 s^2 inside (0, 1). A cell touching a NaN
 // corner is skipped.
+//
+// Bounded by an opaque layer (particles or subdivision surfaces; mip and minip): the rays end at
+// the brick's layer t as every variant's do (raycast_march.frag.glsl main), and the pixel carries
+// the layer's colour for the compositor's over-like operator (compositing/projection_pixels.h's
+// bounded formats): (v, r + 256 g + 65536 b of its 8-bit rgb, 0, flags), flags = 1 (a value) + 2
+// (a layer). Without a layer the pixel is the unbounded one, (v, 0, 0, 1) or absent.
 #ifndef PROJECTION
 #error raycast_projection.frag.glsl needs PROJECTION
 #endif
 #define ERT_REACHED(a) false
+
+#if PROJECTION <= 2
+uniform sampler2D u_surface_colour;  // the layer's colour (premultiplied RGBA32F, alpha 1 where hit)
+// The partial pixel of ray result acc at px: with the opaque layer's colour where the brick has one.
+vec4 projectionPixel(vec4 acc, ivec2 px) {
+  if (!surfaceAt(px) || !(texelFetch(u_surface, px, 0).x < 1e29)) return acc;
+  uvec3 b = uvec3(clamp(texelFetch(u_surface_colour, px, 0).rgb, 0.0, 1.0) * 255.0 + 0.5);
+  return vec4(acc.x, float(b.r + 256u * b.g + 65536u * b.b), 0.0, acc.w + 2.0);
+}
+#else
+vec4 projectionPixel(vec4 acc, ivec2 px) { return acc; }  // average, additive: never bounded
+#endif
 
 // mip / minip: a block whose samples all lie at or below (above) what the ray already holds cannot
 // change it, and is jumped: u_block_range holds each block's (min, max) over the samples of its

@@ -32,7 +32,8 @@ enum RaycastVariant : unsigned {
   kMipExact = 256,     // MIP_EXACT: render.mip_exact
   kIsosurface = 512,   // ISOSURFACE (and ISO_DEBUG: kIsoDebug): render.blend: isosurface
   kIsoDebug = 1024,
-  kFieldsShift = 11,   // FIELDS n: several fields (flags >> kFieldsShift = n; raycast_fields.cpp)
+  kIsoDepth = 2048,    // ISO_DEPTH: the opaque hit's t and normal (renderIsoDepth)
+  kFieldsShift = 13,   // FIELDS n: several fields (flags >> kFieldsShift = n; raycast_fields.cpp)
 };
 
 // The variant bits of a projection (0: emission-absorption).
@@ -61,6 +62,7 @@ ProgramSources raycastSources(unsigned v) {
       .defineIf(v & kMipExact, "MIP_EXACT")
       .defineIf(v & kIsosurface, "ISOSURFACE")
       .defineIf(v & kIsoDebug, "ISO_DEBUG")
+      .defineIf(v & kIsoDepth, "ISO_DEPTH")
       .addIf(glow, glsl::glow_segment)
       .addIf(glow, glsl::glow_emitters)
       .add(glsl::volume_filter)
@@ -309,8 +311,12 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
   const VolumeBrick& b = g.volume;
   RenderedBrick out;
   const unsigned projection = projectionBits(settings_.blend, settings_.mip_exact);
-  if (projection && (glow || (surface && !surface->rect.empty()) || g.adaptive || shading_.enabled))
-    throw std::logic_error("ray caster: a projection with glow, a surface, adaptive blocks or shading");
+  // mip and minip are bounded by an opaque layer (raycast_projection.frag.glsl); the scene refuses
+  // average and additive with one.
+  const bool boundable = settings_.blend == VolumeBlend::kMip || settings_.blend == VolumeBlend::kMinip;
+  if (projection && (glow || (surface && !surface->rect.empty() && !boundable) || g.adaptive || shading_.enabled))
+    throw std::logic_error("ray caster: a projection with glow, adaptive blocks or shading, or average or "
+                           "additive with a surface");
   const bool preint = table_.preintegrated() && !projection;  // segments mean nothing to a projection
   if (preint && g.adaptive)  // the scene refuses this (transfer.preintegrated with adaptive.tolerance)
     throw std::logic_error("ray caster: pre-integration of adaptive bricks is not supported");
@@ -330,9 +336,12 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
   if (has_surface) r = r.empty() ? surface->rect : unite(r, surface->rect);
   if (r.empty()) return out;
 
-  target_.begin(r, has_surface ? surface : nullptr);
-  if (g.any || glowing) {
-    if (!projection && !settings_.iso_debug) {
+  // The depth pass's pixels are (t, normal), not colours: nothing is copied under them; a
+  // projection's carry the layer's colour packed (the shader writes it, also where the brick has
+  // no volume).
+  target_.begin(r, has_surface && !iso_depth_pass_ && !projection ? surface : nullptr);
+  if (g.any || glowing || (projection && has_surface)) {
+    if (!projection && !settings_.iso_debug && !iso_depth_pass_) {
       gl_.Enable(GL_BLEND);
       gl_.BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // the ray's colour over the surface's
     }
@@ -346,7 +355,8 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
         programs_.get((g.adaptive ? kAdaptive : 0) | (preint ? kPreintegrated : 0) |
                       (shading_.enabled && !iso ? kShading : 0) | (float_filter_ ? kFloatFilter : 0) |
                       (glowing ? kGlow : 0) | projection | (iso ? kIsosurface : 0) |
-                      (settings_.iso_debug ? kIsoDebug : 0) | (fields << kFieldsShift));
+                      (settings_.iso_debug ? kIsoDebug : 0) | (iso_depth_pass_ ? kIsoDepth : 0) |
+                      (fields << kFieldsShift));
     gl_.UseProgram(program);
     setPixelRayUniforms(program, cam);
     setClipUniforms(program, clip_);
@@ -401,6 +411,9 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
       program.set("u_block_range", 12);
       gl_.ActiveTexture(GL_TEXTURE12);
       gl_.BindTexture(GL_TEXTURE_3D, g.range);
+      program.set("u_surface_colour", 13);
+      gl_.ActiveTexture(GL_TEXTURE13);
+      gl_.BindTexture(GL_TEXTURE_2D, has_surface ? surface->colour_texture : 0u);
     }
     gl_.ActiveTexture(GL_TEXTURE0);
     gl_.BindTexture(GL_TEXTURE_3D, b.texture);
@@ -409,10 +422,25 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
     gl_.Disable(GL_BLEND);
   }
   out.rect = r;
-  if (glow || projection || settings_.iso_debug)  // a projection's pixels are values and sums: float
+  // A projection's pixels are values and sums, the debug and depth passes' t and normals: float.
+  if (glow || projection || settings_.iso_debug || iso_depth_pass_)
     out.pixels_f = target_.finishFloat(r);
   else
     target_.finish(r, out);
+  return out;
+}
+
+RenderedBrick RaycastRenderer::renderIsoDepth(int handle, const Camera& cam, double spacing,
+                                              const SurfaceLayer* surface) {
+  if (settings_.isovalues.empty()) throw std::logic_error("renderIsoDepth: no isovalues");
+  struct Pass {  // the flag is reset however render() leaves
+    bool& on;
+    explicit Pass(bool& f) : on(f) { on = true; }
+    ~Pass() { on = false; }
+  } pass(iso_depth_pass_);
+  RenderedBrick out = render(handle, cam, spacing, 0.0, 0.0, surface, nullptr);
+  for (size_t i = 0; i < out.pixels_f.size(); i += 4)
+    if (out.pixels_f[i] == 0.0f) out.pixels_f[i] = 1e30f;  // no opaque hit: the surface images' miss
   return out;
 }
 

@@ -86,6 +86,7 @@ class RaycastRenderer : public VolumeRenderer {
   // Early ray termination and adaptive stepping can change between frames.
   void setSettings(const RaycastSettings& settings) { settings_ = settings; }
   bool projecting() const { return settings_.blend != VolumeBlend::kComposite; }
+  bool isosurfaces() const { return !settings_.isovalues.empty(); }
   // Gradient shading (transfer/shading.h) for the next frames; not for adaptive bricks.
   void setShading(const Shading& shading) override { shading_ = shading; }
   // Uploads a brick's stored samples (x fastest); returns a handle for render().
@@ -123,6 +124,12 @@ class RaycastRenderer : public VolumeRenderer {
     return render(handle, cam, spacing, near_plane, far_plane, surface, nullptr);
   }
   RaycastRenderer* raycaster() override { return this; }
+  // Isosurfaces (settings' isovalues), for --surface-out: the brick's rays drawn again (the same
+  // rectangle, surface and crossings as render()'s) with the ISO_DEPTH variant, whose pixels
+  // (pixels_f) are (t, outward unit normal) of the opaque isovalue hit that ends the ray in this
+  // brick, t = 1e30 where none does. A second draw: only when a surface image is asked for. Call
+  // it before render(), whose image a deferred read-back leaves in the same target.
+  RenderedBrick renderIsoDepth(int handle, const Camera& cam, double spacing, const SurfaceLayer* surface);
 
  private:
   // The adaptive lookup's per-brick inputs (render/volume/adaptive_gpu_brick.h).
@@ -184,6 +191,7 @@ class RaycastRenderer : public VolumeRenderer {
   std::unique_ptr<StepRule> rule_;  // for rule_key_'s table, spacing and tolerance
   ClassKey rule_key_;
   FloatTarget target_;
+  bool iso_depth_pass_ = false;  // renderIsoDepth() is drawing: the ISO_DEPTH variant
   TransferTable table_;
   std::vector<std::unique_ptr<TransferTable>> field_tables_;  // several fields: one each
   int field_tables_version_ = 0;  // the sum of their versions: changes when any changes

@@ -59,9 +59,11 @@ std::vector<sortlast::SceneKey> sortlast::renderKeys() {
      "colour and a(v) its opacity (`transfer.opacity` at v, per `transfer.unit_length`); a pixel "
      "no sample reached stays transparent. Projections never stop early (no early ray "
      "termination) and combine bricks with max / min / sum (docs/volumes.md). With "
-     "`render.method: slicing` the samples are where the ray crosses the slice planes. "
-     "compositing.precision float, without particles, surfaces, glow, shading, adaptive "
-     "sampling or adaptive steps; transfer.preintegrated does not apply.",
+     "`render.method: slicing` the samples are where the ray crosses the slice planes. With "
+     "particles or surfaces (mip and minip, ray casting only) a ray counts the samples in front of "
+     "the first opaque hit, the surface's colour behind the projection's. "
+     "compositing.precision float, without glow, shading, adaptive sampling or adaptive steps; "
+     "transfer.preintegrated does not apply.",
      Choice{member<&Scene::render, &RenderSection::blend>}},
     {"render.mip_exact", "false",
      "`render.blend: mip` / `minip`: the exact largest / smallest value of the trilinear field "
@@ -77,7 +79,8 @@ std::vector<sortlast::SceneKey> sortlast::renderKeys() {
      "[1, 1, 1]; opacity in [0, 1], default 1). Every crossing of a value along a ray is a surface, "
      "shaded with the trilinear field's exact gradient (headlight Blinn-Phong, two-sided, with "
      "`render.shading_*`'s coefficients) and composited front to back; an opaque one ends the ray. "
-     "A value outside the data's range is warned about (its surface never appears). Needs "
+     "A value outside the data's range is warned about (its surface never appears). Clipped by "
+     "`clip.planes` / `clip.box` (the search starts at the cut: no surface on the cut face). Needs "
      "`render.sample_spacing` <= 1 (`auto`: 0.5) and no adaptive sampling, glow or "
      "pre-integration (docs/volumes.md).",
      Structured{"list of {value, color, opacity}"}},

@@ -1,7 +1,9 @@
 // The projection blend modes' partial images (compositing/projection_pixels.h): their wire
 // formats round-trip (value formats bit for bit, Additive within half rounding), absent pixels
 // become runs, the operators are order-free, and radix-k's groupings give the same frame as
-// combining every brick image at once.
+// combining every brick image at once. The bounded formats (mip and minip with an opaque layer)
+// round-trip exactly, and their over-like operator gives one result for every grouping that keeps
+// the visibility order (and another for the reverse order), in radix-k too.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -171,6 +173,145 @@ TEST(ProjectionPixels, RadixKMatchesOneCombine) {
         for (size_t i = 0; i < want8.px.size(); ++i)
           worst = std::max(worst, std::abs(int(want8.px[i]) - int(frames[0].px[i])));
         EXPECT_LE(worst, 1) << "format " << int(f) << " ranks " << ranks << " k " << k;
+      }
+}
+
+constexpr WireFormat kBounded[] = {WireFormat::ValueMaxBounded, WireFormat::ValueMinBounded};
+
+// A random bounded pixel (v, packed layer rgb, 0, flags): absent, a value, a layer, or both.
+void randomBoundedPixel(std::mt19937& rng, float* p) {
+  std::uniform_real_distribution<float> u(-3.0f, 5.0f);
+  for (int c = 0; c < 4; ++c) p[c] = 0.0f;
+  const unsigned kind = rng() % 4;  // 0 absent, 1 value, 2 layer, 3 both
+  if (kind & 1u) p[0] = u(rng), p[3] += 1.0f;
+  if (kind & 2u) p[1] = float(rng() % 16777216u), p[3] += 2.0f;
+}
+
+TEST(ProjectionPixels, BoundedWireRoundTripIsExact) {
+  std::mt19937 rng(5);
+  for (WireFormat f : kBounded) {
+    RectImage img(Rect{1, 2, 33, 7});
+    for (size_t i = 0; i < img.px.size(); i += 4) randomBoundedPixel(rng, &img.px[i]);
+    for (int x = 1; x < 34; ++x) std::fill_n(img.at(x, 4), 4, 0.0f);  // an absent row: a run
+    BrickImage b = encodePart(img, img.rect, 1, f);
+    RectImage back = decodePart(unpackBrickImage(packBrickImage(b)), f, Rect{0, 0, 64, 64});
+    int layers = 0;
+    for (int y = back.rect.y; y < back.rect.y + back.rect.h; ++y)
+      for (int x = back.rect.x; x < back.rect.x + back.rect.w; ++x) {
+        layers += boundedHasLayer(img.at(x, y));
+        for (int c = 0; c < 4; ++c) EXPECT_EQ(back.at(x, y)[c], img.at(x, y)[c]) << x << "," << y << " " << c;
+      }
+    EXPECT_GT(layers, 20);
+    uint8_t wire[8];
+    for (size_t i = 0; i < img.px.size(); i += 4)
+      if (projectedPresent(f, &img.px[i])) {
+        toProjected(f, &img.px[i], wire);
+        EXPECT_NE(wire[6] | wire[7], 0);
+      }
+  }
+}
+
+TEST(ProjectionPixels, BoundedOperatorKeepsTheVisibilityOrder) {
+  std::mt19937 rng(13);
+  int reversed_differs = 0;
+  for (WireFormat f : kBounded)
+    for (int trial = 0; trial < 300; ++trial) {
+      float p[6][4];  // back to front
+      for (auto& q : p) randomBoundedPixel(rng, q);
+      float left[4] = {0, 0, 0, 0};
+      for (auto& q : p) combineProjected(f, q, left);
+      // The same order grouped as a tree: (p0 p1) (p2 p3 p4) (p5), each group back to front,
+      // then the groups back to front.
+      float a[4] = {0, 0, 0, 0}, b[4] = {0, 0, 0, 0}, c[4] = {0, 0, 0, 0};
+      combineProjected(f, p[0], a), combineProjected(f, p[1], a);
+      combineProjected(f, p[2], b), combineProjected(f, p[3], b), combineProjected(f, p[4], b);
+      combineProjected(f, p[5], c);
+      float all[4] = {0, 0, 0, 0};
+      combineProjected(f, a, all), combineProjected(f, b, all), combineProjected(f, c, all);
+      for (int k = 0; k < 4; ++k) EXPECT_EQ(all[k], left[k]);
+      // The frontmost layer hides what lies behind it: the result's value comes from in front of it.
+      int front_layer = -1;
+      for (int i = 5; i >= 0 && front_layer < 0; --i)
+        if (boundedHasLayer(p[i])) front_layer = i;
+      if (front_layer >= 0) {
+        EXPECT_EQ(left[1], p[front_layer][1]);
+        float v[4] = {0, 0, 0, 0};
+        for (int i = front_layer; i < 6; ++i) {
+          float q[4] = {p[i][0], 0.0f, 0.0f, boundedHasValue(p[i]) ? 1.0f : 0.0f};
+          combineProjected(f == WireFormat::ValueMaxBounded ? WireFormat::ValueMax : WireFormat::ValueMin, q, v);
+        }
+        EXPECT_EQ(boundedHasValue(left), v[3] > 0.0f);
+        if (v[3] > 0.0f) EXPECT_EQ(left[0], v[0]);
+      }
+      float rev[4] = {0, 0, 0, 0};
+      for (int i = 5; i >= 0; --i) combineProjected(f, p[i], rev);
+      reversed_differs += !std::equal(rev, rev + 4, left);
+    }
+  EXPECT_GT(reversed_differs, 100);  // not commutative: the order is what bounds the rays
+}
+
+// Radix-k on 1-4 ranks, k = 2 and 4, each rank holding a run of the visibility order (as the
+// kd-split's assignment does): the frame equals one ordered combine of every brick, exactly.
+TEST(ProjectionPixels, BoundedRadixKMatchesOneOrderedCombine) {
+  const int width = 31, height = 23;
+  auto colour = [](float* px, size_t n) {  // a stand-in colouring of value, layer and flags
+    for (size_t i = 0; i < n; ++i) {
+      float* p = px + 4 * i;
+      if (!(p[3] > 0.0f)) continue;
+      const float v = boundedHasValue(p) ? std::clamp(p[0] * 0.1f + 0.4f, 0.0f, 1.0f) : 0.0f;
+      const float s = float(uint32_t(p[1]) & 0xffu) / 255.0f;
+      p[0] = v, p[1] = s, p[2] = p[3] / 3.0f, p[3] = 1.0f;
+    }
+  };
+  std::mt19937 rng(17);
+  for (WireFormat f : kBounded)
+    for (int ranks = 1; ranks <= 4; ++ranks)
+      for (int k : {2, 4}) {
+        const int bricks = 8;
+        std::vector<BrickImage> images(bricks);
+        for (int i = 0; i < bricks; ++i) {
+          const int x0 = int(rng() % 16), y0 = int(rng() % 12);
+          images[size_t(i)].brick_id = i;
+          images[size_t(i)].rect = {x0, y0, 1 + int(rng() % unsigned(width - x0)), 1 + int(rng() % unsigned(height - y0))};
+          std::vector<float> px(size_t(images[size_t(i)].rect.area()) * 4);
+          for (size_t p = 0; p < px.size(); p += 4) randomBoundedPixel(rng, &px[p]);
+          encodeProjected(f, px, images[size_t(i)].rle, kMaxRun);
+        }
+        ImageF want(width, height);
+        std::vector<const BrickImage*> all;
+        for (const BrickImage& b : images) all.push_back(&b);  // brick 0 at the back
+        blendBackToFront(all, want, f);
+        colour(want.px.data(), size_t(width) * height);
+        const ImageRGBA8 want8 = toRGBA8(want);
+
+        VisibilityOrder order;
+        order.bricks.resize(bricks);
+        std::iota(order.bricks.begin(), order.bricks.end(), 0);
+        order.ranks.resize(size_t(ranks));
+        std::iota(order.ranks.begin(), order.ranks.end(), 0);
+        std::vector<std::vector<BrickImage>> mine(static_cast<size_t>(ranks));
+        for (int i = 0; i < bricks; ++i) mine[size_t(i * ranks / bricks)].push_back(images[size_t(i)]);
+        CompositeOptions options;
+        options.projection = f;
+        options.colour_projection = colour;
+        Mailbox box;
+        box.sent.resize(size_t(ranks));
+        std::vector<CompositeStats> stats(static_cast<size_t>(ranks));
+        std::vector<ImageRGBA8> frames(static_cast<size_t>(ranks));
+        std::vector<std::string> errors(static_cast<size_t>(ranks));
+        std::vector<std::thread> threads;
+        for (int r = 0; r < ranks; ++r)
+          threads.emplace_back([&, r] {
+            try {
+              ThreadTransport t(box, r, ranks);
+              frames[size_t(r)] = radixKComposite(mine[size_t(r)], order, width, height, k, t, stats[size_t(r)], options);
+            } catch (const std::exception& e) {
+              errors[size_t(r)] = e.what();
+            }
+          });
+        for (auto& t : threads) t.join();
+        for (int r = 0; r < ranks; ++r) ASSERT_EQ(errors[size_t(r)], "") << "rank " << r;
+        EXPECT_EQ(frames[0].px, want8.px) << "format " << int(f) << " ranks " << ranks << " k " << k;
       }
 }
 
