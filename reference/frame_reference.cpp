@@ -80,7 +80,7 @@ FrameReference::FrameReference(Scene scene, int threads)
       }
       FieldInput in{{f.volume.grid, readWholeVolume(f.volume)}, {}};
       auto [lo, hi] = presentRange(in.vol.samples, f.volume.file);
-      in.tf = f.transfer.build(lo, hi, f.volume.grid.minSpacing());
+      in.tf = f.shownTransfer().build(lo, hi, f.volume.grid.minSpacing());  // hidden: opacity 0
       fields_.push_back(std::move(in));
     }
     const GridGeometry all = fieldsGrid(scene.fields);  // with the grids the files gave

@@ -53,6 +53,26 @@ void setPath(YAML::Node node, const std::vector<std::string>& parts, size_t i, c
   setPath(node[parts[i]], parts, i + 1, v);
 }
 
+// `volumes[i].key=value` (scene/fields_scene.h): into entry i of the list the scene gives, which
+// must exist and be a map; the entry's reading checks the key and value (readVolumesKey).
+void setFieldEntryKey(YAML::Node root, const FieldEntryKey& field, const std::string& key, const YAML::Node& v) {
+  if (!isFieldEntryKey(field.key))
+    throw InputError("unknown scene key '" + key + "' (an entry of volumes takes the volume.* keys "
+                     "without `volume.`, `visible` and `transfer.` with a transfer.* key: docs/scene.md)");
+  YAML::Node list = root["volumes"];
+  const size_t n = list.IsSequence() ? list.size() : 0;
+  if (field.entry >= n)
+    throw InputError("scene key '" + key + "': the scene's volumes list has " + std::to_string(n) +
+                     (n == 1 ? " entry" : " entries") + (n ? " (volumes[0] to volumes[" + std::to_string(n - 1) + "])" : ""));
+  YAML::Node entry = list[field.entry];
+  if (!entry.IsMap())
+    throw InputError("scene key '" + key + "': volumes[" + std::to_string(field.entry) + "] is not a map of keys");
+  const std::vector<std::string> parts = field.path();
+  if (parts.size() == 2 && entry[parts[0]].IsDefined() && !entry[parts[0]].IsMap())
+    throw InputError("scene key '" + key + "': volumes[" + std::to_string(field.entry) + "]." + parts[0] + " is not a map");
+  setPath(entry, parts, 0, v);
+}
+
 // A value as range errors show it: numbers as %g, integers in full.
 template <class V>
 std::string valueText(V v) {
@@ -149,6 +169,8 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
 }
 
 bool isFrameKey(const std::string& path) {
+  // One field's transfer map and visibility (volumes[i].transfer.*, volumes[i].visible).
+  if (const auto field = parseFieldEntryKey(path)) return isFieldFrameKey(field->key);
   for (const char* prefix : {"camera.", "clip.", "image.", "transfer.", "compositing.", "time.step"})
     if (path.rfind(prefix, 0) == 0) return true;
   for (const char* key : {"render.sample_spacing", "render.method", "render.ert_threshold",
@@ -192,12 +214,17 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
     if (eq == std::string::npos || eq == 0)
       throw InputError("--set " + o + ": expected key.path=value");
     std::string key = o.substr(0, eq);
-    if (!findSceneKey(key)) throw InputError("--set " + o + ": unknown scene key '" + key + "'");
+    const std::optional<FieldEntryKey> field = parseFieldEntryKey(key);
+    if (!field && !findSceneKey(key)) throw InputError("--set " + o + ": unknown scene key '" + key + "'");
     YAML::Node v;
     try {
       v = YAML::Load(o.substr(eq + 1));
     } catch (const YAML::Exception& e) {
       throw InputError("--set " + o + ": value is not valid YAML: " + e.what());
+    }
+    if (field) {
+      setFieldEntryKey(root, *field, key, v);
+      continue;
     }
     setPath(root, splitPath(key), 0, v);
     origin.overridden.insert(key);

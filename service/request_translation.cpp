@@ -14,6 +14,10 @@ namespace {
 bool isRequestField(const std::string& key) { return key == "id" || key == "format" || key == "quality"; }
 
 bool isScenePrefix(const std::string& path) {
+  // One entry of volumes ({"volumes[1]": {"transfer": {...}}}) and its transfer map: the path
+  // with a key appended parses as that entry's key `visible` or `transfer.visible`.
+  if (const auto field = parseFieldEntryKey(path + ".visible"))
+    return field->key == "visible" || field->key == "transfer.visible";
   for (const SceneKey& k : sceneKeys())
     if (std::string(k.path).rfind(path + ".", 0) == 0) return true;
   return false;
@@ -29,14 +33,14 @@ void checkFinite(const std::string& key, const nlohmann::json& v) {
 // A request may pick a built-in colour map, not name a file: the service may face a network, and
 // a client must not read the server's files (nor learn which exist from the error messages).
 // Files belong in the scene the service started with.
-void checkColourMap(const nlohmann::json& v) {
+void checkColourMap(const std::string& key, const nlohmann::json& v) {
   if (!v.is_string())
-    throw InputError("key 'transfer.colormap': expected the name of a built-in colour map, or \"\" for none");
+    throw InputError("key '" + key + "': expected the name of a built-in colour map, or \"\" for none");
   const std::string name = v.get<std::string>();
   if (name.empty() || isBuiltinColourMap(name)) return;
   std::string known;
   for (const std::string& n : builtinColourMapNames()) known += (known.empty() ? "" : ", ") + n;
-  throw InputError("key 'transfer.colormap': a request may name a built-in colour map only (" + known +
+  throw InputError("key '" + key + "': a request may name a built-in colour map only (" + known +
                    ") or \"\" for none, not '" + name + "'; a colour-map file goes in the scene the service starts with");
 }
 
@@ -50,7 +54,9 @@ void flatten(const std::string& prefix, const nlohmann::json& obj, std::vector<s
       continue;
     }
     checkFinite(key, it.value());
-    if (key == "transfer.colormap") checkColourMap(it.value());
+    // (one field's too: volumes[i].transfer.colormap)
+    const auto field = parseFieldEntryKey(key);
+    if (key == "transfer.colormap" || (field && field->key == "transfer.colormap")) checkColourMap(key, it.value());
     out.push_back(key + "=" + it.value().dump());
   }
 }

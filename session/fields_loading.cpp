@@ -5,6 +5,43 @@
 
 namespace sortlast {
 
+namespace {
+
+// This rank's share of a field's histogram. A field's parts overlap (each brick holds the samples
+// of its box and one beyond), so each sample is counted by the one brick whose cell holds it:
+// per axis the half-open slab [plane c, plane c + 1) of the layout's planes, the outer slabs
+// reaching to infinity. Adjacent bricks share their plane's value, so the slabs partition space
+// and every sample of the field is counted once over all ranks.
+std::vector<long long> countOwnSamples(const FieldStep& d, const SessionLayout& layout, const HistogramBinner& binner) {
+  std::vector<long long> bins(kHistogramBins, 0);
+  for (size_t i = 0; i < layout.mine.size(); ++i) {
+    if (!d.present[i]) continue;
+    const glm::ivec3 cell = layout.volume_bricks[size_t(layout.mine[i])].cell;
+    const IndexBox& box = d.boxes[i];
+    const glm::ivec3 n = box.size();
+    auto owns = [&](int a, double p) {
+      const std::vector<double>& planes = layout.planes[size_t(a)];
+      const int c = cell[a], last = int(planes.size()) - 2;
+      return (c == 0 || p >= planes[size_t(c)]) && (c == last || p < planes[size_t(c) + 1]);
+    };
+    const std::vector<float>& samples = d.samples[i];
+    for (int z = 0; z < n.z; ++z) {
+      if (!owns(2, d.grid.worldOfIndex(glm::dvec3(0, 0, box.lo.z + z)).z)) continue;
+      for (int y = 0; y < n.y; ++y) {
+        if (!owns(1, d.grid.worldOfIndex(glm::dvec3(0, box.lo.y + y, 0)).y)) continue;
+        for (int x = 0; x < n.x; ++x) {
+          if (!owns(0, d.grid.worldOfIndex(glm::dvec3(box.lo.x + x, 0, 0)).x)) continue;
+          const int bin = binner.binOf(samples[(size_t(z) * size_t(n.y) + size_t(y)) * size_t(n.x) + size_t(x)]);
+          if (bin >= 0) ++bins[size_t(bin)];
+        }
+      }
+    }
+  }
+  return bins;
+}
+
+}  // namespace
+
 void validateFields(std::vector<FieldSpec>& fields) {
   for (FieldSpec& f : fields) {
     try {
@@ -39,6 +76,13 @@ std::vector<FieldStep> loadFields(const std::vector<FieldSpec>& fields, const Se
     collectively(comm, [&] {
       std::tie(d.data_min, d.data_max) = globalRange(d.samples, spec.volume.file, comm);
     });
+    d.histogram = ValueHistogram::framing(spec.transfer, d.data_min, d.data_max);
+    std::vector<long long> mine = countOwnSamples(d, layout, HistogramBinner(d.histogram));
+    d.histogram.counts.assign(kHistogramBins, 0);
+    MPI_Reduce(mine.data(), d.histogram.counts.data(), kHistogramBins, MPI_LONG_LONG, MPI_SUM, 0, comm);
+    int rank = 0;
+    MPI_Comm_rank(comm, &rank);
+    if (rank != 0) d.histogram.counts.clear();
   }
   return out;
 }
@@ -47,7 +91,7 @@ std::vector<TransferFunction> fieldTransfers(const std::vector<FieldSpec>& field
                                              const std::vector<FieldStep>& data) {
   std::vector<TransferFunction> out;
   for (size_t f = 0; f < fields.size(); ++f)
-    out.push_back(fields[f].transfer.build(data[f].data_min, data[f].data_max,
+    out.push_back(fields[f].shownTransfer().build(data[f].data_min, data[f].data_max,
                                            data[f].grid.minSpacing()));
   return out;
 }

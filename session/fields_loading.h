@@ -10,6 +10,7 @@
 #include "render/volume/field_bricks.h"
 #include "scene/scene.h"
 #include "session/session_layout.h"
+#include "session/value_histogram.h"
 
 namespace sortlast {
 
@@ -19,13 +20,16 @@ struct FieldStep {
   std::vector<std::vector<float>> samples;    // per brick (empty where absent)
   double data_min = 0, data_max = 0;          // over every rank
   GridGeometry grid;                          // the field's (a file's own, read from it)
+  // Rank 0: every sample of the field counted once (value_histogram.h), in its transfer.scale.
+  ValueHistogram histogram;
 };
 
 // Checks each field's file (throws InputError naming `volumes[i]`) and fills in the grids files
 // give. Every rank does the same.
 void validateFields(std::vector<FieldSpec>& fields);
 
-// Every field's parts of this rank's bricks. Collective; errors end the call on every rank.
+// Every field's parts of this rank's bricks, its range and histogram. Collective; errors end the
+// call on every rank.
 std::vector<FieldStep> loadFields(const std::vector<FieldSpec>& fields, const SessionLayout& layout,
                                   MPI_Comm comm);
 

@@ -118,6 +118,24 @@ void finishGlowFrame(const GlowSpec& g, const glm::dvec3& background, ImageF& f,
 
 nlohmann::json vec3Json(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 
+// describe()'s histogram: counts even in `scale` over `range` (null: none counted).
+nlohmann::json histogramJson(const ValueHistogram& h) {
+  if (h.counts.empty()) return nullptr;
+  return {{"range", {h.lo, h.hi}}, {"scale", std::string(nameOf(h.scale.kind))},
+          {"linear_width", h.scale.linear_width}, {"counts", h.counts}};
+}
+
+// The transfer.* settings a viewer edits, as the scene gives them.
+nlohmann::json transferSettings(const TransferSpec& t) {
+  nlohmann::json points = nlohmann::json::array();
+  for (const TfPoint& p : t.points) points.push_back({p.value, p.r, p.g, p.b, p.a});
+  return {{"transfer.points", points},
+          {"transfer.colormap", t.colormap},
+          {"transfer.range", t.range ? nlohmann::json{t.range->first, t.range->second} : nlohmann::json("auto")},
+          {"transfer.scale", std::string(nameOf(t.scale))},
+          {"transfer.linear_width", t.linear_width}};
+}
+
 nlohmann::json cameraJson(const Camera& c) {
   nlohmann::json j = {{"position", vec3Json(c.position)}, {"look_at", vec3Json(c.look_at)}, {"up", vec3Json(c.up)},
                       {"fov", c.fov_deg}, {"width", c.width}, {"height", c.height}};
@@ -403,14 +421,17 @@ Scene RenderSession::State::resolve(const FrameRequest& request) const {
   for (const std::string& o : request.overrides) {
     auto eq = o.find('=');
     std::string key = o.substr(0, eq);
-    bool known = false;
+    // volumes[i].key: one entry's key (scene/fields_scene.h; whether entry i exists is parseScene's)
+    const std::optional<FieldEntryKey> field = parseFieldEntryKey(key);
+    bool known = field && isFieldEntryKey(field->key);
     for (const SceneKey& k : sceneKeys()) known = known || key == k.path;
     if (eq == std::string::npos || eq == 0 || !known)
       throw InputError("unknown key '" + key + "' (the keys a request may set: " +
                        [] { std::string s; for (auto& k : frameKeys()) s += (s.empty() ? "" : ", ") + k; return s; }() + ")");
     if (!isFrameKey(key))
       throw InputError("scene key '" + key + "' fixes the data layout and cannot change in a running "
-                       "session; start the session with it instead");
+                       "session; start the session with it instead" +
+                       (field ? std::string(" (a request may set an entry's transfer.* keys and visible)") : ""));
   }
   std::vector<std::string> all = opts.overrides;
   all.insert(all.end(), request.overrides.begin(), request.overrides.end());
@@ -574,6 +595,12 @@ std::vector<double> RenderSession::State::spacingKey(const Scene& sc, std::pair<
   key.insert(key.end(), {tf.rangeLo(), tf.rangeHi(), tf.unitLength(), double(tf.scale().kind),
                          tf.scale().linear_width});
   for (const TfPoint& p : tf.points()) key.insert(key.end(), {p.value, p.r, p.g, p.b, p.a});
+  // Several fields: each one's transfer function as drawn (a request may change or hide one).
+  if (sc.hasFields() && current)
+    for (const TransferFunction& f : fieldTransfers(sc.fields, current->fields)) {
+      key.insert(key.end(), {f.rangeLo(), f.rangeHi(), f.unitLength(), double(f.scale().kind), f.scale().linear_width});
+      for (const TfPoint& p : f.points()) key.insert(key.end(), {p.value, p.r, p.g, p.b, p.a});
+    }
   // The blend mode, the projection and the clip region change what the probes see.
   key.insert(key.end(), {double(sc.render.blend), double(sc.render.mip_exact), double(sc.camera.projection),
                          sc.camera.parallel_scale});
@@ -824,19 +851,11 @@ nlohmann::json RenderSession::describe(const std::vector<std::string>& base) con
   } else if (b.hasVolume() && S.current) {
     j["data_range"] = {S.current->data_min, S.current->data_max};
     if (!S.current->histogram.empty())
-      j["histogram"] = {{"range", {S.current->histogram_lo, S.current->histogram_hi}},
-                        {"scale", std::string(nameOf(S.current->histogram_scale.kind))},
-                        {"linear_width", S.current->histogram_scale.linear_width},
-                        {"counts", S.current->histogram}};
+      j["histogram"] = histogramJson({S.current->histogram, S.current->histogram_scale, S.current->histogram_lo,
+                                      S.current->histogram_hi});
   }
-  nlohmann::json points = nlohmann::json::array();
-  for (const TfPoint& p : b.transfer.points) points.push_back({p.value, p.r, p.g, p.b, p.a});
-  j["settings"] = {{"transfer.points", points},
-                   {"transfer.colormap", b.transfer.colormap},
-                   {"transfer.range", b.transfer.range ? nlohmann::json{b.transfer.range->first, b.transfer.range->second}
-                                                       : nlohmann::json("auto")},
-                   {"transfer.scale", std::string(nameOf(b.transfer.scale))},
-                   {"transfer.linear_width", b.transfer.linear_width},
+  j["settings"] = transferSettings(b.transfer);
+  j["settings"].update(nlohmann::json{
                    {"image.legend", {{"position", std::string(nameOf(b.image.legend.position))},
                                      {"title", b.image.legend.title}, {"ticks", b.image.legend.ticks},
                                      {"units", b.image.legend.units}}},
@@ -855,13 +874,41 @@ nlohmann::json RenderSession::describe(const std::vector<std::string>& base) con
                    {"compositing.radix", b.compositing.radix},
                    {"compositing.precision", std::string(nameOf(b.compositing.precision))},
                    {"camera.fov", b.camera.fov_deg},
-                   {"time.step", b.time.step}};
+                   {"time.step", b.time.step}});
   if (b.particles.enabled()) {
     j["settings"]["particles.color"] = vec3Json(b.particles.colour);
     j["settings"]["particles.threshold"] = b.particles.threshold;
     j["settings"]["particles.step"] = b.particles.step;
   }
   j["request_keys"] = frameKeys();
+  // Several fields: each one's range, histogram and transfer settings, and the keys that edit it.
+  if (b.hasFields() && S.current && S.current->fields.size() == b.fields.size() && !S.ext) {
+    nlohmann::json fields = nlohmann::json::array();
+    for (size_t f = 0; f < b.fields.size(); ++f) {
+      const FieldSpec& spec = b.fields[f];
+      const FieldStep& d = S.current->fields[f];
+      const std::optional<FieldEntryKey> entry = parseFieldEntryKey(spec.name + ".visible");
+      const std::string prefix = entry ? spec.name + "." : "";  // the first field given as volume: none
+      nlohmann::json field = {{"index", f},
+                              {"name", spec.name},
+                              // what the viewer labels it with: its procedural field or file name
+                              {"source", spec.volume.file.empty() ? spec.volume.procedural
+                                                                  : std::filesystem::path(spec.volume.file).filename().string()},
+                              {"data_range", {d.data_min, d.data_max}},
+                              {"histogram", histogramJson(d.histogram)},
+                              {"visible", spec.visible},
+                              {"visible_key", entry ? nlohmann::json(prefix + "visible") : nlohmann::json(nullptr)},
+                              {"transfer_prefix", prefix + "transfer."},
+                              {"settings", transferSettings(spec.transfer)}};
+      fields.push_back(std::move(field));
+      if (entry)
+        for (const SceneKey& k : sceneKeys())
+          if (std::string_view(k.path).starts_with("transfer.") && isFrameKey(k.path))
+            j["request_keys"].push_back(prefix + k.path);
+      if (entry) j["request_keys"].push_back(prefix + "visible");
+    }
+    j["fields"] = std::move(fields);
+  }
   j["limits"] = {{"max_width", S.opts.max_image_side}, {"max_height", S.opts.max_image_side}};
   return j;
 }
@@ -871,6 +918,15 @@ nlohmann::json RenderSession::jobStats() const {
   nlohmann::json top = nlohmann::json::object();
   top["ranks_gl"] = deviceJson(S.devices);  // each rank's GL_VENDOR, GL_RENDERER, device, host
   top["pixel_threads"] = pixelThreads();     // rank 0's (common/pixel_threads.h)
+  // The volume's data range (several fields: the first's) and, with several fields, each one's.
+  if (S.current && S.current->has_volume) top["data_range"] = {S.current->data_min, S.current->data_max};
+  if (S.current && !S.current->fields.empty()) {
+    nlohmann::json ranges = nlohmann::json::array();
+    for (size_t f = 0; f < S.current->fields.size(); ++f)
+      ranges.push_back({{"name", f < S.base.fields.size() ? S.base.fields[f].name : std::to_string(f)},
+                        {"data_range", {S.current->fields[f].data_min, S.current->fields[f].data_max}}});
+    top["data_ranges"] = std::move(ranges);
+  }
   if (S.current && !S.current->read_s.empty()) {
     top["volume_read_s"] = S.current->read_s;  // per rank: its bricks, from the file
     top["peak_rss_after_read_mb"] = S.current->read_peak_rss_mb;

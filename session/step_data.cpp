@@ -15,11 +15,8 @@ namespace {
 // Counts each grid sample once over all ranks: a brick counts the samples of its domain except
 // those on an upper face that the next brick shares.
 void addToHistogram(const Brick& b, const glm::ivec3& dims, const std::vector<float>& stored,
-                    double lo, double hi, const ValueScale& vs, std::vector<long long>& bins) {
+                    const HistogramBinner& binner, std::vector<long long>& bins) {
   const glm::ivec3 s = b.stored.size();
-  const bool linear = vs.kind == ValueScaleKind::kLinear, log = vs.kind == ValueScaleKind::kLog;
-  const double slo = vs.apply(lo), shi = vs.apply(hi);
-  const double scale = shi > slo ? kHistogramBins / (shi - slo) : 0.0;
   for (int z = b.domain.lo.z; z <= b.domain.hi.z; ++z) {
     if (z == b.domain.hi.z && z != dims.z - 1) continue;
     for (int y = b.domain.lo.y; y <= b.domain.hi.y; ++y) {
@@ -27,11 +24,8 @@ void addToHistogram(const Brick& b, const glm::ivec3& dims, const std::vector<fl
       for (int x = b.domain.lo.x; x <= b.domain.hi.x; ++x) {
         if (x == b.domain.hi.x && x != dims.x - 1) continue;
         glm::ivec3 i = glm::ivec3(x, y, z) - b.stored.lo;
-        double v = stored[(size_t(i.z) * s.y + i.y) * s.x + i.x];
-        if (std::isnan(v)) continue;  // a missing sample
-        const double t = linear ? (v - lo) * scale : log && !(v > 0.0) ? 0.0 : (vs.apply(v) - slo) * scale;
-        int bin = std::clamp(int(std::clamp(t, 0.0, double(kHistogramBins))), 0, kHistogramBins - 1);
-        ++bins[size_t(bin)];
+        const int bin = binner.binOf(stored[(size_t(i.z) * s.y + i.y) * s.x + i.x]);
+        if (bin >= 0) ++bins[size_t(bin)];  // (NaN: a missing sample)
       }
     }
   }
@@ -64,12 +58,14 @@ StepData loadStep(const Scene& scene, const SessionLayout& layout, bool adaptive
   d.step = scene.time.step;
   d.has_volume = scene.hasVolume();
   if (scene.hasFields()) {
-    // Several fields: each one's parts of this rank's bricks (session/fields_loading.h); the
-    // first field's range stands for the step's (stats, histogram: none).
+    // Several fields: each one's parts of this rank's bricks, range and histogram
+    // (session/fields_loading.h); the first field's range and histogram stand for the step's.
     std::vector<FieldSpec> fields = scene.fields;
     collectively(comm, [&] { validateFields(fields); });
     d.fields = loadFields(fields, layout, comm);
     d.data_min = d.fields[0].data_min, d.data_max = d.fields[0].data_max;
+    const ValueHistogram& h = d.fields[0].histogram;
+    d.histogram = h.counts, d.histogram_scale = h.scale, d.histogram_lo = h.lo, d.histogram_hi = h.hi;
   } else if (scene.hasVolume()) {
     // Every step of a series must have the layout's grid (a VTK file brings its own).
     Scene step_scene = scene;
@@ -101,15 +97,12 @@ StepData loadStep(const Scene& scene, const SessionLayout& layout, bool adaptive
       collectively(comm, [&] {  // every rank reaches the range's Allreduce, then throws or not
         std::tie(d.data_min, d.data_max) = globalRange(d.samples, desc.file, comm);
         // The histogram is even in the scene's transfer.scale (the viewer's editor is).
-        d.histogram_scale = ValueScale{scene.transfer.scale, scene.transfer.linear_width};
-        d.histogram_lo = d.data_min, d.histogram_hi = d.data_max;
-        if (d.histogram_scale.kind == ValueScaleKind::kLog && !(d.histogram_lo > 0.0) && scene.transfer.range)
-          d.histogram_lo = scene.transfer.range->first;
-        if (d.histogram_scale.kind == ValueScaleKind::kLog && !(d.histogram_lo > 0.0 && d.histogram_hi > d.histogram_lo))
-          d.histogram_scale = ValueScale{}, d.histogram_lo = d.data_min;
+        const ValueHistogram h = ValueHistogram::framing(scene.transfer, d.data_min, d.data_max);
+        d.histogram_scale = h.scale, d.histogram_lo = h.lo, d.histogram_hi = h.hi;
+        const HistogramBinner binner(h);
         for (size_t i = 0; i < layout.mine.size(); ++i)
           addToHistogram(layout.volume_bricks[size_t(layout.mine[i])], desc.grid.dims,
-                         d.samples[i], d.histogram_lo, d.histogram_hi, d.histogram_scale, mine);
+                         d.samples[i], binner, mine);
       });
       d.histogram.assign(kHistogramBins, 0);
       MPI_Reduce(mine.data(), d.histogram.data(), kHistogramBins, MPI_LONG_LONG, MPI_SUM, 0, comm);

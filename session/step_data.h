@@ -17,8 +17,6 @@
 
 namespace sortlast {
 
-constexpr int kHistogramBins = 256;
-
 struct StepData {
   int step = -1;
   std::vector<std::vector<float>> samples;  // per brick of layout.mine (stored box); empty: adaptive

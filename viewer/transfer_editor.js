@@ -6,6 +6,19 @@
 
 import { sampleKnots } from './colormaps.js';
 
+// The opacity of control points [[x, a], ...] (sorted by x) at x: linear between points,
+// constant beyond the first and last.
+export function opacityAt(p, x) {
+  if (x <= p[0][0]) return p[0][1];
+  for (let i = 1; i < p.length; i++) {
+    if (x <= p[i][0]) {
+      const t = p[i][0] > p[i - 1][0] ? (x - p[i - 1][0]) / (p[i][0] - p[i - 1][0]) : 1;
+      return p[i - 1][1] + (p[i][1] - p[i - 1][1]) * t;
+    }
+  }
+  return p[p.length - 1][1];
+}
+
 const PAD = { left: 8, right: 8, top: 8 };
 const STRIP = 14;   // colour strip height (CSS px)
 const GAP = 4;
@@ -64,17 +77,7 @@ export class TransferEditor {
   }
 
   // Opacity at x: linear between points, constant beyond the first and last.
-  opacity(x) {
-    const p = this.points;
-    if (x <= p[0][0]) return p[0][1];
-    for (let i = 1; i < p.length; i++) {
-      if (x <= p[i][0]) {
-        const t = p[i][0] > p[i - 1][0] ? (x - p[i - 1][0]) / (p[i][0] - p[i - 1][0]) : 1;
-        return p[i - 1][1] + (p[i][1] - p[i - 1][1]) * t;
-      }
-    }
-    return p[p.length - 1][1];
-  }
+  opacity(x) { return opacityAt(this.points, x); }
 
   // ---- geometry (CSS pixels) ----
   #area() {

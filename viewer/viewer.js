@@ -1,12 +1,14 @@
 // The web viewer of `sortlast serve`: asks the server for frames of the current view state
 // (camera, image size, renderer, compositing, transfer function, time step, the volume's modes:
-// volume_modes.js) and shows them.
+// volume_modes.js) and shows them. A scene of several fields (`volumes`) gets a field selector
+// above the transfer-function editor, which then edits the chosen field's transfer function, and
+// a checkbox per field that shows or hides it.
 // While the user interacts it asks for reduced JPEG frames, and for a full-size PNG once the
 // interaction stops (progressive refinement).
 
 import { FrameClient } from './connection.js';
 import { PRESETS, sampleKnots, cssGradient } from './colormaps.js';
-import { TransferEditor } from './transfer_editor.js';
+import { TransferEditor, opacityAt } from './transfer_editor.js';
 import * as cam from './orbit.js';
 import * as modes from './volume_modes.js';
 import { valueScale, drawLegend } from './value_scale.js';
@@ -30,9 +32,13 @@ const state = {
   sceneSize: [512, 512],
   limits: { max_width: 4096, max_height: 4096 },
   keys: null,                   // request_keys, as a Set (null: send everything)
-  sceneKnots: null,             // colour knots of the scene's transfer function
+  // The transfer function in the editor (the scene's, or the chosen field's): the colour knots
+  // and opacity points its scene gives, and whether the user has edited it.
+  sceneKnots: null,
   sceneOpacity: null,
   tfEdited: false,
+  fields: null,                 // several fields: [{info (GET /api/scene's), tf (tfState), visible}]
+  field: 0,                     // the field in the editor
   steps: 1,
   step: 0,
   playing: false,
@@ -60,6 +66,7 @@ const api = {
   get settled() { return state.shownSeq === state.seq && api.lastMode === 'full' && !client.busy; },
   get message() { return $('message').hidden ? null : { text: $('message').textContent, kind: $('message').className }; },
   tfHandles: () => tf.handlePositions(),
+  get field() { return state.fields ? state.field : null; },
   get camera() { return state.camera && cam.cloneCamera(state.camera); },
   get transport() { return client.transport; },
 };
@@ -116,16 +123,34 @@ function fullSize() {
 
 const round6 = (v) => Math.round(v * 1e6) / 1e6;
 
-// transfer.points of the editor's state: the colour map and the opacity curve sampled at 64
-// evenly spaced values plus every control point of either, strictly increasing.
-function transferPoints() {
-  const knots = currentKnots();
+// transfer.points of opacity points [[x, a], ...] and colour knots: the colour map and the
+// opacity curve sampled at 64 evenly spaced values plus every control point of either, strictly
+// increasing.
+function transferPoints(points = tf.getPoints(), knots = currentKnots()) {
   const xs = [];
   for (let i = 0; i < 64; i++) xs.push(i / 63);
-  for (const p of tf.getPoints()) xs.push(p[0]);
+  for (const p of points) xs.push(p[0]);
   for (const k of knots) if (k[0] >= 0 && k[0] <= 1) xs.push(k[0]);
   const sorted = xs.map(round6).sort((a, b) => a - b).filter((x, i, a) => i === 0 || x > a[i - 1]);
-  return sorted.map((x) => [x, ...sampleKnots(knots, x).map(round6), round6(tf.opacity(x))]);
+  return sorted.map((x) => [x, ...sampleKnots(knots, x).map(round6), round6(opacityAt(points, x))]);
+}
+
+// Several fields: each field's keys (its `transfer_prefix`: `volumes[i].transfer.`, or
+// `transfer.` for a first field given as `volume`): its transfer function once edited, its scale,
+// and whether it is shown (`volumes[i].visible`; a field without that key is hidden by opacity 0).
+function fieldKeys(r) {
+  saveTfState(state.fields[state.field].tf);
+  delete r['transfer.scale'];  // (modeKeys': the scale is each field's)
+  for (const f of state.fields) {
+    const p = f.info.transfer_prefix, t = f.tf;
+    if (t.edited) {
+      r[`${p}points`] = transferPoints(t.opacity, knotsOf(t));
+      if (t.colormap !== 'scene') r[`${p}colormap`] = t.colormap;
+    }
+    r[`${p}scale`] = t.scale;
+    if (f.info.visible_key) r[f.info.visible_key] = f.visible;
+    else if (!f.visible) r[`${p}points`] = [[0, 0, 0, 0, 0], [1, 0, 0, 0, 0]];
+  }
 }
 
 function buildRequest(mode) {
@@ -155,7 +180,7 @@ function buildRequest(mode) {
     // 'scene' leaves the scene's choice (its auto rule sees the spacing sent above).
     const preint = $('preint').value;
     if (preint !== 'scene') r['transfer.preintegrated'] = preint === 'auto' ? 'auto' : preint === 'on';
-    if (state.tfEdited) {
+    if (state.tfEdited && !state.fields) {
       r['transfer.points'] = transferPoints();
       // A named map is drawn with the server's definition of it (transfer.colormap: ParaView's
       // presets, with their colour spaces), whose colours replace those of transfer.points; the
@@ -164,6 +189,7 @@ function buildRequest(mode) {
       if (map !== 'scene') r['transfer.colormap'] = map;
     }
     modes.modeKeys(r, { camera: c, bounds: state.bounds, range: tfRange() });
+    if (state.fields) fieldKeys(r);
   }
   r['compositing.strategy'] = $('strategy').value;
   if (state.steps > 1) r['time.step'] = state.step;
@@ -272,8 +298,12 @@ async function refreshHistogram(step) {
   } catch { /* keep the old one */ }
 }
 
+// What the editor shows the data of: the scene's volume, or the chosen field (each with its
+// settings, data_range and histogram).
+function tfSource() { return state.fields ? state.fields[state.field].info : state.scene; }
+
 function showHistogram() {
-  const scene = state.scene;
+  const scene = tfSource();
   const [lo, hi] = tfRange();
   const tiny = Math.abs(hi - lo) * 1e-6;  // a "minimum" of 1e-33 is a 0
   $('tf-lo').textContent = fmt(Math.abs(lo) < tiny ? 0 : lo);
@@ -606,9 +636,10 @@ function fmt(v) {
 }
 
 function tfRange() {
-  const r = state.scene && state.scene.settings && state.scene.settings['transfer.range'];
+  const src = state.scene && tfSource();
+  const r = src && src.settings && src.settings['transfer.range'];
   if (Array.isArray(r) && r.length === 2 && r.every(Number.isFinite)) return r;
-  return (state.scene && state.scene.data_range) || [0, 1];
+  return (src && src.data_range) || [0, 1];
 }
 
 // The scale the viewer asks for (its Scale control, set from the scene's transfer.scale).
@@ -617,7 +648,8 @@ function tfScale() {
   return s === 'log' || s === 'symlog' ? s : 'linear';
 }
 function tfLinearWidth() {
-  const w = state.scene && state.scene.settings && state.scene.settings['transfer.linear_width'];
+  const src = state.scene && tfSource();
+  const w = src && src.settings && src.settings['transfer.linear_width'];
   return Number.isFinite(w) && w > 0 ? w : 1;
 }
 
@@ -625,6 +657,73 @@ function currentKnots() {
   const name = $('colormap').value;
   return name === 'scene' ? state.sceneKnots : PRESETS[name];
 }
+const knotsOf = (t) => (t.colormap === 'scene' ? t.sceneKnots : PRESETS[t.colormap]);
+
+// A transfer function as the scene's settings give it (transfer.points, transfer.scale), unedited.
+function tfState(settings) {
+  const pts = Array.isArray(settings['transfer.points']) ? settings['transfer.points'].filter((p) => Array.isArray(p) && p.length >= 5) : [];
+  const fromScene = pts.length > 0;
+  const sceneOpacity = fromScene ? pts.map((p) => [p[0], p[4]]) : [[0, 0], [1, 1]];
+  return {
+    fromScene,
+    sceneKnots: fromScene ? pts.map((p) => [p[0], p[1], p[2], p[3]]) : PRESETS['Cool to Warm'],
+    sceneOpacity,
+    opacity: sceneOpacity,
+    colormap: fromScene ? 'scene' : 'Cool to Warm',
+    edited: false,
+    scale: ['linear', 'log', 'symlog'].includes(settings['transfer.scale']) ? settings['transfer.scale'] : 'linear',
+  };
+}
+// Into the editor and its controls (colour map, scale), and back.
+function loadTfState(t) {
+  state.sceneKnotsFromScene = t.fromScene;
+  state.sceneKnots = t.sceneKnots;
+  state.sceneOpacity = t.sceneOpacity;
+  state.tfEdited = t.edited;
+  const maps = Object.keys(PRESETS).map((k) => [k, k]);
+  setOptions($('colormap'), t.fromScene ? [['scene', 'Scene'], ...maps] : maps, t.colormap);
+  tf.setPoints(t.opacity);
+  tf.setColormap(currentKnots());
+  $('colormap-preview').style.background = cssGradient(currentKnots());
+  $('tf-scale').value = t.scale;
+}
+function saveTfState(t) {
+  t.opacity = tf.getPoints();
+  t.colormap = $('colormap').value;
+  t.edited = state.tfEdited;
+  t.scale = $('tf-scale').value;
+}
+
+// Several fields: the selector and a show/hide checkbox per field.
+function setupFields(scene) {
+  const list = Array.isArray(scene.fields) && scene.fields.length > 1 ? scene.fields : null;
+  state.fields = list && list.map((info) => ({ info, tf: tfState(info.settings || {}), visible: info.visible !== false }));
+  state.field = 0;
+  $('fields-controls').hidden = !state.fields;
+  if (!state.fields) return;
+  const label = (f) => (f.info.source ? `${f.info.name}: ${f.info.source}` : f.info.name);
+  setOptions($('field'), state.fields.map((f, i) => [String(i), label(f)]), '0');
+  $('field-list').replaceChildren(...state.fields.map((f, i) => {
+    const row = document.createElement('label');
+    row.textContent = `Show ${label(f)}`;
+    const box = document.createElement('input');
+    box.type = 'checkbox';
+    box.checked = f.visible;
+    box.id = `field-visible-${i}`;
+    box.addEventListener('change', () => { f.visible = box.checked; submit('full'); });
+    row.append(box);
+    return row;
+  }));
+  loadTfState(state.fields[0].tf);
+}
+$('field').addEventListener('change', () => {
+  if (!state.fields) return;
+  saveTfState(state.fields[state.field].tf);
+  state.field = Math.min(Math.max(0, Number($('field').value) | 0), state.fields.length - 1);
+  loadTfState(state.fields[state.field].tf);
+  showHistogram();
+  showLegend();
+});
 
 $('colormap').addEventListener('change', () => {
   tf.setColormap(currentKnots());
@@ -706,18 +805,11 @@ function applyScene(scene) {
   const hasVolume = scene.has_volume !== false;
   $('volume-controls').hidden = !hasVolume;
   $('tf-group').hidden = !hasVolume;
-  const pts = Array.isArray(settings['transfer.points']) ? settings['transfer.points'].filter((p) => Array.isArray(p) && p.length >= 5) : [];
-  state.sceneKnotsFromScene = pts.length > 0;
-  state.sceneKnots = pts.length ? pts.map((p) => [p[0], p[1], p[2], p[3]]) : PRESETS['Cool to Warm'];
-  state.sceneOpacity = pts.length ? pts.map((p) => [p[0], p[4]]) : [[0, 0], [1, 1]];
-  const maps = Object.keys(PRESETS).map((k) => [k, k]);
-  setOptions($('colormap'), pts.length ? [['scene', 'Scene'], ...maps] : maps, pts.length ? 'scene' : 'Cool to Warm');
-  state.tfEdited = false;   // the scene's own transfer function until the user edits it
-  tf.setPoints(state.sceneOpacity);
-  tf.setColormap(currentKnots());
-  $('colormap-preview').style.background = cssGradient(currentKnots());
+  // The scene's own transfer function until the user edits it (several fields: the first's).
+  loadTfState(tfState(settings));
   state.histogramStep = state.step;
   modes.applyModeSettings(settings);
+  setupFields(scene);
   $('modes-group').hidden = !hasVolume;
   showHistogram();
   showLegend();

@@ -14,7 +14,11 @@ std::vector<sortlast::SceneKey> sortlast::volumesKeys() {
      "keys without the `transfer.` (`points` or `preset`, `colormap`, `range`, `unit_length`, "
      "`table_size`), the same defaults. A scene that sets `volume.*` too has that volume (with "
      "`transfer.*`) as its first field, the entries after it; otherwise the entries are all "
-     "(and `transfer.*` at the top is refused). Fields may have different dims and spacing; each "
+     "(and `transfer.*` at the top is refused). An entry's `visible: false` hides that field "
+     "(drawn at zero opacity: it adds nothing; with two or more fields). `--set` and service "
+     "requests name one entry's key as `volumes[i].key` (`volumes[1].transfer.points`, "
+     "`volumes[1].visible`; i counts the list's entries from 0); a request may set an entry's "
+     "`transfer.*` keys and `visible`, nothing else of `volumes`. Fields may have different dims and spacing; each "
      "is centred on the origin, as `volume` is. They are rendered as one medium: per sample "
      "each field is classified by its own transfer function, the extinctions add and the "
      "colour is their extinction-weighted mean. At most 4 fields; with 2 or more only the ray "
@@ -36,6 +40,7 @@ FieldSpec readEntry(const YAML::Node& e, const std::string& name, const Origin& 
     throw InputError("scene key '" + name + "': expected a map of volume keys (file or procedural, "
                      "dims, spacing, ...) and a transfer map" + where(e));
   YAML::Node root(YAML::NodeType::Map), volume(YAML::NodeType::Map);
+  bool visible = true;
   for (auto it = e.begin(); it != e.end(); ++it) {
     if (!it->first.IsScalar())
       throw InputError("scene key '" + name + "': a key is a list or map, not a name" + where(it->first));
@@ -50,6 +55,11 @@ FieldSpec readEntry(const YAML::Node& e, const std::string& name, const Origin& 
                            " (a field's transfer map takes the transfer.* keys: docs/scene.md)");
       }
       root["transfer"] = it->second;
+      continue;
+    }
+    if (key == "visible") {
+      if (!YAML::convert<bool>::decode(it->second, visible))
+        throw InputError("scene key '" + name + ".visible': expected true or false" + where(it->second));
       continue;
     }
     if (key == "files")
@@ -74,7 +84,7 @@ FieldSpec readEntry(const YAML::Node& e, const std::string& name, const Origin& 
     throw InputError("scene key '" + name + ".procedural': none is no field; give a file or a "
                      "procedural field" + where(e));
   preint_auto = r.isAuto("transfer.preintegrated");
-  return {name, entry.volume, entry.transfer};
+  return {name, entry.volume, entry.transfer, visible};
 }
 
 // What renders several fields: the ray caster's composite blend, nothing it cannot mix per sample.
@@ -139,6 +149,9 @@ std::optional<bool> readVolumesKey(const Reader& r, const Origin& o, const YAML:
   if (fields.size() > size_t(kMaxFields))
     throw InputError("scene key 'volumes': " + std::to_string(fields.size()) + " fields; the ray "
                      "caster mixes at most " + std::to_string(kMaxFields));
+  if (fields.size() == 1 && !fields[0].visible)
+    throw InputError("scene key 'volumes[0].visible': false hides the scene's only field; a scene "
+                     "of one field shows it (hide one of several)");
   s.volume = fields[0].volume;
   s.transfer = fields[0].transfer;
   if (fields.size() > 1) {

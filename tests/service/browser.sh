@@ -4,7 +4,11 @@
 # drag; Debian's chromium through playwright-core), renders the viewer's last frames again with
 # `sortlast render` (the camera the page reports, the settings it requested) and compares them
 # (within 1/255), and stops the service with SIGTERM.
-# Usage: browser.sh SORTLAST PORT [SCENE.yaml|default] [RANKS]
+# With FIELDS.yaml (a scene of several fields) the service also gets --data-dir FIELDS.yaml's
+# folder, and the page loads that scene at the end (POST /api/load), edits field 1's transfer
+# function (that frame compared with `sortlast render` of FIELDS.yaml) and hides field 0 (the
+# request and a changed image checked; frames_match.sh compares hiding with sortlast render).
+# Usage: browser.sh SORTLAST PORT [SCENE.yaml|default] [RANKS] [FIELDS.yaml]
 # Screenshots and frames go to $BROWSER_TEST_OUT when set (kept), else to a scratch folder.
 # Needs node, tests/service/node_modules (npm ci --prefix tests/service; scripts/install-deps)
 # and /usr/bin/chromium (or $CHROMIUM); without them it exits 77 (skipped).
@@ -14,6 +18,14 @@ PORT=${2:?usage: browser.sh SORTLAST PORT [SCENE.yaml|default] [RANKS]}
 scene=("${3:-default}")
 [ "${scene[0]}" = default ] && scene=()
 NP=${4:-2}
+FIELDS_SCENE=${5:-}
+serve_extra=()
+if [ -n "$FIELDS_SCENE" ]; then
+  serve_extra=(--data-dir "$(dirname "$FIELDS_SCENE")")
+  export FIELDS_SCENE_NAME=$(basename "$FIELDS_SCENE")
+  # --data-dir: a scene argument is relative to it
+  [ ${#scene[@]} -gt 0 ] && scene=("$(realpath --relative-to="$(dirname "$FIELDS_SCENE")" "${scene[0]}")")
+fi
 OUT=${BROWSER_TEST_OUT:-$WORK/out}
 mkdir -p "$OUT"
 CHROMIUM=${CHROMIUM:-/usr/bin/chromium}
@@ -43,7 +55,7 @@ trap 'stop_server; rm -rf "$WORK"' EXIT
 
 # timeout: a service that never stops is ended after 15 minutes whatever happens here
 timeout 900 "${MPIRUN[@]}" -np "$NP" "$SORTLAST" serve "${scene[@]}" --listen "127.0.0.1:$PORT" \
-  --token "$TOKEN" >"$OUT/server.log" 2>&1 &
+  --token "$TOKEN" "${serve_extra[@]}" >"$OUT/server.log" 2>&1 &
 SERVER_PID=$!
 
 up=
@@ -61,10 +73,13 @@ timeout 420 node "$HERE/browser_test.mjs" "http://127.0.0.1:$PORT/?token=$TOKEN"
   || { tail -20 "$OUT/server.log"; fail "browser test"; }
 
 # The frames the viewer showed are the frames `sortlast render` makes of the same settings.
-for prefix in "" tf_ cm_ sh_ mip_ clip_; do
+for prefix in "" tf_ cm_ sh_ mip_ clip_ fields_; do
   [ -f "$OUT/${prefix}render_args.txt" ] || continue
   mapfile -t args <"$OUT/${prefix}render_args.txt"
-  run_np "$NP" render "${scene[@]}" -q -o "$WORK/${prefix}render.png" "${args[@]}" \
+  this_scene=("${scene[@]}")
+  [ -n "$FIELDS_SCENE" ] && [ -n "${scene[0]:-}" ] && this_scene=("$(dirname "$FIELDS_SCENE")/${scene[0]}")
+  [ "$prefix" = fields_ ] && this_scene=("$FIELDS_SCENE")
+  run_np "$NP" render "${this_scene[@]}" -q -o "$WORK/${prefix}render.png" "${args[@]}" \
     || fail "sortlast render of the viewer's ${prefix}frame settings"
   "$SORTLAST" compare "$OUT/${prefix}frame.png" "$WORK/${prefix}render.png" --max-diff 1 \
     || fail "the viewer's ${prefix}frame.png differs from sortlast render's frame"

@@ -13,8 +13,9 @@
 // (cm_frame.png, cm_request.json, cm_render_args.txt), then turns shading on, checks the request
 // has render.shading and the image changed (sh_frame.png, ...), picks MIP (render.blend;
 // mip_frame.png, ...), then turns a clip plane on and moves it by Alt-dragging the frame
-// (clip.planes; clip_frame.png, ...). Screenshots: initial.png, orbit.png,
-// final.png. Every wait is bounded; exits 1 with a message on failure.
+// (clip.planes; clip_frame.png, ...); with FIELDS_SCENE_NAME set (browser.sh), a scene of several
+// fields: field 1's transfer function and field 0 hidden (fields_*, fhide_*). Screenshots:
+// initial.png, orbit.png, fields.png, final.png. Every wait is bounded; exits 1 with a message on failure.
 
 import { chromium } from 'playwright-core';
 import fs from 'node:fs';
@@ -302,6 +303,72 @@ async function main() {
     if (d6.mean < 0.5 && d6.changed < 0.005) await fail('the image did not change when the clip plane moved');
     await saveFrame('clip_frame.png');
     writeFrameFiles('clip_', clipped);
+  }
+
+  // ---- several fields (browser.sh's FIELDS.yaml, loaded through --data-dir): pick field 1 in the
+  // selector, drag one of its transfer points (fields_frame.png, ...), hide field 0 with its
+  // checkbox (fhide_frame.png, ...); browser.sh renders both with `sortlast render`.
+  const fieldsScene = process.env.FIELDS_SCENE_NAME;
+  if (fieldsScene) {
+    const tFields = Date.now();
+    const loadUrl = new URL('/api/load', url);
+    loadUrl.search = new URL(url).search;
+    const res = await fetch(loadUrl, { method: 'POST', body: JSON.stringify({ scene: fieldsScene }) });
+    if (!res.ok) await fail(`POST /api/load ${fieldsScene} answered ${res.status}: ${await res.text()}`);
+    await page.reload({ timeout: WAIT_MS });
+    await waitFor('the fields scene\'s first full-size frame', () => window.sortlastViewer && window.sortlastViewer.ready && window.sortlastViewer.settled);
+    if (!(await page.locator('#field').isVisible())) await fail('a scene of several fields shows no field selector');
+    // A fixed step: with `auto` every transfer-function edit probes again (3 more frames each).
+    const nFix = (await viewerState()).framesShown;
+    await page.fill('#spacing', '1');
+    await page.dispatchEvent('#spacing', 'change');
+    await waitFor('the full-size frame at 1 voxel', (n) => window.sortlastViewer.settled && window.sortlastViewer.framesShown > n, nFix);
+    const base = await snapshot();
+    const f0 = await viewerState();
+    await page.selectOption('#field', '1');
+    if ((await page.evaluate(() => window.sortlastViewer.field)) !== 1) await fail('the field selector did not pick field 1');
+    await page.locator('#tf-canvas').scrollIntoViewIfNeeded();
+    const handles = await page.evaluate(() => window.sortlastViewer.tfHandles());
+    // (a scene's colour map arrives as many points: the one nearest the middle of the range)
+    const h = handles.reduce((best, p) => (Math.abs(p.value - 0.6) < Math.abs(best.value - 0.6) ? p : best));
+    const hi = handles.indexOf(h);
+    const tfBox = await page.locator('#tf-canvas').boundingBox();
+    const targetY = h.opacity < 0.5 ? tfBox.y - 10 : tfBox.y + tfBox.height + 10;
+    await page.mouse.move(h.x, h.y);
+    await page.mouse.down();
+    for (let k = 1; k <= 5; k++) { await page.mouse.move(h.x, h.y + ((targetY - h.y) * k) / 5); await page.waitForTimeout(40); }
+    await page.mouse.up();
+    await waitFor('the full-size frame after editing field 1', (n) => window.sortlastViewer.settled && window.sortlastViewer.framesShown > n, f0.framesShown);
+    const movedTo = (await page.evaluate(() => window.sortlastViewer.tfHandles()))[hi];
+    log(`field 1: moved point ${hi} (value ${h.value.toFixed(3)}) from opacity ${h.opacity.toFixed(3)} to ${movedTo.opacity.toFixed(3)}`);
+    if (Math.abs(movedTo.opacity - h.opacity) < 0.3) await fail('the drag did not move field 1\'s point');
+    // and field 1's colour map (inferno in the scene)
+    const n6 = (await viewerState()).framesShown;
+    await page.selectOption('#colormap', 'Viridis');
+    await waitFor('the full-size frame after field 1\'s colour map', (n) => window.sortlastViewer.settled && window.sortlastViewer.framesShown > n, n6);
+    const edited = await viewerState();
+    const sent = Object.keys(edited.lastRequest);
+    if (!Array.isArray(edited.lastRequest['volumes[1].transfer.points']) || edited.lastRequest['volumes[1].transfer.colormap'] !== 'Viridis' ||
+        sent.some((k) => k.startsWith('volumes[0].transfer.points') || k.startsWith('volumes[0].transfer.colormap') || k.startsWith('transfer.')))
+      await fail(`editing field 1 sent ${JSON.stringify(sent)}`);
+    const d7 = difference(base, await snapshot());
+    log(`field 1's point moved and colour map Viridis: image difference mean ${d7.mean.toFixed(2)}, ${(d7.changed * 100).toFixed(1)}% of pixels`);
+    if (d7.mean < 0.5 && d7.changed < 0.005) await fail('the image did not change when field 1\'s transfer function did');
+    await saveFrame('fields_frame.png');
+    writeFrameFiles('fields_', edited);
+    const beforeHide = await snapshot();
+    await page.uncheck('#field-visible-0');
+    await waitFor('the full-size frame after hiding field 0', (n) => window.sortlastViewer.settled && window.sortlastViewer.framesShown > n, edited.framesShown);
+    const hidden = await viewerState();
+    if (hidden.lastRequest['volumes[0].visible'] !== false || !Array.isArray(hidden.lastRequest['volumes[1].transfer.points']))
+      await fail(`hiding field 0 sent ${JSON.stringify(hidden.lastRequest)}`);
+    const d8 = difference(beforeHide, await snapshot());
+    log(`field 0 hidden: image difference mean ${d8.mean.toFixed(2)}, ${(d8.changed * 100).toFixed(1)}% of pixels`);
+    if (d8.mean < 0.5 && d8.changed < 0.005) await fail('the image did not change when field 0 was hidden');
+    await saveFrame('fhide_frame.png');
+    writeFrameFiles('fhide_', hidden);
+    await page.screenshot({ path: path.join(outDir, 'fields.png') });
+    log(`several fields: ${((Date.now() - tFields) / 1000).toFixed(1)} s`);
   }
 
   const end = await viewerState();

@@ -70,6 +70,73 @@ volumes:
   EXPECT_EQ(s.fields[1].volume.procedural, "sphere");
 }
 
+// `volumes[i].key` overrides (--set, service requests): into entry i; an entry's `visible`.
+TEST(FieldsScene, EntryKeysAreSetByIndex) {
+  const Scene s = parse(kTwo, {"volumes[1].transfer.points=[[0, 0, 1, 0, 0], [1, 0, 1, 0, 0.25]]",
+                               "volumes[1].transfer.colormap=\"\"", "volumes[0].visible=false",
+                               "volumes[0].transfer.range=[0.2, 0.8]"});
+  ASSERT_EQ(s.fields.size(), 2u);
+  ASSERT_EQ(s.fields[1].transfer.points.size(), 2u);
+  EXPECT_DOUBLE_EQ(s.fields[1].transfer.points[1].a, 0.25);
+  EXPECT_DOUBLE_EQ(s.fields[1].transfer.points[1].g, 1.0);
+  EXPECT_TRUE(s.fields[1].visible);
+  EXPECT_FALSE(s.fields[0].visible);
+  ASSERT_TRUE(s.fields[0].transfer.range.has_value());
+  EXPECT_DOUBLE_EQ(s.fields[0].transfer.range->first, 0.2);
+  EXPECT_EQ(s.fields[0].transfer.colormap, "viridis");  // the rest of the entry's map stays
+  // Hidden: every point of the transfer function drawn at opacity 0, colours kept.
+  const TransferSpec shown = s.fields[0].shownTransfer();
+  ASSERT_EQ(shown.points.size(), s.fields[0].transfer.points.size());
+  for (size_t i = 0; i < shown.points.size(); ++i) {
+    EXPECT_EQ(shown.points[i].a, 0.0);
+    EXPECT_EQ(shown.points[i].r, s.fields[0].transfer.points[i].r);
+  }
+  EXPECT_GT(s.fields[0].transfer.points.back().a, 0.0);
+  // In the scene file too.
+  const Scene f = parse(R"(
+volumes:
+  - {procedural: sphere, dims: [8, 8, 8]}
+  - {procedural: blobs, dims: [8, 8, 8], visible: false}
+)");
+  EXPECT_TRUE(f.fields[0].visible);
+  EXPECT_FALSE(f.fields[1].visible);
+}
+
+TEST(FieldsScene, BadEntryKeysAreNamed) {
+  auto error = [](const std::vector<std::string>& overrides, const char* yaml = kTwo) {
+    return inputErrorOf([&] { parse(yaml, overrides); });
+  };
+  EXPECT_NE(error({"volumes[2].transfer.points=[[0,1,1,1,1],[1,1,1,1,1]]"}).find("'volumes[2].transfer.points': the scene's volumes list has 2 entries"),
+            std::string::npos);
+  EXPECT_NE(error({"volumes[1].transfer.colour=x"}).find("unknown scene key 'volumes[1].transfer.colour'"), std::string::npos);
+  EXPECT_NE(error({"volumes[1].visible=maybe"}).find("'volumes[1].visible': expected true or false"), std::string::npos);
+  EXPECT_NE(error({"volumes[1].dims=[0, 4, 4]"}).find("volumes[1].dims"), std::string::npos);
+  EXPECT_NE(error({"volumes[0].transfer.points=[[0,1,1,1,1],[1,1,1,1,1]]"}, "volume: {procedural: sphere}\n")
+                .find("the scene's volumes list has 0 entries"),
+            std::string::npos);
+  EXPECT_NE(error({}, "volumes:\n  - {procedural: sphere, dims: [8, 8, 8], visible: false}\n").find("volumes[0].visible"),
+            std::string::npos);
+  // Not an entry key: the name is a scene key's or unknown.
+  EXPECT_FALSE(parseFieldEntryKey("volumes.1.transfer.points"));
+  EXPECT_FALSE(parseFieldEntryKey("volumes[-1].visible"));
+  EXPECT_FALSE(parseFieldEntryKey("volumes[1]"));
+  EXPECT_FALSE(parseFieldEntryKey("volumes[1]."));
+  EXPECT_FALSE(parseFieldEntryKey("volumes[99999999].visible"));
+  ASSERT_TRUE(parseFieldEntryKey("volumes[12].transfer.points"));
+  EXPECT_EQ(parseFieldEntryKey("volumes[12].transfer.points")->entry, 12u);
+  EXPECT_EQ(parseFieldEntryKey("volumes[12].transfer.points")->path(), (std::vector<std::string>{"transfer", "points"}));
+}
+
+// A request may change an entry's transfer map and visibility, nothing else of it.
+TEST(FieldsScene, EntryFrameKeys) {
+  for (const char* k : {"volumes[0].transfer.points", "volumes[3].transfer.colormap", "volumes[1].transfer.range",
+                        "volumes[1].transfer.scale", "volumes[1].visible"})
+    EXPECT_TRUE(isFrameKey(k)) << k;
+  for (const char* k : {"volumes", "volumes[1].dims", "volumes[1].file", "volumes[1].procedural",
+                        "volumes[1].spacing", "volumes[1].transfer", "volumes[1].transfer.nonsense"})
+    EXPECT_FALSE(isFrameKey(k)) << k;
+}
+
 TEST(FieldsScene, OneEntryIsTheVolumeForm) {
   const Scene a = parse(R"(
 volumes:

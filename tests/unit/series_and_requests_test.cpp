@@ -95,6 +95,23 @@ TEST(FrameKeys, LayoutKeysAreNotFrameKeys) {
     EXPECT_FALSE(isFrameKey(k)) << k;
 }
 
+// One entry of volumes, dotted or nested; its colour map is a built-in's name, never a file.
+TEST(RequestTranslation, FieldEntryKeys) {
+  auto t = translateRequest(nlohmann::json::parse(
+      R"({"volumes[1]": {"transfer": {"colormap": "Viridis", "range": [0, 2]}, "visible": false},
+          "volumes[0].transfer.scale": "log"})"));
+  std::vector<std::string> want = {"volumes[0].transfer.scale=\"log\"", "volumes[1].transfer.colormap=\"Viridis\"",
+                                   "volumes[1].transfer.range=[0,2]", "volumes[1].visible=false"};
+  std::sort(t.overrides.begin(), t.overrides.end());
+  EXPECT_EQ(t.overrides, want);
+  EXPECT_NE(inputErrorOf([] { translateRequest(nlohmann::json::parse(R"({"volumes[1].transfer.colormap": "/etc/hostname"})")); })
+                .find("key 'volumes[1].transfer.colormap': a request may name a built-in colour map only"),
+            std::string::npos);
+  EXPECT_NE(inputErrorOf([] { translateRequest(nlohmann::json::parse(R"({"volumes[0]": {"transfer": {"colormap": "x.json"}}})")); })
+                .find("volumes[0].transfer.colormap"),
+            std::string::npos);
+}
+
 TEST(RequestTranslation, DottedAndNestedKeysBecomeOverrides) {
   auto t = translateRequest(nlohmann::json::parse(
       R"({"id": 7, "camera": {"fov": 30, "position": [1, 2, 3]}, "image.width": 64,
