@@ -405,14 +405,21 @@ void main() {
 #else
   if (!(t0 < t1)) discard;
 #endif
-#if !defined(PROJECTION) && !defined(ISOSURFACE) && !defined(GLOW) && !defined(ADAPTIVE)
+#if !defined(PROJECTION) && !defined(ISOSURFACE) && !defined(GLOW)
   // A span that holds no lattice sample (a chord shorter than a step, at the silhouette's edges
   // and corners; 60 pixels of up to 19/255 on a uniform cube at 1 voxel) gets one sample at its
-  // middle, standing for the whole chord, taken by the brick whose part of the ray holds it.
+  // middle, standing for the whole chord, taken by the brick whose part of the ray holds it, read
+  // through the block holding it (the adaptive variant reads that block's own samples; an empty
+  // block adds nothing).
   if (g_k_first > g_k_last && g_span_t0 < g_span_t1) {
     float tm = 0.5 * (g_span_t0 + g_span_t1);
     if (!(tm >= t0 && tm < t1)) discard;
-    composite(acc, sampleAt(u_eye + tm * dir), g_span_t1 - g_span_t0, g_span_t1);
+    ivec3 bi = firstBlock(tm, nb);
+    uint g = texelFetch(u_skip, bi, 0).g;
+    if (g != 0u) {
+      blockStep(bi, g);
+      composite(acc, sampleAt(u_eye + tm * dir), g_span_t1 - g_span_t0, g_span_t1);
+    }
     frag = acc;
     return;
   }
