@@ -69,6 +69,8 @@ using PfnDrawArrays = void(APIENTRYP)(GLenum, GLint, GLsizei);
   X(Uniform1f, PFNGLUNIFORM1FPROC)                              \
   X(Uniform2f, PFNGLUNIFORM2FPROC)                              \
   X(Uniform3f, PFNGLUNIFORM3FPROC)                              \
+  X(Uniform2d, PFNGLUNIFORM2DPROC)                              \
+  X(Uniform3d, PFNGLUNIFORM3DPROC)                              \
   X(UniformMatrix4fv, PFNGLUNIFORMMATRIX4FVPROC)                \
   X(GenVertexArrays, PFNGLGENVERTEXARRAYSPROC)                  \
   X(BindVertexArray, PFNGLBINDVERTEXARRAYPROC)                  \

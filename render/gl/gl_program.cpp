@@ -123,6 +123,14 @@ void GlProgram::set(std::string_view name, const glm::vec3& v) const {
   gl_->Uniform3f(uniformLocation(name), v.x, v.y, v.z);
 }
 
+void GlProgram::set(std::string_view name, const glm::dvec2& v) const {
+  gl_->Uniform2d(uniformLocation(name), v.x, v.y);
+}
+
+void GlProgram::set(std::string_view name, const glm::dvec3& v) const {
+  gl_->Uniform3d(uniformLocation(name), v.x, v.y, v.z);
+}
+
 void GlProgram::set(std::string_view name, const glm::vec4& v) const {
   gl_->Uniform4f(uniformLocation(name), v.x, v.y, v.z, v.w);
 }

@@ -46,6 +46,8 @@ class GlProgram {
   void set(std::string_view name, float v) const;
   void set(std::string_view name, const glm::vec2& v) const;
   void set(std::string_view name, const glm::vec3& v) const;
+  void set(std::string_view name, const glm::dvec2& v) const;  // dvec2 / dvec3 uniforms (GLSL 4.00 doubles)
+  void set(std::string_view name, const glm::dvec3& v) const;
   void set(std::string_view name, const glm::vec4& v) const;
   void set(std::string_view name, const glm::ivec4& v) const;
   void set(std::string_view name, const glm::mat4& v) const;

@@ -46,6 +46,17 @@ unsigned projectionBits(VolumeBlend b, bool exact) {
   return (p << kProjectionShift) | (p != 0 && p <= 2 && exact ? unsigned(kMipExact) : 0u);
 }
 
+// Exact MIP's ray in double (raycast_projection.frag.glsl projectExact): the camera's vectors as
+// setPixelRayUniforms gives them, unrounded.
+void setDoublePixelRayUniforms(const GlProgram& program, const Camera& cam) {
+  const glm::dvec2 s = cam.screenScale();
+  program.set("u_eye_d", cam.position);
+  program.set("u_forward_d", cam.forward());
+  program.set("u_right_d", cam.right() * s.x);
+  program.set("u_up_d", cam.trueUp() * s.y);
+  program.set("u_pixel_scale_d", glm::dvec2(2.0 / cam.width, 2.0 / cam.height));
+}
+
 // The fragment shader of a variant: render/volume/raycast_march.frag.glsl describes the chunks.
 ProgramSources raycastSources(unsigned v) {
   const bool glow = v & kGlow, shading = v & kShading, preint = v & kPreintegrated;
@@ -359,6 +370,7 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
                       (fields << kFieldsShift));
     gl_.UseProgram(program);
     setPixelRayUniforms(program, cam);
+    if (projection & kMipExact) setDoublePixelRayUniforms(program, cam);
     setClipUniforms(program, clip_);
     if (g.adaptive) {
       program.set("u_index_scale", g.lookup.index_scale);
