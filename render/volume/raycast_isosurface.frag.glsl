@@ -3,8 +3,8 @@
 // ray's lattice, refined, shaded and composited (transfer/isosurface.h has the model).
 //
 // Intervals and who owns them. The ray inside the volume is cut at its lattice samples
-// t_k = k delta, clipped to where it enters the volume cut by the clip region (g_vol_t0) and to
-// where it ends: the far side of that span (g_vol_t1) or an opaque surface's t. Each interval (previous point, point] is
+// t_k = k delta, clipped to where it enters the volume cut by the clip region (g_span_t0) and to
+// where it ends: the far side of that span (g_span_t1) or an opaque surface's t. Each interval (previous point, point] is
 // owned by the brick that owns its end point: a lattice sample by its owner
 // (raycast_march.frag.glsl's rule, exactly one brick), the ray's end by the brick it ends in. So
 // every interval, and every crossing found in it, is counted exactly once across brick faces,
@@ -39,7 +39,6 @@ uniform float u_iso_shininess;    // p
 uniform vec3 u_iso_inv_spacing;   // 1 / world spacing per axis
 // (u_vol_lo, u_vol_hi: the whole volume's box, raycast_sample.frag.glsl.)
 
-float g_vol_t0, g_vol_t1;  // where the ray enters and leaves the volume, cut to the clip region
 #ifdef ISO_DEBUG
 // The debug output (RaycastSettings::iso_debug): the first hit's (t, unit gradient); t = 0: none.
 vec4 g_iso_first = vec4(0.0);
@@ -51,22 +50,13 @@ vec4 g_iso_first = vec4(0.0);
 vec4 g_iso_opaque = vec4(0.0);
 #endif
 
-// Where the ray enters and leaves the whole volume (after brickSpan has set g_inv), cut to the
-// clip region (clip.planes, clip.box) by the clipRay every brick evaluates alike on the same
-// uniforms and ray: the clipped span's entry is the same float in every brick. The search starts
-// there: the first interval runs from the clip entry to the first lattice sample after it, so a
-// crossing is found only inside the kept span, and where the field at the entry is already beyond
-// an isovalue that surface does not show on the cut face (ParaView's cropping gives the same).
-void isoBegin(vec3 dir) {
-  vec3 ta = (u_vol_lo - u_eye) * g_inv, tb = (u_vol_hi - u_eye) * g_inv;
-  vec3 lo = min(ta, tb), hi = max(ta, tb);
-  vec2 span = clipRay(u_eye, dir, vec2(max(max(0.0, lo.x), max(lo.y, lo.z)), min(hi.x, min(hi.y, hi.z))));
-  g_vol_t0 = span.x;
-  g_vol_t1 = span.y;
-}
-
+// The search starts where the ray enters the whole volume cut to the clip region (g_span_t0,
+// raycast_march.frag.glsl volumeSpan: the same float in every brick): the first interval runs
+// from there to the first lattice sample after it, so a crossing is found only inside the kept
+// span, and where the field at the entry is already beyond an isovalue that surface does not show
+// on the cut face (ParaView's cropping gives the same).
 // The start of the interval ending at lattice sample k.
-float isoStart(int k) { return max(float(k - 1) * u_delta, g_vol_t0); }
+float isoStart(int k) { return max(float(k - 1) * u_delta, g_span_t0); }
 
 // The world gradient of the trilinear interpolant in the cell of the brick texture holding world
 // point p: its 8 corners by texelFetch, the exact derivative of the interpolant there.
@@ -166,7 +156,7 @@ void isoSamples(inout vec4 acc, inout int k, inout int k_back, inout float v_bac
 // The last interval, from lattice sample k_last (clipped to the volume) to the ray's end t_end,
 // when the ray ends in this brick.
 void isoTail(inout vec4 acc, int k_last, float t_end, vec3 dir) {
-  float ta = max(float(k_last) * u_delta, g_vol_t0);
+  float ta = max(float(k_last) * u_delta, g_span_t0);
   if (!(ta < t_end) || acc.a >= 1.0) return;
   isoInterval(acc, ta, sampleVolume(u_eye + ta * dir), t_end, sampleVolume(u_eye + t_end * dir), dir);
 }

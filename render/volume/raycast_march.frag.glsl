@@ -108,9 +108,6 @@
 // The ray's span through the whole volume, clipped (clip.planes, clip.box): g_span_t0 .. g_span_t1,
 // computed from the same floats in every brick (the volume's faces are brick planes), and the
 // first and last lattice samples inside it, g_k_first and g_k_last.
-float g_span_t0, g_span_t1;
-int g_k_first, g_k_last;
-
 int firstSample(float t);
 
 void volumeSpan(vec3 dir) {
@@ -383,10 +380,9 @@ void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
   if (surfaceAt(px)) t1 = min(t1, texelFetch(u_surface, px, 0).x);
 #ifdef ISOSURFACE
-  isoBegin(dir);
-  // At the surface, or leaving the volume or the clip region (span.y and g_vol_t1 are both the
+  // At the surface, or leaving the volume or the clip region (span.y and g_span_t1 are both the
   // min over the same clip candidates, of this brick's exit and of the volume's).
-  bool ends_here = t1 < span.y || span.y >= g_vol_t1;
+  bool ends_here = t1 < span.y || span.y >= g_span_t1;
 #endif
   vec4 acc = vec4(0.0);
 #ifdef PROJECTION  // no volume here: the opaque layer's colour alone (raycast_projection.frag.glsl)

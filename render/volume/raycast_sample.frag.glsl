@@ -24,6 +24,10 @@ uniform ivec4 u_surface_rect;   // x, y, w, h where u_surface is valid (stale el
 uniform vec3 u_vol_lo;          // the whole volume's world box (floats of the same doubles as
 uniform vec3 u_vol_hi;          //   the brick planes at the volume's faces)
 out vec4 frag;
+// The ray's span through the whole volume cut to the clip region, and the first and last lattice
+// samples in it (set by raycast_march.frag.glsl volumeSpan; read by the march and the isosurfaces).
+float g_span_t0, g_span_t1;
+int g_k_first, g_k_last;
 
 vec3 g_inv;  // 1 / ray direction, per axis
 ivec3 g_step;
