@@ -1,5 +1,6 @@
 #include "session/frame_stats.h"
 
+#include <malloc.h>
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -34,6 +35,11 @@ double currentRssMiB() {
     if (std::sscanf(line, "VmRSS: %lld kB", &kib) == 1) break;
   std::fclose(f);
   return kib / 1024.0;
+}
+
+double heapInUseMiB() {
+  const struct mallinfo2 m = mallinfo2();
+  return double(m.uordblks + m.hblkhd) / (1024.0 * 1024.0);
 }
 
 nlohmann::json stagesJson(const std::vector<RankFrameStats>& ranks, double total_s) {
@@ -83,7 +89,7 @@ nlohmann::json frameJson(int frame, const std::vector<RankFrameStats>& ranks, do
   nlohmann::json j;
   j["frame"] = frame;
   double raw = 0, rle = 0;
-  for (const char* key : {"render_s", "encode_s", "transfer_s", "peak_rss_mb", "rss_mb", "bricks_rendered",
+  for (const char* key : {"render_s", "encode_s", "transfer_s", "peak_rss_mb", "rss_mb", "heap_mb", "bricks_rendered",
                           "bricks_skipped", "particles_held", "particle_rounds", "bytes_sent"})
     j[key] = nlohmann::json::array();
   for (const RankFrameStats& r : ranks) {
@@ -92,6 +98,7 @@ nlohmann::json frameJson(int frame, const std::vector<RankFrameStats>& ranks, do
     j["transfer_s"].push_back(r.transfer_s);
     j["peak_rss_mb"].push_back(r.peak_rss_mb);
     j["rss_mb"].push_back(r.rss_mb);
+    j["heap_mb"].push_back(r.heap_mb);
     j["bricks_rendered"].push_back(int(r.bricks_rendered));
     j["bricks_skipped"].push_back(int(r.bricks_skipped));
     j["particles_held"].push_back((long long)r.particles_held);

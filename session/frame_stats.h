@@ -15,7 +15,12 @@ struct RankFrameStats {
   double bytes_raw = 0, bytes_rle = 0;  // RGBA8 bytes of the rectangles sent, before and after RLE
   double bricks_rendered = 0, bricks_skipped = 0;
   double peak_rss_mb = 0;
-  double rss_mb = 0;  // resident memory now (VmRSS), at the end of the frame: the soak tests' slope
+  double rss_mb = 0;  // resident memory now (VmRSS), at the end of the frame
+  // Bytes malloc has handed out and not had back, at the end of the frame (mallinfo2): a leak's
+  // direct signal, which the soak tests' slope reads. VmRSS also rises in steps when the allocator
+  // or the GL driver takes a new block of pages and keeps it (measured: 1 MiB steps at requests
+  // ~400 and ~830 of the service soak, flat afterwards), which a least-squares slope reads as growth.
+  double heap_mb = 0;
   double particles_held = 0;   // particles this rank's bricks hold, ghosts included
   double particle_rounds = 0;  // most sample windows (rounds of passes) any of its bricks needed
   double bytes_sent = 0;       // compositing: bytes this rank sent, message headers included
@@ -40,6 +45,8 @@ std::vector<RankFrameStats> gatherStats(const RankFrameStats& mine, MPI_Comm com
 double peakRssMiB();
 // Resident memory of this process now (VmRSS of /proc/self/status), in MiB; 0 if unreadable.
 double currentRssMiB();
+// Heap in use now (mallinfo2: arena bytes in use plus mmapped blocks), in MiB.
+double heapInUseMiB();
 
 // The frame's `stages` object: per rank each stage's busy seconds (arrays, as the other per-rank
 // fields) and, for the frame: draw_s (the slowest rank's: the frame's GL time), the time outside

@@ -746,6 +746,7 @@ nlohmann::json RenderSession::State::frameStats(const Scene& sc, const FrameRequ
   if (choice) st.strategy_code = choice->radix ? choice->radix : 1;
   st.peak_rss_mb = peakRssMiB();
   st.rss_mb = currentRssMiB();
+  st.heap_mb = heapInUseMiB();
   auto all = gatherStats(st, comm);
   if (rank != 0) return nullptr;
   nlohmann::json j = frameJson(request.orbit_frame >= 0 ? request.orbit_frame : frames_rendered, all,

@@ -22,7 +22,7 @@ def main():
     u = urllib.parse.urlparse(base)
     host, port = u.hostname, u.port
     conn = http.client.HTTPConnection(host, port, timeout=60)
-    xs, rss, counts = [], [], {"frames": 0, "bad": 0, "dropped": 0, "half": 0, "reconnects": 0}
+    xs, rss, heap, counts = [], [], [], {"frames": 0, "bad": 0, "dropped": 0, "half": 0, "reconnects": 0}
     bad_bodies = ['{"image.width":', '{"camera.positon":[1,2,3]}', '{"image.width":0}',
                   '{"camera.fov":".nan"}', '[1,2,3]', '{"format":"gif"}',
                   '{"render.method":"magic"}', '{"camera.up":[0,0,0]}']
@@ -85,7 +85,8 @@ def main():
         stats = json.loads(r.getheader("X-Sortlast-Stats"))
         xs.append(i)
         rss.append(stats["rss_mb"])
-    json.dump({"x": xs, "rss_mb": rss}, open(out, "w"))
+        heap.append(stats["heap_mb"])
+    json.dump({"x": xs, "rss_mb": rss, "heap_mb": heap}, open(out, "w"))
     if counts["reconnects"] > requests // 100:
         print(f"the server closed {counts['reconnects']} kept-alive connections (over 1 %)")
         return 1

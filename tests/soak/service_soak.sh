@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Soak test of the service: `sortlast serve` on 2 ranks answers REQUESTS mixed requests
 # (small frames with new cameras and transfer functions, bad requests, clients that disconnect;
-# service_soak.py) and the resident memory of every rank, sampled at each good frame, must not grow
-# after the warm-up: least-squares slope over requests WARMUP.. below BOUND_KIB per request.
+# service_soak.py) and the memory of every rank, sampled at each good frame, must not grow after
+# the warm-up: the heap in use's least-squares slope over requests WARMUP.. below BOUND_KIB per
+# request, resident memory rising by at most 8 MiB (rss_slope.py).
 # Usage: service_soak.sh SORTLAST [REQUESTS] [WARMUP] [BOUND_KIB]
 source "$(dirname "$0")/../service/service_lib.sh" "$1"
 requests=${2:-2000} warmup=${3:-200} bound=${4:-2}
