@@ -178,6 +178,7 @@ bool isFrameKey(const std::string& path) {
                           "render.shading_specular", "render.shading_shininess",
                           "render.adaptive_step", "render.adaptive_tolerance", "render.pipeline",
                           "render.blend", "render.mip_exact", "render.isovalues",
+                          "render.estimate", "render.estimate_pixels", "render.target_db",
                           "particles.radius", "particles.influence", "particles.threshold",
                           "particles.color", "particles.step", "particles.max_samples",
                           "particles.refine_iterations", "particles.cull", "particles.samples_per_pass",

@@ -32,6 +32,12 @@ enum class Pipeline { kOverlapped, kSerial };
 template <>
 inline constexpr std::array kEnumNames<Pipeline>{"overlapped", "serial"};
 
+// render.estimate: when the frame's accuracy is estimated (session/frame_estimate.h). kAuto:
+// when what it depends on changes (the spacing probe's key), not every frame of an orbit.
+enum class EstimateMode { kOff, kOn, kAuto };
+template <>
+inline constexpr std::array kEnumNames<EstimateMode>{"off", "on", "auto"};
+
 // render.blend: how a volume's samples along a ray make the pixel. kComposite: emission-absorption
 // (front to back "over"); the projections take the maximum, the minimum, the mean or the sum of
 // what each ray meets (order-free: every brick's partial result combines with any other's);
@@ -59,6 +65,9 @@ struct RenderSection {
   VolumeBlend blend = VolumeBlend::kComposite;
   bool mip_exact = false;  // mip / minip: the exact extremum of the trilinear field along each ray
   std::vector<Isovalue> isovalues;  // render.isovalues (scene/isosurface_scene.h)
+  EstimateMode estimate = EstimateMode::kAuto;  // render.estimate
+  int estimate_pixels = 4096;                   // the estimate's sampled pixels
+  double target_db = 50.0;  // render.sample_spacing auto: the PSNR its estimate must reach
 
   bool raycast() const { return method == RenderMethod::kRaycast; }
   // mip, minip, average, additive: order-free (docs/volumes.md, compositing/projection_pixels.h).

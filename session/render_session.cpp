@@ -21,6 +21,7 @@
 #include <fstream>
 #include <limits>
 #include <optional>
+#include <thread>
 
 #include "common/error.h"
 #include "common/pixel_threads.h"
@@ -32,6 +33,7 @@
 #include "render/brick_renderer.h"
 #include "session/collective.h"
 #include "session/frame_footprint.h"
+#include "session/frame_estimate.h"
 #include "session/frame_stats.h"
 #include "session/device_report.h"
 #include "session/memory_budget.h"
@@ -240,6 +242,14 @@ struct RenderSession::State {
   VisibilityOrder frame_order;
   FrameFootprint frame_footprint;
   std::vector<double> spacingKey(const Scene& sc, std::pair<int, int> probe) const;
+  FrameRequest probeRequest(const FrameRequest& request, double step, std::pair<int, int> size) const;
+  // render.estimate (session/frame_estimate.h): the last estimate and what it depended on.
+  struct {
+    std::vector<double> key;
+    nlohmann::json last;
+    bool valid = false;
+  } estimate;
+  nlohmann::json estimateAccuracy(const Scene& sc, const Camera& cam, const FrameResult& out);
 };
 
 RenderSession::RenderSession(SessionOptions options, MPI_Comm comm) : s_(std::make_unique<State>()) {
@@ -577,8 +587,10 @@ void RenderSession::State::bringGpuTo(const Scene& scene) {
   // Adaptive steps choose per block from the whole block's range, which no rank holds alone.
   if (scene.hasVolume()) shareBlockRanges(*renderer, layout.grid, comm);
   gpu = want;
-  // The textures hold the data now; a batch session keeps no second copy.
-  if (!opts.resident) d.dropHostCopies();
+  // The textures hold the data now; a batch session keeps no second copy, unless the accuracy
+  // estimate reads the samples (session/frame_estimate.h).
+  if (!opts.resident && (scene.render.estimate == EstimateMode::kOff || !estimateUnavailable(scene, adaptive, external, &d).empty()))
+    d.dropHostCopies();
 }
 
 // What a probe's choice depends on (auto_spacing.h): the transfer function as built, the renderer's
@@ -609,32 +621,71 @@ std::vector<double> RenderSession::State::spacingKey(const Scene& sc, std::pair<
   return key;
 }
 
+// A probe frame of the scene's automatic view (the default camera), whatever this frame's camera.
+FrameRequest RenderSession::State::probeRequest(const FrameRequest& request, double step, std::pair<int, int> size) const {
+  FrameRequest p;
+  p.overrides = request.overrides;
+  p.overrides.push_back("render.sample_spacing=" + std::to_string(step));
+  p.overrides.push_back("image.width=" + std::to_string(size.first));
+  p.overrides.push_back("image.height=" + std::to_string(size.second));
+  for (const char* k : {"camera.position=auto", "camera.look_at=auto", "camera.up=[0, 1, 0]",
+                        "camera.fov=35", "camera.orbit.frames=0"})
+    p.overrides.push_back(k);
+  p.orbit_frame = -1;
+  p.float_frame = true;
+  p.probe = true;
+  return p;
+}
+
 double RenderSession::autoSpacing(const Scene& sc, const FrameRequest& request, nlohmann::json& info) {
   State& S = *s_;
   const auto [w, h] = probeSize(sc.camera.width, sc.camera.height);
   std::vector<double> key = S.spacingKey(sc, {w, h});
+  key.insert(key.end(), {sc.render.target_db, double(sc.render.estimate_pixels)});
   bool probed = false;
   double t0 = MPI_Wtime();
   if (!S.spacing.valid || key != S.spacing.key) {
-    std::vector<ImageF> probes;
-    for (double step : probeSpacings()) {
-      FrameRequest p;
-      p.overrides = request.overrides;
-      p.overrides.push_back("render.sample_spacing=" + std::to_string(step));
-      p.overrides.push_back("image.width=" + std::to_string(w));
-      p.overrides.push_back("image.height=" + std::to_string(h));
-      // The scene's automatic view (the default camera), whatever this frame's camera.
-      for (const char* k : {"camera.position=auto", "camera.look_at=auto", "camera.up=[0, 1, 0]",
-                            "camera.fov=35", "camera.orbit.frames=0"})
-        p.overrides.push_back(k);
-      p.orbit_frame = -1;
-      p.float_frame = true;
-      p.probe = true;
-      probes.push_back(std::move(render(p).image_f));
-    }
     double chosen = 0.5;
-    if (S.rank == 0) {
-      S.spacing.choice = chooseSpacing(probes, sc.image.background);
+    if (estimateUnavailable(sc, S.adaptive, S.external, S.current).empty()) {
+      // Against the exact model (session/frame_estimate.h): coarsest first, the first step whose
+      // estimate meets the target at its 95 % bound is taken; the exact values of the sampled
+      // pixels are integrated once, for the first probe, and serve every step.
+      const EstimateVolume mine = estimateVolumeOf(sc, S.layout, *S.current, S.dataRange());
+      EstimateSample sample;
+      std::vector<double> exact;
+      std::vector<EstimatedStep> tried;
+      for (double step : estimatedSpacings()) {
+        FrameResult probe = render(S.probeRequest(request, step, {w, h}));
+        const Camera cam = probe.scene.frameCameras(S.layout.bounds)[0];
+        if (tried.empty()) {
+          if (S.rank == 0) {
+            ImageRGBA8 f8(probe.image_f.width, probe.image_f.height);
+            for (size_t i = 0; i < f8.px.size(); ++i)
+              f8.px[i] = uint8_t(std::lround(std::clamp(probe.image_f.px[i], 0.0f, 1.0f) * 255.0f));
+            sample = chooseEstimatePixels(f8, sc.image.background, screenRectOf(cam, S.layout.grid.worldBox()),
+                                          std::min(sc.render.estimate_pixels, w * h / 2));
+          }
+          broadcastSample(sample, S.comm);
+          exact = exactSampledPixels(sample, cam, mine, sc.image.background,
+                                     int(std::max(1u, std::thread::hardware_concurrency())), S.comm);
+        }
+        int pass = 0;
+        if (S.rank == 0) {
+          const AccuracyEstimate e = compareWithExact(sample, exact, nullptr, &probe.image_f, sc.image.background);
+          tried.push_back({step, e});
+          pass = meetsTarget(e, sc.render.target_db);
+        }
+        MPI_Bcast(&pass, 1, MPI_INT, 0, S.comm);
+        if (S.rank != 0) tried.push_back({step, {}});
+        chosen = step;
+        if (pass) break;
+      }
+      if (S.rank == 0) S.spacing.choice = {chosen, {}, std::move(tried)};
+    } else {
+      // What the estimate does not model (its `why`): the steps' differences to each other.
+      std::vector<ImageF> probes;
+      for (double step : probeSpacings()) probes.push_back(std::move(render(S.probeRequest(request, step, {w, h})).image_f));
+      if (S.rank == 0) S.spacing.choice = chooseSpacing(probes, sc.image.background);
       chosen = S.spacing.choice.spacing;
     }
     // Rank 0 decides; every rank takes its step (so all ranks agree whatever the rounding).
@@ -645,11 +696,26 @@ double RenderSession::autoSpacing(const Scene& sc, const FrameRequest& request, 
     probed = true;
   }
   if (S.rank == 0) {
-    nlohmann::json est = nlohmann::json::object();
-    for (auto [step, db] : S.spacing.choice.estimated_db)
-      est[std::to_string(step).substr(0, 3)] = std::isfinite(db) ? nlohmann::json(db) : nlohmann::json("inf");
-    info = {{"chosen", S.spacing.choice.spacing}, {"estimated_db", est}, {"target_db", kTargetDb},
-            {"probed", probed}, {"probe_s", probed ? MPI_Wtime() - t0 : 0.0}};
+    const SpacingChoice& c = S.spacing.choice;
+    if (!c.against_exact.empty()) {
+      nlohmann::json steps = nlohmann::json::array();
+      bool met = false;
+      for (const EstimatedStep& e : c.against_exact) {
+        nlohmann::json j = e.estimate.json();
+        j["step"] = e.step;
+        steps.push_back(j);
+        met = met || meetsTarget(e.estimate, sc.render.target_db);
+      }
+      info = {{"chosen", c.spacing}, {"by", "estimate against the exact model"}, {"steps", steps},
+              {"target_db", sc.render.target_db}, {"target_over4_share", kTargetOver4Share},
+              {"target_met", met}, {"probed", probed}, {"probe_s", probed ? MPI_Wtime() - t0 : 0.0}};
+    } else {
+      nlohmann::json est = nlohmann::json::object();
+      for (auto [step, db] : c.estimated_db)
+        est[std::to_string(step).substr(0, 3)] = std::isfinite(db) ? nlohmann::json(db) : nlohmann::json("inf");
+      info = {{"chosen", c.spacing}, {"by", "difference of successive steps"}, {"estimated_db", est},
+              {"target_db", kTargetDb}, {"probed", probed}, {"probe_s", probed ? MPI_Wtime() - t0 : 0.0}};
+    }
   }
   return S.spacing.choice.spacing;
 }
@@ -814,9 +880,43 @@ FrameResult RenderSession::render(const FrameRequest& request) {
   st.bytes_sent = cs.bytes_sent;
   st.wall_s = MPI_Wtime() - t_frame;
   out.stats = S.frameStats(sc, request, cam, st, cs, MPI_Wtime() - t_frame + probe_s, spacing_info);
+  // The accuracy estimate, after the frame's time is taken (its own time is in it).
+  if (sc.render.estimate != EstimateMode::kOff && !request.probe) {
+    nlohmann::json est;
+    collectively(S.comm, [&] { est = S.estimateAccuracy(sc, cam, out); });
+    if (S.rank == 0) out.stats["accuracy_estimate"] = std::move(est);
+  }
   out.scene = std::move(sc);
   if (!request.probe) ++S.frames_rendered;
   return out;
+}
+
+// render.estimate: on every frame, or (auto) when what the frame's accuracy depends on, other
+// than the camera, changed since the last estimate; the same decision on every rank.
+nlohmann::json RenderSession::State::estimateAccuracy(const Scene& sc, const Camera& cam, const FrameResult& out) {
+  const std::string why = estimateUnavailable(sc, adaptive, external, current);
+  if (!why.empty()) return rank == 0 ? nlohmann::json{{"available", false}, {"why", why}} : nlohmann::json();
+  std::vector<double> key = spacingKey(sc, {cam.width, cam.height});
+  key.insert(key.end(), {sc.render.sample_spacing, double(sc.render.estimate_pixels)});
+  if (sc.render.estimate == EstimateMode::kAuto && estimate.valid && key == estimate.key) {
+    nlohmann::json j = estimate.last;
+    if (rank == 0) j["fresh"] = false;
+    return j;
+  }
+  const double t0 = MPI_Wtime();
+  const EstimateVolume mine = estimateVolumeOf(sc, layout, *current, dataRange());
+  const double t_volume = MPI_Wtime() - t0;
+  nlohmann::json j = estimateFrame(mine, cam, layout.grid.worldBox(), sc.image.background,
+                                   rank == 0 ? &out.image : nullptr, nullptr, sc.render.estimate_pixels, comm);
+  if (rank == 0) {
+    j["seconds"] = MPI_Wtime() - t0;  // with the blocks' emptiness (rank 0's) below
+    j["empty_blocks_s"] = t_volume;
+    j["available"] = true;
+    j["fresh"] = true;
+    j["frame"] = frames_rendered - 1;
+  }
+  estimate = {std::move(key), j, true};
+  return j;
 }
 
 nlohmann::json RenderSession::describe(const std::vector<std::string>& base) const {

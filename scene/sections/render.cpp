@@ -19,14 +19,15 @@ std::vector<sortlast::SceneKey> sortlast::renderKeys() {
      AutoValue{}},
     {"render.sample_spacing", "auto",
      "Distance between slices (ray casting: between samples along each ray), in units of "
-     "the smallest voxel spacing (the paper: 1). `auto`: 0.5, 1 or 2, the largest whose own "
-     "error, estimated from small probe frames of the scene's automatic view at all three steps, "
-     "stays within 52 dB (session/auto_spacing.h); probed again when the transfer "
-     "function, the renderer's settings, the time step or the image size change, not the camera; "
-     "`--stats` gives "
-     "the choice and the estimates. 0.5 (the fixed default before) with ray casting and "
-     "`transfer.preintegrated: auto` reaches 45 dB on the benchmark's four data sets "
-     "(results/accuracy).",
+     "the smallest voxel spacing (the paper: 1). `auto`: the coarsest of 2, 1, 0.5 and 0.25 whose "
+     "error meets `render.target_db` and at most 0.1 % of pixels more than 4/255 off, both at "
+     "their 95 % bounds, as estimated against the exact model (`render.estimate`'s method) on small "
+     "probe frames of the scene's automatic view, coarsest first (0.25 when none does; `--stats` "
+     "says `target_met`). Scenes the estimate does not model (projections, several fields, "
+     "particles, surfaces, glow, adaptive sampling) take the largest of 0.5, 1 and 2 whose "
+     "difference to the next finer step stays within 52 dB (session/auto_spacing.h). Probed again "
+     "when the transfer function, the renderer's settings, the time step or the image size "
+     "change, not the camera; `--stats` gives the choice and each step's estimate.",
      Real{member<&Scene::render, &RenderSection::sample_spacing>, {{"in [0.01, 100]", "must be {allowed} voxels"}}},
      AutoValue{member<&Scene::render, &RenderSection::sample_spacing_auto>}},
     {"render.block_cells", "64",
@@ -92,6 +93,26 @@ std::vector<sortlast::SceneKey> sortlast::renderKeys() {
      "(the pipeline before; for measuring what overlap gains, as `compositing.overlap: false`). "
      "The images are the same; `--stats` gives each stage's time (`stages`).",
      Choice{member<&Scene::render, &RenderSection::pipeline>}},
+    {"render.estimate", "auto",
+     "The frame's accuracy, estimated as it renders (session/frame_estimate.h): about "
+     "`render.estimate_pixels` of the frame's pixels, a stratified sample with more where the "
+     "colour changes fastest, are integrated with the reference's exact model (double precision, "
+     "not pre-integrated), each rank its own bricks' part of each ray, and compared with the frame "
+     "as written: `--stats` gives `accuracy_estimate` (estimated PSNR, the share of pixels more than "
+     "4/255 off, 95 % bounds of each, the time it took). `on`: every frame; `auto`: the first frame "
+     "and whenever what the spacing probe depends on changes (not the camera; later frames repeat "
+     "the last estimate, marked `fresh: false`); `off`: never (a batch render then drops its host "
+     "copy of the samples once they are on the GPU). Volumes with `render.blend: composite` and one "
+     "field, without particles, surfaces, glow or adaptive sampling; other scenes say why not.",
+     Choice{member<&Scene::render, &RenderSection::estimate>}},
+    {"render.estimate_pixels", "4096",
+     "How many pixels `render.estimate` samples (more: tighter bounds, more time).",
+     Int{member<&Scene::render, &RenderSection::estimate_pixels>, {{"in [64, 1000000]"}}}},
+    {"render.target_db", "50",
+     "`render.sample_spacing: auto`: the PSNR (against the exact model) the chosen step's "
+     "estimated error must reach at its 95 % lower bound, with at most 0.1 % of the pixels more "
+     "than 4/255 off at the share's upper bound.",
+     Real{member<&Scene::render, &RenderSection::target_db>, {{"in [20, 100]"}}}},
     {"render.ert_threshold", "0.99",
      "Ray casting: a ray stops once its opacity reaches this; 1: never early. It "
      "stops only inside a brick (bricks behind still render), and changes a pixel by at most "

@@ -1,0 +1,105 @@
+#include "reference/ray_segment.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/box.h"
+#include "common/trilinear.h"
+
+namespace sortlast {
+
+double BrickField::at(const glm::dvec3& u) const {
+  const glm::ivec3 n = grid.dims;
+  const glm::ivec3 s = stored.size();
+  int i[3];
+  double f[3];
+  for (int a = 0; a < 3; ++a) {
+    // Whole-grid clamp first (the reference's), then the held samples' box.
+    double c = std::clamp(u[a], 0.0, double(n[a] - 1));
+    c = std::clamp(c, double(stored.lo[a]), double(stored.hi[a]));
+    const int hi_cell = std::max(stored.lo[a], stored.hi[a] - 1);
+    i[a] = std::min(int(c), hi_cell);
+    f[a] = s[a] > 1 ? c - i[a] : 0.0;
+    i[a] -= stored.lo[a];
+  }
+  auto v = [&](int dx, int dy, int dz) {
+    const int x = std::min(i[0] + dx, s.x - 1), y = std::min(i[1] + dy, s.y - 1), z = std::min(i[2] + dz, s.z - 1);
+    return double(samples[size_t(x) + size_t(s.x) * (size_t(y) + size_t(s.y) * size_t(z))]);
+  };
+  return trilinear(v, f);
+}
+
+glm::dvec3 BrickField::gradient(const glm::dvec3& u) const {
+  glm::dvec3 g;
+  for (int a = 0; a < 3; ++a) {
+    glm::dvec3 e(0.0);
+    e[a] = 1.0;
+    g[a] = (at(u + e) - at(u - e)) / (2.0 * grid.spacing[a]);
+  }
+  return g;
+}
+
+EmptyBlocks::EmptyBlocks(const BrickField& field, const TransferFunction& tf) {
+  const glm::ivec3 s = field.stored.size();
+  const glm::ivec3 cells = glm::max(s - 1, glm::ivec3(1));
+  count = (cells + kCells - 1) / kCells;
+  empty.assign(size_t(count.x) * count.y * count.z, 0);
+  for (int bz = 0; bz < count.z; ++bz)
+    for (int by = 0; by < count.y; ++by)
+      for (int bx = 0; bx < count.x; ++bx) {
+        double lo = HUGE_VAL, hi = -HUGE_VAL;
+        bool nan = false;
+        for (int z = bz * kCells; z <= std::min(s.z - 1, (bz + 1) * kCells); ++z)
+          for (int y = by * kCells; y <= std::min(s.y - 1, (by + 1) * kCells); ++y)
+            for (int x = bx * kCells; x <= std::min(s.x - 1, (bx + 1) * kCells); ++x) {
+              const float v = field.samples[size_t(x) + size_t(s.x) * (size_t(y) + size_t(s.y) * size_t(z))];
+              if (std::isnan(v)) nan = true;
+              lo = std::min(lo, double(v));
+              hi = std::max(hi, double(v));
+            }
+        empty[size_t(bx) + size_t(count.x) * (size_t(by) + size_t(count.y) * size_t(bz))] =
+            !nan && lo <= hi && tf.maxOpacity(lo, hi) <= 0.0;
+      }
+}
+
+SegmentIntegral integrateSegment(const BrickField& field, const TransferFunction& tf,
+                                 const Shading& shading, double flat, const glm::dvec3& o,
+                                 const glm::dvec3& d, double t0, double t1, double step,
+                                 const EmptyBlocks* empty) {
+  SegmentIntegral out;
+  if (!(t1 > t0)) return out;
+  const long long n = std::max(1LL, (long long)std::ceil((t1 - t0) / step));
+  const double h = (t1 - t0) / double(n);
+  for (long long i = 0; i < n && out.transmit > 1e-4; ++i) {
+    const glm::dvec3 u = field.grid.indexOfWorld(o + (t0 + (double(i) + 0.5) * h) * d);
+    if (empty) {
+      // The block holding this step's midpoint; if empty, on to the first midpoint past its exit.
+      const glm::dvec3 local = (u - glm::dvec3(field.stored.lo)) / double(EmptyBlocks::kCells);
+      const glm::ivec3 b = glm::clamp(glm::ivec3(glm::floor(local)), glm::ivec3(0), empty->count - 1);
+      if (empty->empty[size_t(b.x) + size_t(empty->count.x) * (size_t(b.y) + size_t(empty->count.y) * size_t(b.z))]) {
+        const glm::dvec3 lo_i = glm::dvec3(field.stored.lo + b * EmptyBlocks::kCells);
+        const Box3 box{field.grid.worldOfIndex(lo_i), field.grid.worldOfIndex(lo_i + double(EmptyBlocks::kCells))};
+        double ta, tb;
+        if (intersectRayBox(o, d, box, ta, tb)) {
+          const long long next = (long long)std::floor((tb - t0) / h - 0.5) + 1;  // first midpoint beyond tb
+          if (next > i + 1) i = next - 1;
+        }
+        continue;
+      }
+    }
+    const double v = field.at(u);  // NaN where the stencil touches a missing sample: transparent
+    if (std::isnan(v)) continue;
+    // The function once per step (colour and opacity); a = 1 - exp(-tau h) with tau =
+    // -log(1 - opacity) / unit_length, as TransferFunction::extinction, in one pow.
+    const std::array<double, 4> f = tf.atNormalised(tf.normalise(v));
+    if (f[3] <= 0.0) continue;
+    const double a = 1.0 - std::pow(1.0 - std::min(f[3], TransferFunction::kMaxOpacity), h / tf.unitLength());
+    std::array<double, 3> c{f[0], f[1], f[2]};
+    if (shading.enabled) c = shadeSample(c, field.gradient(u), d, shading, flat);
+    for (int k = 0; k < 3; ++k) out.rgb[k] += out.transmit * a * c[k];
+    out.transmit *= 1.0 - a;
+  }
+  return out;
+}
+
+}  // namespace sortlast

@@ -1,0 +1,186 @@
+// The accuracy estimate's parts (session/frame_estimate.h, reference/ray_segment.h): a ray's
+// brick segments composited equal the whole-volume reference's integral; jumping empty blocks
+// changes nothing; the stratified estimator is exact when every pixel is sampled and its bounds
+// hold the truth on a frame whose error is known.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "common/brick.h"
+#include "reference/ray_segment.h"
+#include "reference/reference.h"
+#include "session/frame_estimate.h"
+
+namespace sortlast {
+namespace {
+
+// A smooth field with empty space around a blob, on an anisotropic grid.
+WholeVolume blobVolume() {
+  WholeVolume v;
+  v.grid.dims = {21, 17, 19};
+  v.grid.spacing = {1.0, 1.3, 0.8};
+  v.samples.resize(size_t(v.grid.sampleCount()));
+  for (int z = 0; z < v.grid.dims.z; ++z)
+    for (int y = 0; y < v.grid.dims.y; ++y)
+      for (int x = 0; x < v.grid.dims.x; ++x) {
+        const glm::dvec3 p = v.grid.worldOfIndex(glm::dvec3(x, y, z));
+        v.samples[size_t(x) + size_t(v.grid.dims.x) * (size_t(y) + size_t(v.grid.dims.y) * size_t(z))] =
+            float(std::exp(-glm::dot(p, p) / 30.0) + 0.3 * std::sin(p.x * 0.7) * std::exp(-glm::dot(p, p) / 60.0));
+      }
+  return v;
+}
+
+TransferFunction blobTransfer() {
+  // Zero opacity below 0.3 (empty blocks), a sharp-ish band, colour varying with value.
+  return TransferFunction({{0.0, 0, 0, 0, 0}, {0.3, 0.2, 0.3, 1, 0}, {0.5, 1, 0.5, 0.2, 0.6}, {1.0, 1, 1, 1, 0.9}},
+                          -0.3, 1.0, 2.0);
+}
+
+// A brick's stored samples cut out of the whole volume.
+std::vector<float> storedSamples(const WholeVolume& v, const Brick& b) {
+  std::vector<float> out;
+  for (int z = b.stored.lo.z; z <= b.stored.hi.z; ++z)
+    for (int y = b.stored.lo.y; y <= b.stored.hi.y; ++y)
+      for (int x = b.stored.lo.x; x <= b.stored.hi.x; ++x)
+        out.push_back(v.samples[size_t(x) + size_t(v.grid.dims.x) * (size_t(y) + size_t(v.grid.dims.y) * size_t(z))]);
+  return out;
+}
+
+Camera smallCamera() {
+  Camera c;
+  c.position = {23, 17, 29};
+  c.look_at = {0.5, -0.3, 0.2};
+  c.width = c.height = 12;
+  c.fov_deg = 40;
+  return c;
+}
+
+TEST(FrameEstimate, BrickSegmentsComposeTheWholeRaysIntegral) {
+  const WholeVolume v = blobVolume();
+  const TransferFunction tf = blobTransfer();
+  const Camera cam = smallCamera();
+  const double step = 0.02;
+  for (bool shaded : {false, true}) {
+    Shading sh;
+    sh.enabled = shaded;
+    const ImageF ref = renderReference(v, tf, cam, step, 1, sh);
+    const std::vector<Brick> bricks = makeBricks(v.grid, 3);
+    std::vector<std::vector<float>> held;
+    for (const Brick& b : bricks) held.push_back(storedSamples(v, b));
+    const double flat = flatGradient(tf.rangeLo(), tf.rangeHi(), v.grid.spacing);
+    double worst = 0.0, worst_jump = 0.0;
+    for (int y = 0; y < cam.height; ++y)
+      for (int x = 0; x < cam.width; ++x) {
+        const CameraRay ray = cam.pixelRay(x, y);
+        struct Seg { double t0; SegmentIntegral s; };
+        std::vector<Seg> segs;
+        for (size_t b = 0; b < bricks.size(); ++b) {
+          double t0, t1;
+          if (!intersectRayBox(ray.origin, ray.direction, bricks[b].world, t0, t1)) continue;
+          const BrickField f{v.grid, bricks[b].stored, held[b].data()};
+          const EmptyBlocks empty(f, tf);
+          const SegmentIntegral plain = integrateSegment(f, tf, sh, flat, ray.origin, ray.direction, t0, t1, step);
+          const SegmentIntegral jumped = integrateSegment(f, tf, sh, flat, ray.origin, ray.direction, t0, t1, step, &empty);
+          for (int c = 0; c < 3; ++c) worst_jump = std::max(worst_jump, std::abs(plain.rgb[c] - jumped.rgb[c]));
+          worst_jump = std::max(worst_jump, std::abs(plain.transmit - jumped.transmit));
+          segs.push_back({t0, jumped});
+        }
+        std::sort(segs.begin(), segs.end(), [](const Seg& a, const Seg& b) { return a.t0 < b.t0; });
+        double rgb[3] = {0, 0, 0}, tr = 1.0;
+        for (const Seg& s : segs) {
+          for (int c = 0; c < 3; ++c) rgb[c] += tr * s.s.rgb[c];
+          tr *= s.s.transmit;
+        }
+        const float* p = &ref.px[4 * (size_t(y) * cam.width + x)];
+        for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(rgb[c] - p[c]));
+        worst = std::max(worst, std::abs((1.0 - tr) - p[3]));
+      }
+    // Different step partitions of the same midpoint rule (per brick against per ray): O(h^2),
+    // far below an 8-bit step; the early stop at transmittance 1e-4 adds at most 1e-4.
+    EXPECT_LT(worst, 2e-4) << "shaded " << shaded;
+    EXPECT_LT(worst_jump, 1e-12) << "empty blocks jumped must change nothing";
+  }
+}
+
+// A frame and "exact" values that differ by a known pattern: every 50th pixel (in raster order)
+// 10/255 off in green, every other pixel 1/255 off in red.
+struct KnownError {
+  ImageRGBA8 frame;
+  EstimateSample sample;
+  std::vector<double> exact;
+  double mse = 0.0, share = 0.0;
+};
+KnownError knownError(int budget) {
+  KnownError k;
+  k.frame = ImageRGBA8(64, 48);
+  for (int y = 0; y < 48; ++y)
+    for (int x = 0; x < 64; ++x) {
+      uint8_t* p = k.frame.at(x, y);
+      p[0] = uint8_t(x * 3), p[1] = uint8_t(y * 4), p[2] = 100, p[3] = 255;
+    }
+  k.sample = chooseEstimatePixels(k.frame, glm::dvec3(0.0), Rect{0, 0, 64, 48}, budget);
+  double se = 0.0, over = 0.0;
+  for (int i = 0; i < 64 * 48; ++i) {
+    const double e = i % 50 == 0 ? (10.0 * 10.0 + 1.0) / 3.0 : 1.0 / 3.0;
+    se += e;
+    over += i % 50 == 0;
+  }
+  k.mse = se / (64 * 48);
+  k.share = over / (64 * 48);
+  for (int p : k.sample.pixel) {
+    const uint8_t* q = &k.frame.px[4 * size_t(p)];
+    k.exact.push_back((q[0] + 1) / 255.0);
+    k.exact.push_back((q[1] + (p % 50 == 0 ? 10 : 0)) / 255.0);
+    k.exact.push_back(q[2] / 255.0);
+  }
+  return k;
+}
+
+TEST(FrameEstimate, EveryPixelSampledGivesTheExactFigures) {
+  const KnownError k = knownError(100000);
+  ASSERT_EQ(k.sample.pixel.size(), size_t(64 * 48));
+  const AccuracyEstimate e = compareWithExact(k.sample, k.exact, &k.frame, nullptr, glm::dvec3(0.0));
+  EXPECT_NEAR(e.mse, k.mse, 1e-9);
+  EXPECT_NEAR(e.over4_share, k.share, 1e-12);
+  EXPECT_NEAR(e.mse_se, 0.0, 1e-12);  // finite population: nothing left unsampled
+  EXPECT_EQ(e.largest_seen, 10);
+  EXPECT_NEAR(e.psnr_db(), 10 * std::log10(255.0 * 255.0 / k.mse), 1e-9);
+}
+
+TEST(FrameEstimate, SampledBoundsHoldTheTruth) {
+  const KnownError k = knownError(600);
+  EXPECT_LT(k.sample.pixel.size(), size_t(64 * 48));
+  // Distinct pixels, each inside the frame.
+  std::vector<int> sorted = k.sample.pixel;
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_EQ(std::unique(sorted.begin(), sorted.end()), sorted.end());
+  const AccuracyEstimate e = compareWithExact(k.sample, k.exact, &k.frame, nullptr, glm::dvec3(0.0));
+  const double truth_db = 10 * std::log10(255.0 * 255.0 / k.mse);
+  EXPECT_LE(e.psnrLo(), truth_db);
+  EXPECT_GE(e.psnrHi(), truth_db);
+  EXPECT_LE(e.over4Lo(), k.share);
+  EXPECT_GE(e.over4Hi(), k.share);
+  EXPECT_NEAR(e.psnr_db(), truth_db, 1.5);
+  // The same frame, the same sample: the estimate is reproducible.
+  const KnownError again = knownError(600);
+  EXPECT_EQ(again.sample.pixel, k.sample.pixel);
+}
+
+TEST(FrameEstimate, PixelsOutsideTheRectangleCountAsExact) {
+  ImageRGBA8 frame(32, 32);
+  const EstimateSample s = chooseEstimatePixels(frame, glm::dvec3(0.0), Rect{8, 8, 8, 8}, 1000);
+  EXPECT_EQ(s.pixel.size(), 64u);  // the whole 8 x 8 rectangle, nothing else
+  for (int p : s.pixel) {
+    EXPECT_GE(p % 32, 8);
+    EXPECT_LT(p % 32, 16);
+    EXPECT_GE(p / 32, 8);
+    EXPECT_LT(p / 32, 16);
+  }
+  std::vector<double> exact(s.pixel.size() * 3, 20.0 / 255.0);  // every sampled pixel 20/255 off
+  const AccuracyEstimate e = compareWithExact(s, exact, &frame, nullptr, glm::dvec3(0.0));
+  EXPECT_NEAR(e.mse, 400.0 * 64 / 1024, 1e-9);
+  EXPECT_NEAR(e.over4_share, 64.0 / 1024, 1e-12);
+}
+
+}  // namespace
+}  // namespace sortlast
