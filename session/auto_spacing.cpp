@@ -56,4 +56,11 @@ std::pair<int, int> probeSize(int width, int height) {
   return {std::max(8, int(std::lround(width * s))), std::max(8, int(std::lround(height * s)))};
 }
 
+std::pair<int, int> estimateProbeSize(int width, int height) {
+  const int longer = std::max(width, height);
+  if (longer <= kEstimateProbeSide) return {width, height};
+  const double s = double(kEstimateProbeSide) / double(longer);
+  return {std::max(8, int(std::lround(width * s))), std::max(8, int(std::lround(height * s)))};
+}
+
 }  // namespace sortlast

@@ -77,9 +77,15 @@ inline bool meetsTarget(const AccuracyEstimate& e, double target_db) {
   return e.psnrLo() >= target_db && e.over4Hi() <= kTargetOver4Share;
 }
 
+// The probe's size against the exact model: the frame's own up to kEstimateProbeSide pixels on
+// its longer side (a 32^2 probe of a 128^2 frame has too few pixels to tell 0.1 % from 0.5 %).
+constexpr int kEstimateProbeSide = 128;
+std::pair<int, int> estimateProbeSize(int width, int height);
+
 struct EstimatedStep {
   double step = 0.0;
   AccuracyEstimate estimate;
+  std::string view;  // "auto": the automatic view; "scene": the scene's own camera
 };
 
 struct SpacingChoice {

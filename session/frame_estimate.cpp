@@ -230,9 +230,11 @@ AccuracyEstimate compareWithExact(const EstimateSample& sample, const std::vecto
   e.sampled = int(sample.pixel.size());
   // The rule of three's floor for the share's upper bound: with no pixel over seen among n
   // samples, a share up to 3 / n of the sampled area is still 95 % plausible.
+  // Times the share of the tiles' pixels left unsampled (all sampled: the share is known).
   double sampled_area = 0.0;
   for (size_t t = 0; t < tiles; ++t) sampled_area += sample.tile_pixels[t];
-  e.rule_of_three = e.sampled > 0 ? 3.0 / e.sampled * sampled_area / total : 1.0;
+  e.rule_of_three = e.sampled > 0 ? 3.0 / e.sampled * std::max(0.0, 1.0 - e.sampled / sampled_area) * sampled_area / total
+                                  : 1.0;
   return e;
 }
 

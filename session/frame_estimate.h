@@ -75,12 +75,13 @@ struct AccuracyEstimate {
   double over4_se = 0.0;
   int largest_seen = 0;        // the largest channel difference among the sampled pixels
   int sampled = 0;
-  double rule_of_three = 1.0;  // 3 / sampled, times the sampled tiles' share of the frame
+  double rule_of_three = 1.0;  // over4Hi's floor
   double psnr_db() const;      // infinity for mse 0
   double psnrLo() const;       // 95 % bounds
   double psnrHi() const;
   double over4Hi() const;      // 95 % upper bound (never below 3 / sampled, the rule of three,
-                               // scaled to the sampled tiles' share of the frame)
+                               // times the share of the tiles' pixels not sampled, times the
+                               // tiles' share of the frame)
   double over4Lo() const;
   nlohmann::json json() const;
 };

@@ -242,7 +242,8 @@ struct RenderSession::State {
   VisibilityOrder frame_order;
   FrameFootprint frame_footprint;
   std::vector<double> spacingKey(const Scene& sc, std::pair<int, int> probe) const;
-  FrameRequest probeRequest(const FrameRequest& request, double step, std::pair<int, int> size) const;
+  FrameRequest probeRequest(const FrameRequest& request, double step, std::pair<int, int> size,
+                            bool scene_view = false) const;
   // render.estimate (session/frame_estimate.h): the last estimate and what it depended on.
   struct {
     std::vector<double> key;
@@ -622,15 +623,29 @@ std::vector<double> RenderSession::State::spacingKey(const Scene& sc, std::pair<
 }
 
 // A probe frame of the scene's automatic view (the default camera), whatever this frame's camera.
-FrameRequest RenderSession::State::probeRequest(const FrameRequest& request, double step, std::pair<int, int> size) const {
+// `scene_view`: the scene's own camera (the session's base scene, not the request's) instead.
+FrameRequest RenderSession::State::probeRequest(const FrameRequest& request, double step, std::pair<int, int> size,
+                                                bool scene_view) const {
   FrameRequest p;
   p.overrides = request.overrides;
   p.overrides.push_back("render.sample_spacing=" + std::to_string(step));
   p.overrides.push_back("image.width=" + std::to_string(size.first));
   p.overrides.push_back("image.height=" + std::to_string(size.second));
-  for (const char* k : {"camera.position=auto", "camera.look_at=auto", "camera.up=[0, 1, 0]",
-                        "camera.fov=35", "camera.orbit.frames=0"})
-    p.overrides.push_back(k);
+  auto vec = [](const glm::dvec3& v) {
+    return "[" + std::to_string(v.x) + ", " + std::to_string(v.y) + ", " + std::to_string(v.z) + "]";
+  };
+  if (scene_view) {
+    const Camera& c = base.camera;
+    p.overrides.push_back("camera.position=" + vec(c.position));
+    p.overrides.push_back(base.look_at_auto ? std::string("camera.look_at=auto") : "camera.look_at=" + vec(c.look_at));
+    p.overrides.push_back("camera.up=" + vec(c.up));
+    p.overrides.push_back("camera.fov=" + std::to_string(c.fov_deg));
+    p.overrides.push_back("camera.orbit.frames=0");
+  } else {
+    for (const char* k : {"camera.position=auto", "camera.look_at=auto", "camera.up=[0, 1, 0]",
+                          "camera.fov=35", "camera.orbit.frames=0"})
+      p.overrides.push_back(k);
+  }
   p.orbit_frame = -1;
   p.float_frame = true;
   p.probe = true;
@@ -639,47 +654,59 @@ FrameRequest RenderSession::State::probeRequest(const FrameRequest& request, dou
 
 double RenderSession::autoSpacing(const Scene& sc, const FrameRequest& request, nlohmann::json& info) {
   State& S = *s_;
-  const auto [w, h] = probeSize(sc.camera.width, sc.camera.height);
+  const bool exact = estimateUnavailable(sc, S.adaptive, S.external, S.current).empty();
+  const auto [w, h] = exact ? estimateProbeSize(sc.camera.width, sc.camera.height)
+                            : probeSize(sc.camera.width, sc.camera.height);
   std::vector<double> key = S.spacingKey(sc, {w, h});
   key.insert(key.end(), {sc.render.target_db, double(sc.render.estimate_pixels)});
   bool probed = false;
   double t0 = MPI_Wtime();
   if (!S.spacing.valid || key != S.spacing.key) {
     double chosen = 0.5;
-    if (estimateUnavailable(sc, S.adaptive, S.external, S.current).empty()) {
+    if (exact) {
       // Against the exact model (session/frame_estimate.h): coarsest first, the first step whose
       // estimate meets the target at its 95 % bound is taken; the exact values of the sampled
       // pixels are integrated once, for the first probe, and serve every step.
+      // Two views where the scene sets its camera: the automatic one and the scene's own (not a
+      // request's: a service client moving the camera does not probe again); the finer step wins.
+      // The second view starts at the first's choice.
       const EstimateVolume mine = estimateVolumeOf(sc, S.layout, *S.current, S.dataRange());
-      EstimateSample sample;
-      std::vector<double> exact;
       std::vector<EstimatedStep> tried;
-      for (double step : estimatedSpacings()) {
-        FrameResult probe = render(S.probeRequest(request, step, {w, h}));
-        const Camera cam = probe.scene.frameCameras(S.layout.bounds)[0];
-        if (tried.empty()) {
-          if (S.rank == 0) {
-            ImageRGBA8 f8(probe.image_f.width, probe.image_f.height);
-            for (size_t i = 0; i < f8.px.size(); ++i)
-              f8.px[i] = uint8_t(std::lround(std::clamp(probe.image_f.px[i], 0.0f, 1.0f) * 255.0f));
-            sample = chooseEstimatePixels(f8, sc.image.background, screenRectOf(cam, S.layout.grid.worldBox()),
-                                          std::min(sc.render.estimate_pixels, w * h / 2));
+      const std::vector<double>& steps = estimatedSpacings();
+      size_t first = 0;  // the coarsest step still to try
+      for (const bool scene_view : {false, true}) {
+        if (scene_view && S.base.camera_auto) break;
+        EstimateSample sample;
+        std::vector<double> exact;  // rank 0's
+        bool integrated = false;
+        for (size_t i = first; i < steps.size(); ++i) {
+          FrameResult probe = render(S.probeRequest(request, steps[i], {w, h}, scene_view));
+          const Camera cam = probe.scene.frameCameras(S.layout.bounds)[0];
+          if (!integrated) {
+            if (S.rank == 0) {
+              ImageRGBA8 f8(probe.image_f.width, probe.image_f.height);
+              for (size_t k = 0; k < f8.px.size(); ++k)
+                f8.px[k] = uint8_t(std::lround(std::clamp(probe.image_f.px[k], 0.0f, 1.0f) * 255.0f));
+              sample = chooseEstimatePixels(f8, sc.image.background, screenRectOf(cam, S.layout.grid.worldBox()),
+                                            std::min(sc.render.estimate_pixels, w * h / 2));
+            }
+            broadcastSample(sample, S.comm);
+            exact = exactSampledPixels(sample, cam, mine, sc.image.background,
+                                       int(std::max(1u, std::thread::hardware_concurrency())), S.comm);
+            integrated = true;
           }
-          broadcastSample(sample, S.comm);
-          exact = exactSampledPixels(sample, cam, mine, sc.image.background,
-                                     int(std::max(1u, std::thread::hardware_concurrency())), S.comm);
+          int pass = 0;
+          if (S.rank == 0) {
+            const AccuracyEstimate e = compareWithExact(sample, exact, nullptr, &probe.image_f, sc.image.background);
+            tried.push_back({steps[i], e, scene_view ? "scene" : "auto"});
+            pass = meetsTarget(e, sc.render.target_db);
+          }
+          MPI_Bcast(&pass, 1, MPI_INT, 0, S.comm);
+          first = i;
+          if (pass) break;
         }
-        int pass = 0;
-        if (S.rank == 0) {
-          const AccuracyEstimate e = compareWithExact(sample, exact, nullptr, &probe.image_f, sc.image.background);
-          tried.push_back({step, e});
-          pass = meetsTarget(e, sc.render.target_db);
-        }
-        MPI_Bcast(&pass, 1, MPI_INT, 0, S.comm);
-        if (S.rank != 0) tried.push_back({step, {}});
-        chosen = step;
-        if (pass) break;
       }
+      chosen = steps[first];
       if (S.rank == 0) S.spacing.choice = {chosen, {}, std::move(tried)};
     } else {
       // What the estimate does not model (its `why`): the steps' differences to each other.
@@ -703,6 +730,7 @@ double RenderSession::autoSpacing(const Scene& sc, const FrameRequest& request, 
       for (const EstimatedStep& e : c.against_exact) {
         nlohmann::json j = e.estimate.json();
         j["step"] = e.step;
+        j["view"] = e.view;
         steps.push_back(j);
         met = met || meetsTarget(e.estimate, sc.render.target_db);
       }
