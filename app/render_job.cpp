@@ -74,8 +74,10 @@ namespace {
 void addAccuracy(nlohmann::json& j, const ImageRGBA8& frame, const FrameReference& reference,
                  const Camera& cam, const glm::dvec3& background) {
   double t0 = MPI_Wtime();
-  ImageDifference d = compareImages(opaqueOver(toFloat(frame), background),
-                                    opaqueOver(reference.render(cam), background));
+  const ImageRGBA8 a = opaqueOver(toFloat(frame), background), b = opaqueOver(reference.render(cam), background);
+  ImageDifference d = compareImages(a, b);
+  // IceT's image-test rule: the share of pixels with a channel more than 4/255 off.
+  j["over4_share"] = double(countPixelsOver(a, b, 4)) / (double(a.width) * a.height);
   // JSON has no infinity: an image identical to the reference reports null.
   j["psnr_db"] = std::isfinite(d.psnr_db) ? nlohmann::json(d.psnr_db) : nlohmann::json();
   j["max_diff"] = d.max_diff;

@@ -250,7 +250,7 @@ struct RenderSession::State {
     nlohmann::json last;
     bool valid = false;
   } estimate;
-  nlohmann::json estimateAccuracy(const Scene& sc, const Camera& cam, const FrameResult& out);
+  nlohmann::json estimateAccuracy(const Scene& sc, const Camera& cam, const FrameResult& out, int frame);
 };
 
 RenderSession::RenderSession(SessionOptions options, MPI_Comm comm) : s_(std::make_unique<State>()) {
@@ -911,7 +911,8 @@ FrameResult RenderSession::render(const FrameRequest& request) {
   // The accuracy estimate, after the frame's time is taken (its own time is in it).
   if (sc.render.estimate != EstimateMode::kOff && !request.probe) {
     nlohmann::json est;
-    collectively(S.comm, [&] { est = S.estimateAccuracy(sc, cam, out); });
+    const int frame = request.orbit_frame >= 0 ? request.orbit_frame : S.frames_rendered;
+    collectively(S.comm, [&] { est = S.estimateAccuracy(sc, cam, out, frame); });
     if (S.rank == 0) out.stats["accuracy_estimate"] = std::move(est);
   }
   out.scene = std::move(sc);
@@ -921,7 +922,8 @@ FrameResult RenderSession::render(const FrameRequest& request) {
 
 // render.estimate: on every frame, or (auto) when what the frame's accuracy depends on, other
 // than the camera, changed since the last estimate; the same decision on every rank.
-nlohmann::json RenderSession::State::estimateAccuracy(const Scene& sc, const Camera& cam, const FrameResult& out) {
+nlohmann::json RenderSession::State::estimateAccuracy(const Scene& sc, const Camera& cam, const FrameResult& out,
+                                                     int frame) {
   const std::string why = estimateUnavailable(sc, adaptive, external, current);
   if (!why.empty()) return rank == 0 ? nlohmann::json{{"available", false}, {"why", why}} : nlohmann::json();
   std::vector<double> key = spacingKey(sc, {cam.width, cam.height});
@@ -941,7 +943,7 @@ nlohmann::json RenderSession::State::estimateAccuracy(const Scene& sc, const Cam
     j["empty_blocks_s"] = t_volume;
     j["available"] = true;
     j["fresh"] = true;
-    j["frame"] = frames_rendered - 1;
+    j["frame"] = frame;  // the frame it was taken on
   }
   estimate = {std::move(key), j, true};
   return j;

@@ -385,6 +385,7 @@ function updateStats(meta, s, latency) {
     ['RLE ratio', rle],
     ['spacing', typeof s.sample_spacing === 'number' ? `${s.sample_spacing} voxel${s.sample_spacing_auto ? ' (auto)' : ''}` : '–'],
     ['ranks', s.ranks ?? state.scene.ranks ?? '–'],
+    ['accuracy', accuracyText(s.accuracy_estimate)],
   ];
   // compositing.strategy auto: what it chose this frame, and its forecast.
   if (s.compositing && s.compositing.chose)
@@ -397,6 +398,16 @@ function updateStats(meta, s, latency) {
     row.append(a, b);
     return row;
   }));
+}
+
+// render.estimate (session/frame_estimate.h): the estimated PSNR against the exact model with its
+// 95 % lower bound, and the estimated share of pixels more than 4/255 off.
+function accuracyText(e) {
+  if (!e) return '–';
+  if (e.available === false) return `not estimated (${e.why})`;
+  const db = v => (v === 'inf' ? '∞' : v.toFixed(1));
+  const share = (100 * e.over4_share).toFixed(2);
+  return `≈${db(e.estimated_psnr_db)} dB (≥${db(e.psnr_db_95[0])}), ${share}% >4/255${e.fresh === false ? ' (earlier frame)' : ''}`;
 }
 
 function updateBusy() { $('busy').hidden = !client.busy; }
