@@ -196,6 +196,10 @@ function buildRequest(mode) {
   if (state.keys) for (const k of Object.keys(r)) if (!state.keys.has(k)) delete r[k];
   if (mode === 'full') r.format = 'png';
   else { r.format = 'jpeg'; r.quality = mode === 'play' ? PLAY_QUALITY : REDUCED_QUALITY; }
+  // The accuracy estimate (render.estimate) on full frames, those an edit settles on: `auto`
+  // estimates again only when the settings changed, not for a new camera.
+  if (state.scene.has_volume && (!state.keys || state.keys.has('render.estimate')))
+    r['render.estimate'] = mode === 'full' ? 'auto' : 'off';
   return { request: r, meta: { mode, fullW: fw, fullH: fh, seq: ++state.seq } };
 }
 
