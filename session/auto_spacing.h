@@ -2,8 +2,9 @@
 // render.sample_spacing: auto.
 //
 // Against the exact model (issue 43; where the accuracy estimate applies, session/
-// frame_estimate.h): small probe frames of the scene's automatic view at 2, 1, 0.5 and 0.25 voxel,
-// coarsest first; a stratified sample of the first probe's pixels is integrated once with the
+// frame_estimate.h): small probe frames of the scene's automatic view (and of the frame's own
+// camera where it sets one, before any orbit: the finer step of the two wins) at 2, 1, 0.5 and
+// 0.25 voxel, coarsest first; a stratified sample of the first probe's pixels is integrated once with the
 // reference's exact model, and each probe is compared with it. The first step whose estimate
 // meets the target at its 95 % bound (PSNR >= render.target_db, default 50, and at most 0.1 % of
 // pixels over 4/255: meetsTarget) is taken; 0.25 when none does (`target_met: false`). Unlike the

@@ -243,7 +243,7 @@ struct RenderSession::State {
   FrameFootprint frame_footprint;
   std::vector<double> spacingKey(const Scene& sc, std::pair<int, int> probe) const;
   FrameRequest probeRequest(const FrameRequest& request, double step, std::pair<int, int> size,
-                            bool scene_view = false) const;
+                            const Scene* scene_view = nullptr) const;
   // render.estimate (session/frame_estimate.h): the last estimate and what it depended on.
   struct {
     std::vector<double> key;
@@ -623,9 +623,9 @@ std::vector<double> RenderSession::State::spacingKey(const Scene& sc, std::pair<
 }
 
 // A probe frame of the scene's automatic view (the default camera), whatever this frame's camera.
-// `scene_view`: the scene's own camera (the session's base scene, not the request's) instead.
+// `scene_view`: the frame's own camera (the resolved request's, before any orbit) instead.
 FrameRequest RenderSession::State::probeRequest(const FrameRequest& request, double step, std::pair<int, int> size,
-                                                bool scene_view) const {
+                                                const Scene* scene_view) const {
   FrameRequest p;
   p.overrides = request.overrides;
   p.overrides.push_back("render.sample_spacing=" + std::to_string(step));
@@ -635,9 +635,9 @@ FrameRequest RenderSession::State::probeRequest(const FrameRequest& request, dou
     return "[" + std::to_string(v.x) + ", " + std::to_string(v.y) + ", " + std::to_string(v.z) + "]";
   };
   if (scene_view) {
-    const Camera& c = base.camera;
+    const Camera& c = scene_view->camera;
     p.overrides.push_back("camera.position=" + vec(c.position));
-    p.overrides.push_back(base.look_at_auto ? std::string("camera.look_at=auto") : "camera.look_at=" + vec(c.look_at));
+    p.overrides.push_back(scene_view->look_at_auto ? std::string("camera.look_at=auto") : "camera.look_at=" + vec(c.look_at));
     p.overrides.push_back("camera.up=" + vec(c.up));
     p.overrides.push_back("camera.fov=" + std::to_string(c.fov_deg));
     p.overrides.push_back("camera.orbit.frames=0");
@@ -659,6 +659,11 @@ double RenderSession::autoSpacing(const Scene& sc, const FrameRequest& request, 
                             : probeSize(sc.camera.width, sc.camera.height);
   std::vector<double> key = S.spacingKey(sc, {w, h});
   key.insert(key.end(), {sc.render.target_db, double(sc.render.estimate_pixels)});
+  if (exact && !sc.camera_auto) {  // the frame's own view is probed too
+    const Camera& c = sc.camera;
+    key.insert(key.end(), {c.position.x, c.position.y, c.position.z, c.look_at.x, c.look_at.y, c.look_at.z,
+                           c.up.x, c.up.y, c.up.z, c.fov_deg, double(sc.look_at_auto)});
+  }
   bool probed = false;
   double t0 = MPI_Wtime();
   if (!S.spacing.valid || key != S.spacing.key) {
@@ -667,20 +672,21 @@ double RenderSession::autoSpacing(const Scene& sc, const FrameRequest& request, 
       // Against the exact model (session/frame_estimate.h): coarsest first, the first step whose
       // estimate meets the target at its 95 % bound is taken; the exact values of the sampled
       // pixels are integrated once, for the first probe, and serve every step.
-      // Two views where the scene sets its camera: the automatic one and the scene's own (not a
-      // request's: a service client moving the camera does not probe again); the finer step wins.
-      // The second view starts at the first's choice.
+      // Two views where the frame sets its camera: the automatic one and the frame's own (before
+      // any orbit: an orbit probes once); the finer step wins. The second view starts at the
+      // first's choice. (So a request that moves the camera probes again: the viewer asks for
+      // `auto` on its full frames only.)
       const EstimateVolume mine = estimateVolumeOf(sc, S.layout, *S.current, S.dataRange());
       std::vector<EstimatedStep> tried;
       const std::vector<double>& steps = estimatedSpacings();
       size_t first = 0;  // the coarsest step still to try
       for (const bool scene_view : {false, true}) {
-        if (scene_view && S.base.camera_auto) break;
+        if (scene_view && sc.camera_auto) break;
         EstimateSample sample;
         std::vector<double> exact;  // rank 0's
         bool integrated = false;
         for (size_t i = first; i < steps.size(); ++i) {
-          FrameResult probe = render(S.probeRequest(request, steps[i], {w, h}, scene_view));
+          FrameResult probe = render(S.probeRequest(request, steps[i], {w, h}, scene_view ? &sc : nullptr));
           const Camera cam = probe.scene.frameCameras(S.layout.bounds)[0];
           if (!integrated) {
             if (S.rank == 0) {

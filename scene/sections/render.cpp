@@ -22,12 +22,14 @@ std::vector<sortlast::SceneKey> sortlast::renderKeys() {
      "the smallest voxel spacing (the paper: 1). `auto`: the coarsest of 2, 1, 0.5 and 0.25 whose "
      "error meets `render.target_db` and at most 0.1 % of pixels more than 4/255 off, both at "
      "their 95 % bounds, as estimated against the exact model (`render.estimate`'s method) on small "
-     "probe frames of the scene's automatic view, coarsest first (0.25 when none does; `--stats` "
+     "probe frames of the scene's automatic view and of the frame's own camera where it sets one "
+     "(before any orbit; the finer step wins), coarsest first (0.25 when none does; `--stats` "
      "says `target_met`). Scenes the estimate does not model (projections, several fields, "
      "particles, surfaces, glow, adaptive sampling) take the largest of 0.5, 1 and 2 whose "
      "difference to the next finer step stays within 52 dB (session/auto_spacing.h). Probed again "
-     "when the transfer function, the renderer's settings, the time step or the image size "
-     "change, not the camera; `--stats` gives the choice and each step's estimate.",
+     "when the transfer function, the renderer's settings, the time step, the image size or a "
+     "camera the frame sets change (not an orbit's frame); `--stats` gives the choice and each "
+     "step's estimate.",
      Real{member<&Scene::render, &RenderSection::sample_spacing>, {{"in [0.01, 100]", "must be {allowed} voxels"}}},
      AutoValue{member<&Scene::render, &RenderSection::sample_spacing_auto>}},
     {"render.block_cells", "64",
