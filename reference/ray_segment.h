@@ -31,16 +31,24 @@ struct BrickField {
   glm::dvec3 gradient(const glm::dvec3& u) const;  // as WholeVolume::gradient
 };
 
-// Blocks of a brick's cells whose values all have zero opacity under a transfer function: the
-// integrand is exactly zero there (trilinear values stay within their corners' range), so the
-// segment integral jumps them. kCells cells a side, from the held samples' low corner.
+// Per block of a brick's cells (kCells a side, from the held samples' low corner): whether its
+// values all have zero opacity (the integrand is exactly zero there: trilinear values stay within
+// their corners' range, so the segment integral jumps the block), and how many reference steps
+// one midpoint sample may stand for there. The second follows the ray caster's adaptive-step bound
+// (render/volume/step_rule.h): over the block's values [vmin, vmax] the extinction tau and the
+// emission c tau vary by at most osc, so a sample standing for a length L is off by at most L osc
+// in optical depth and emission; the largest power of two m <= kMaxMultiple with m step osc <=
+// kTolerance is taken (1 with shading: the colour follows the gradient, not the value).
 struct EmptyBlocks {
   static constexpr int kCells = 4;
+  static constexpr int kMaxMultiple = 16;
+  static constexpr double kTolerance = 2e-4;
   glm::ivec3 count{0};
-  std::vector<uint8_t> empty;  // x fastest; 1: no opacity anywhere in the block
-  // Builds the map of `field` under `tf` (a NaN sample makes its blocks non-empty: the ray
-  // caster's rules for missing samples are the integrator's).
-  EmptyBlocks(const BrickField& field, const TransferFunction& tf);
+  std::vector<uint8_t> empty;     // x fastest; 1: no opacity anywhere in the block
+  std::vector<uint8_t> multiple;  // x fastest; steps one sample stands for
+  // The maps of `field` under `tf` for steps of `step` world units (a NaN sample makes its blocks
+  // non-empty and m 1: the ray caster's rules for missing samples are the integrator's).
+  EmptyBlocks(const BrickField& field, const TransferFunction& tf, double step = 0.0, bool shading = true);
   EmptyBlocks() = default;
 };
 
@@ -52,8 +60,9 @@ struct SegmentIntegral {
 // The integral over [t0, t1] of the ray o + t d (d unit) in steps of at most `step` world units
 // (each the same length, the last too). Stops once the transmittance is below 1e-4 (what is left
 // then moves no channel by more than 0.03/255). `flat`: flatGradient() of the transfer
-// function's range. `empty` (built for the same field and function): steps in empty blocks are
-// jumped, which changes nothing but the time.
+// function's range. `empty` (built for the same field, function and step): steps in empty blocks
+// are jumped, which changes nothing but the time, and each block's steps are its `multiple` of
+// `step` (cut at the block's faces), within EmptyBlocks::kTolerance of the fine steps.
 SegmentIntegral integrateSegment(const BrickField& field, const TransferFunction& tf,
                                  const Shading& shading, double flat, const glm::dvec3& o,
                                  const glm::dvec3& d, double t0, double t1, double step,

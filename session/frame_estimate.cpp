@@ -286,7 +286,7 @@ EstimateVolume estimateVolumeOf(const Scene& sc, const SessionLayout& layout, co
     v.boxes.push_back(b.world);
   }
   v.tf = sc.transfer.build(range.first, range.second, layout.grid.minSpacing());
-  for (const BrickField& f : v.bricks) v.empty.emplace_back(f, v.tf);
+  for (const BrickField& f : v.bricks) v.empty.emplace_back(f, v.tf, v.step, v.shading.enabled);
   v.shading = sc.render.shading;
   v.clip = sc.clip;
   v.step = sc.reference.step * layout.grid.minSpacing();

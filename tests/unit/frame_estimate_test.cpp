@@ -1,6 +1,6 @@
 // The accuracy estimate's parts (session/frame_estimate.h, reference/ray_segment.h): a ray's
-// brick segments composited equal the whole-volume reference's integral; jumping empty blocks
-// changes nothing; the stratified estimator is exact when every pixel is sampled and its bounds
+// brick segments composited equal the whole-volume reference's integral; the block march (empty
+// blocks jumped, coarser steps where the function is flat) stays within 1e-4 of the plain one; the stratified estimator is exact when every pixel is sampled and its bounds
 // hold the truth on a frame whose error is known.
 #include <cmath>
 
@@ -78,7 +78,7 @@ TEST(FrameEstimate, BrickSegmentsComposeTheWholeRaysIntegral) {
           double t0, t1;
           if (!intersectRayBox(ray.origin, ray.direction, bricks[b].world, t0, t1)) continue;
           const BrickField f{v.grid, bricks[b].stored, held[b].data()};
-          const EmptyBlocks empty(f, tf);
+          const EmptyBlocks empty(f, tf, step, shaded);
           const SegmentIntegral plain = integrateSegment(f, tf, sh, flat, ray.origin, ray.direction, t0, t1, step);
           const SegmentIntegral jumped = integrateSegment(f, tf, sh, flat, ray.origin, ray.direction, t0, t1, step, &empty);
           for (int c = 0; c < 3; ++c) worst_jump = std::max(worst_jump, std::abs(plain.rgb[c] - jumped.rgb[c]));
@@ -98,7 +98,10 @@ TEST(FrameEstimate, BrickSegmentsComposeTheWholeRaysIntegral) {
     // Different step partitions of the same midpoint rule (per brick against per ray): O(h^2),
     // far below an 8-bit step; the early stop at transmittance 1e-4 adds at most 1e-4.
     EXPECT_LT(worst, 2e-4) << "shaded " << shaded;
-    EXPECT_LT(worst_jump, 1e-12) << "empty blocks jumped must change nothing";
+    // Blocks: empty ones jumped, steps cut at block faces and coarser where the function varies
+    // little over a block's values (EmptyBlocks::kTolerance): within 1e-4 of the plain march
+    // (measured 4.5e-6 unshaded, 3.5e-5 shaded), a fortieth of an 8-bit step.
+    EXPECT_LT(worst_jump, 1e-4) << "the block march strays from the plain one";
   }
 }
 
