@@ -17,17 +17,22 @@ ImageDifference compareImages(const ImageRGBA8& a, const ImageRGBA8& b) {
   ImageDifference d;
   double se = 0.0, sa = 0.0;
   size_t n = size_t(a.width) * a.height;
-  for (size_t i = 0; i < n; ++i)
+  for (size_t i = 0; i < n; ++i) {
+    int largest = 0;
     for (int c = 0; c < 4; ++c) {
       int diff = std::abs(int(a.px[4 * i + c]) - int(b.px[4 * i + c]));
       if (c < 3) se += double(diff) * diff;
       sa += diff;
+      largest = std::max(largest, diff);
       if (diff > d.max_diff) {
         d.max_diff = diff;
         d.worst_x = int(i % a.width);
         d.worst_y = int(i / a.width);
       }
     }
+    d.over4 += largest > 4;
+  }
+  d.over4_share = n ? double(d.over4) / double(n) : 0.0;
   double mse = se / (3.0 * n);
   d.psnr_db = mse == 0.0 ? std::numeric_limits<double>::infinity() : 10.0 * std::log10(255.0 * 255.0 / mse);
   d.mean_abs = sa / (4.0 * n);

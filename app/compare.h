@@ -14,6 +14,10 @@ struct ImageDifference {
   int max_diff = 0;      // largest |a - b| over RGBA channels, in 1/255
   int worst_x = 0, worst_y = 0;
   double mean_abs = 0.0;
+  // Pixels whose largest channel difference exceeds 4/255 (the accuracy goal's bound: at most
+  // 0.1 % of pixels), and their share of all pixels.
+  long long over4 = 0;
+  double over4_share = 0.0;
 };
 
 ImageDifference compareImages(const ImageRGBA8& a, const ImageRGBA8& b);  // throws on size mismatch

@@ -52,8 +52,8 @@ int runCompare(const std::string& a, const std::string& b, int max_diff, long lo
       std::printf("silhouette_pixels_left_out=%lld\n", masked);
     }
     ImageDifference d = compareImages(ia, ib);
-    std::printf("psnr_db=%.3f max_diff=%d worst_pixel=(%d,%d) mean_abs=%.4f\n", d.psnr_db,
-                d.max_diff, d.worst_x, d.worst_y, d.mean_abs);
+    std::printf("psnr_db=%.3f max_diff=%d worst_pixel=(%d,%d) mean_abs=%.4f over4=%lld over4_share=%.6f\n",
+                d.psnr_db, d.max_diff, d.worst_x, d.worst_y, d.mean_abs, d.over4, d.over4_share);
     if (!diff_out.empty()) writeImage(diff_out, differenceImage(ia, ib, 16), glm::dvec3(0.0));
     bool ok = true;
     if (max_diff >= 0) {

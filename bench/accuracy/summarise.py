@@ -31,7 +31,7 @@ for r in rows:
     tags = [t for t in r["setting"].split("_")[1:] if t in NEW_TAGS]
     r["family"] = "+".join([r["setting"].split("_")[0]] + tags)
     r["new"] = bool(tags)
-order = ["engine", "neghip", "procedural", "headsq"]
+order = ["engine", "neghip", "procedural", "headsq", "hydrogen", "hydrogen_log", "bucky", "ironprot"]
 datasets = sorted({r["dataset"] for r in rows}, key=lambda d: order.index(d) if d in order else 9)
 
 

@@ -152,6 +152,22 @@ float backT(int k) {
   return (float(k) + 0.5) * u_delta;
 }
 
+// Where lattice sample k's value is read (the midpoint rule; pre-integration: its middle value): at t_k,
+// the middle of its segment, except for the span's first and last samples, whose segments reach
+// the span's ends (stepsLength) and so are up to 3 delta / 2 long with t_k anywhere in them: they
+// are read at their segments' middles instead (at most delta / 4 from t_k, within the bricks'
+// ghost layer). Read at t_k, the value where the ray enters dense data (the head CT's cut face)
+// was up to a step inside it: a first-order error of up to 51/255 at 1 voxel on the head CT's
+// rim, 14/255 at 0.5 (issue 43, results/accuracy/causes.md).
+float sampleT(int k) {
+#ifndef GLOW
+  if (k == g_k_first || k == g_k_last)
+    return 0.5 * ((k == g_k_first ? g_span_t0 : (float(k) - 0.5) * u_delta) +
+                  (k == g_k_last ? g_span_t1 : (float(k) + 0.5) * u_delta));
+#endif
+  return float(k) * u_delta;
+}
+
 // A sample standing for `len` of the ray, front to back (opacity corrected for len); its segment
 // ends at t_end (the glow variant's piece).
 void composite(inout vec4 acc, vec4 e, float len, float t_end) {
@@ -169,10 +185,11 @@ void composite(inout vec4 acc, vec4 e, float len, float t_end) {
 
 #ifdef PREINTEGRATED
 // The pre-integrated segment `len` long with front value vf and back value vb whose middle value
-// is read at lattice sample `mid`, front to back; with SHADING its colour is shaded with the
-// gradient there (premultiplied: shaded as the colour rgb / alpha, then weighted again).
-void compositeSegment(inout vec4 acc, float vf, float vb, int mid, float len, vec3 dir, float t_end) {
-  vec3 p = u_eye + float(mid) * u_delta * dir;
+// is read at ray distance t_mid (sampleT: the span's end segments' own middles), front to back;
+// with SHADING its colour is shaded with the gradient there (premultiplied: shaded as the colour
+// rgb / alpha, then weighted again).
+void compositeSegment(inout vec4 acc, float vf, float vb, float t_mid, float len, vec3 dir, float t_end) {
+  vec3 p = u_eye + t_mid * dir;
   vec4 e = segment(vf, sampleVolume(p), vb, len);
 #ifdef SHADING
   if (e.a > 0.0) e.rgb = e.a * shadeColour(e.rgb / e.a, u_volume, p * u_tex_scale + u_tex_offset, dir);
@@ -267,7 +284,7 @@ void sampleBlock(inout vec4 acc, inout Walk w, int k_end, int m, vec3 dir) {
     float vf = w.k == w.k_back ? w.v_back : sampleVolume(u_eye + frontT(w.k) * dir);
     for (; w.k < k_end; ++w.k) {
       float vb = sampleVolume(u_eye + backT(w.k) * dir);
-      compositeSegment(acc, vf, vb, w.k, stepsLength(w.k, w.k + 1), dir, (float(w.k) + 0.5) * u_delta);
+      compositeSegment(acc, vf, vb, sampleT(w.k), stepsLength(w.k, w.k + 1), dir, (float(w.k) + 0.5) * u_delta);
       vf = vb;
       if (acc.a >= u_ert || GLOW_STOP) { ++w.k; break; }
     }
@@ -280,7 +297,7 @@ void sampleBlock(inout vec4 acc, inout Walk w, int k_end, int m, vec3 dir) {
       int anchor = (w.k + m / 2) / m * m;
       int next = min(anchor - m / 2 + m, k_end);
       float vb = sampleVolume(u_eye + backT(next - 1) * dir);
-      compositeSegment(acc, vf, vb, anchor, stepsLength(w.k, next), dir, (float(next) - 0.5) * u_delta);
+      compositeSegment(acc, vf, vb, float(anchor) * u_delta, stepsLength(w.k, next), dir, (float(next) - 0.5) * u_delta);
       vf = vb;
       w.k = next;
       if (acc.a >= u_ert || GLOW_STOP) break;
@@ -291,7 +308,7 @@ void sampleBlock(inout vec4 acc, inout Walk w, int k_end, int m, vec3 dir) {
 #else
   if (m == 1) {  // every sample (the same arithmetic as below with m = 1, without its cost)
     for (; w.k < k_end; ++w.k) {
-      composite(acc, sampleAt(u_eye + float(w.k) * u_delta * dir), stepsLength(w.k, w.k + 1),
+      composite(acc, sampleAt(u_eye + sampleT(w.k) * dir), stepsLength(w.k, w.k + 1),
                 (float(w.k) + 0.5) * u_delta);
       if (acc.a >= u_ert) break;
       if (GLOW_STOP) { ++w.k; break; }

@@ -1,6 +1,7 @@
 // `sortlast compare --float` (app/compare.h): tolerances, non-finite values, shape checks.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -58,4 +59,29 @@ TEST(CompareFloat, NonFiniteValuesCompareByKind) {
 TEST(CompareFloat, ShapesMustMatch) {
   EXPECT_THROW(compareFloatImages(image(2, 2, 4, 0), image(2, 2, 3, 0), 0, 0), InputError);
   EXPECT_THROW(compareFloatImages(image(2, 2, 4, 0), image(2, 3, 4, 0), 0, 0), InputError);
+}
+
+namespace {
+ImageRGBA8 grey(int w, int h, uint8_t v) {
+  ImageRGBA8 img(w, h);
+  std::fill(img.px.begin(), img.px.end(), v);
+  return img;
+}
+}  // namespace
+
+// The accuracy goal's second bound: the pixels whose largest channel difference exceeds 4/255.
+TEST(CompareRGBA8, Over4CountsPixelsByTheirLargestChannelDifference) {
+  ImageRGBA8 a = grey(10, 10, 100), b = a;
+  ImageDifference d = compareImages(a, b);
+  EXPECT_EQ(d.over4, 0);
+  EXPECT_EQ(d.over4_share, 0.0);
+  b.px[4 * 3 + 0] = 104;                         // pixel 3: 4/255 off, within the bound
+  b.px[4 * 7 + 1] = 105;                         // pixel 7: 5/255 off in green
+  b.px[4 * 7 + 2] = 110;                         // ... and 10/255 in blue: still one pixel
+  b.px[4 * 42 + 2] = 95;                         // pixel 42: 5/255 off, the other way
+  d = compareImages(a, b);
+  EXPECT_EQ(d.over4, 2);
+  EXPECT_DOUBLE_EQ(d.over4_share, 0.02);
+  EXPECT_EQ(d.max_diff, 10);
+  EXPECT_EQ(d.over4, countPixelsOver(a, b, 4));  // agrees with --max-diff 4's count
 }
