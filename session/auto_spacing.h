@@ -68,7 +68,7 @@ inline const std::vector<double>& probeSpacings() {
 // The steps tried against the exact model (session/frame_estimate.h), coarsest first: the first
 // whose estimate meets the target is taken, 0.25 when none does.
 inline const std::vector<double>& estimatedSpacings() {
-  static const std::vector<double> s{2.0, 1.0, 0.5, 0.25};
+  static const std::vector<double> s{2.0, 1.0, 0.5, 0.25, 0.125};
   return s;
 }
 constexpr double kTargetOver4Share = 0.001;  // IceT's image tests: at most 0.1 % over 4/255
