@@ -11,6 +11,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "common/error.h"
+#include "common/pixel_threads.h"
 
 namespace sortlast {
 
@@ -77,6 +78,7 @@ ParticleKernel roundKernel(double R, double R0, double h) {
   double ratio = R0 / R;
   k.c = float(ratio * ratio * ratio);
   k.reach = float(R * h * (1.0 + 1e-6));
+  k.axes = glm::mat3(float(R * h));
   return k;
 }
 
@@ -110,11 +112,16 @@ std::vector<ParticleKernel> computeAnisotropicKernels(const std::vector<glm::vec
     uint32_t j;
     double g;
   };
+  // Every particle's kernel on its own (from the shared grid), so the particles are split over
+  // the pixel threads (common/pixel_threads.h) in contiguous parts: the same kernels, bit for bit,
+  // whatever the thread count.
+  parallelFor(ps.size(), 1024, [&](size_t begin, size_t end) {
+  std::vector<uint32_t> found;
   std::vector<Neighbour> near;
-  for (size_t i = 0; i < ps.size(); ++i) {
+  for (size_t i = begin; i < end; ++i) {
     const glm::dvec3 ci(ps[i]);
     const glm::ivec3 c = grid.cellOf(ci);
-    near.clear();
+    found.clear();
     const glm::ivec3 lo = glm::max(c - 2, glm::ivec3(0)), hi = glm::min(c + 2, grid.dims - 1);
     for (int z = lo.z; z <= hi.z; ++z)
       for (int y = lo.y; y <= hi.y; ++y)
@@ -126,14 +133,20 @@ std::vector<ParticleKernel> computeAnisotropicKernels(const std::vector<glm::vec
           for (uint32_t e = grid.offsets[k]; e < grid.offsets[k + 1]; ++e) {
             uint32_t j = grid.items[e];
             glm::dvec3 v = glm::dvec3(ps[j]) - ci;
-            double r2 = glm::dot(v, v);
-            if (r2 >= hn2) continue;
-            double u = 1.0 - r2 / hn2;
-            near.push_back({j, u * u * u});
+            if (glm::dot(v, v) < hn2) found.push_back(j);
           }
         }
     // Ascending index: the same sums in the same order whatever subset holds the neighbourhood.
-    std::sort(near.begin(), near.end(), [](const Neighbour& a, const Neighbour& b) { return a.j < b.j; });
+    // The sort is about a quarter of the time (perf, dam break); sorting the bare indices and
+    // weighing them after measured within noise of sorting the weighted pairs (CPU 2.8-3.1 s
+    // against 2.75-3.3 s for 5 runs on the dam break, one thread).
+    std::sort(found.begin(), found.end());
+    near.resize(found.size());
+    for (size_t e = 0; e < found.size(); ++e) {
+      glm::dvec3 v = glm::dvec3(ps[found[e]]) - ci;
+      double u = 1.0 - glm::dot(v, v) / hn2;
+      near[e] = {found[e], u * u * u};
+    }
     double rho = 0.0;
     glm::dvec3 mu(0.0);
     for (const Neighbour& n : near) rho += n.g, mu += n.g * glm::dvec3(ps[n.j]);
@@ -178,6 +191,8 @@ std::vector<ParticleKernel> computeAnisotropicKernels(const std::vector<glm::vec
         double ratio = R0 / R;
         k.c = float(ratio * ratio * ratio / std::sqrt(l(0) * l(1) * l(2)));
         k.reach = float(R * std::sqrt(l.maxCoeff()) * h * (1.0 + 1e-6));
+        for (int a = 0; a < 3; ++a)
+          for (int r = 0; r < 3; ++r) k.axes[a][r] = float(Q(r, a) * R * std::sqrt(l(a)) * h);
       }
     }
     // Computed in double from the same sums on every rank; lambda = 0 keeps c_i bit for bit.
@@ -188,6 +203,7 @@ std::vector<ParticleKernel> computeAnisotropicKernels(const std::vector<glm::vec
     k.rho = float(rho);
     out[i] = k;
   }
+  });
   return out;
 }
 
