@@ -74,6 +74,8 @@ struct ParticleKernel {
   float c = 1.0f;      // C_i, the mass normalisation
   float reach = 1.0f;  // the longest semi-axis (world units): the support's bounding sphere
                        // around `centre`
+  glm::mat3 axes{0.0f};  // the semi-axes as vectors (columns, world units: R h sqrt(sigma_k)
+                        // along eigenvector k), for bounding the support tighter than `reach`
   float s = 0.0f;      // the surface fraction smoothstep(rho) (0: splash, 1: surface)
   float rho = 1.0f;    // the density rho_i
 };

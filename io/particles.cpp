@@ -4,6 +4,7 @@
 #include "io/particles.h"
 #include "io/particle_readers.h"
 
+#include <algorithm>
 #include <bit>
 #include <cctype>
 #include <charconv>
@@ -265,6 +266,84 @@ std::vector<glm::vec3> particlesNear(const std::vector<glm::vec3>& all, const Bo
     if (margin >= 0.0 && glm::dot(d, d) <= m2) out.push_back(p);
   }
   return out;
+}
+
+}  // namespace sortlast
+
+namespace sortlast {
+
+NeighbourCount countNeighbours(const std::vector<glm::vec3>& ps, double h, size_t max_sampled) {
+  NeighbourCount out;
+  if (ps.empty() || !(h > 0.0)) return out;
+  // Cells of edge h (at most about 2 per particle; coarser for sparse or huge boxes): every
+  // neighbour within h lies in the 27 cells around a particle's own.
+  glm::dvec3 lo(1e300), hi(-1e300);
+  for (const glm::vec3& p : ps) lo = glm::min(lo, glm::dvec3(p)), hi = glm::max(hi, glm::dvec3(p));
+  double cell = h;
+  glm::dvec3 n;
+  for (;;) {
+    n = glm::floor((hi - lo) / cell) + 1.0;
+    if (n.x * n.y * n.z <= 2.0 * double(ps.size()) + 1024.0) break;
+    cell *= 1.5;
+  }
+  const glm::ivec3 dims(n);
+  auto cellOf = [&](const glm::vec3& p) {
+    return glm::clamp(glm::ivec3(glm::floor((glm::dvec3(p) - lo) / cell)), glm::ivec3(0), dims - 1);
+  };
+  auto index = [&](const glm::ivec3& c) { return (size_t(c.z) * dims.y + c.y) * dims.x + c.x; };
+  std::vector<uint32_t> offsets(size_t(dims.x) * dims.y * dims.z + 1, 0), items(ps.size());
+  for (const glm::vec3& p : ps) ++offsets[index(cellOf(p)) + 1];
+  for (size_t c = 0; c + 1 < offsets.size(); ++c) offsets[c + 1] += offsets[c];
+  std::vector<uint32_t> cursor(offsets.begin(), offsets.end() - 1);
+  for (size_t i = 0; i < ps.size(); ++i) items[cursor[index(cellOf(ps[i]))]++] = uint32_t(i);
+  const size_t stride = std::max<size_t>(1, (ps.size() + max_sampled - 1) / std::max<size_t>(1, max_sampled));
+  const double h2 = h * h;
+  for (size_t i = 0; i < ps.size(); i += stride) {
+    const glm::ivec3 c = cellOf(ps[i]);
+    const glm::ivec3 a = glm::max(c - 1, glm::ivec3(0)), b = glm::min(c + 1, dims - 1);
+    for (int z = a.z; z <= b.z; ++z)
+      for (int y = a.y; y <= b.y; ++y)
+        for (int x = a.x; x <= b.x; ++x) {
+          const size_t k = index(glm::ivec3(x, y, z));
+          for (uint32_t e = offsets[k]; e < offsets[k + 1]; ++e) {
+            const uint32_t j = items[e];
+            if (j == i) continue;
+            glm::dvec3 v = glm::dvec3(ps[j]) - glm::dvec3(ps[i]);
+            if (glm::dot(v, v) < h2) out.neighbours += 1.0;
+          }
+        }
+    out.sampled += 1.0;
+  }
+  return out;
+}
+
+void resolveAutoSmoothing(ParticleDesc& desc, const NeighbourCount& count, bool in_situ) {
+  char why[256];
+  if (desc.smoothing != Smoothing::kAuto) {
+    desc.smoothing_reason = std::string("set: particles.smoothing: ") + std::string(nameOf(desc.smoothing));
+    return;
+  }
+  const double mean = count.sampled > 0 ? count.neighbours / count.sampled : 0.0;
+  if (in_situ) {
+    desc.smoothing = Smoothing::kNone;
+    desc.smoothing_reason = "auto: none (in situ draws round metaballs only)";
+  } else if (desc.method == ParticleMethod::kBillboards) {
+    desc.smoothing = Smoothing::kNone;
+    desc.smoothing_reason = "auto: none (particles.method: billboards draws round metaballs only)";
+  } else if (mean >= kAutoSmoothingNeighbours) {
+    desc.smoothing = Smoothing::kAnisotropic;
+    std::snprintf(why, sizeof why,
+                  "auto: anisotropic (%.1f neighbours within h on average, at least %g: spacing below "
+                  "the kernel radius, as SPH output)",
+                  mean, kAutoSmoothingNeighbours);
+    desc.smoothing_reason = why;
+  } else {
+    desc.smoothing = Smoothing::kNone;
+    std::snprintf(why, sizeof why,
+                  "auto: none (%.1f neighbours within h on average, below %g: a sparse set)", mean,
+                  kAutoSmoothingNeighbours);
+    desc.smoothing_reason = why;
+  }
 }
 
 }  // namespace sortlast

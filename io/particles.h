@@ -22,10 +22,11 @@ enum class ParticleMethod { kBillboards, kGrid, kSlices };
 template <>
 inline constexpr std::array kEnumNames<ParticleMethod>{"billboards", "grid", "slices"};
 
-// particles.smoothing: none (round metaballs) | anisotropic (smoothed ellipsoids, io/anisotropic_kernels.h).
-enum class Smoothing { kNone, kAnisotropic };
+// particles.smoothing: none (round metaballs) | anisotropic (smoothed ellipsoids,
+// io/anisotropic_kernels.h) | auto (either, from the loaded particles: resolveAutoSmoothing).
+enum class Smoothing { kNone, kAnisotropic, kAuto };
 template <>
-inline constexpr std::array kEnumNames<Smoothing>{"none", "anisotropic"};
+inline constexpr std::array kEnumNames<Smoothing>{"none", "anisotropic", "auto"};
 
 struct ParticleDesc {
   std::string file;                 // empty: procedural (or none)
@@ -53,10 +54,13 @@ struct ParticleDesc {
   bool cull = true;           // min/max distance pyramid culling
   int samples_per_pass = 8;   // window of samples per pass: 4 (the paper) or 8 (half the passes)
   Smoothing smoothing = Smoothing::kNone;
+  // Why `smoothing` is what it is, once resolveAutoSmoothing has run (for --stats); empty before.
+  std::string smoothing_reason;
   AnisotropicParams anisotropic;
 
   bool enabled() const { return !file.empty() || procedural != "none"; }
   double influenceRadius() const { return influence ? *influence : radius / (1.0 - threshold); }
+  // (auto counts as off until resolveAutoSmoothing has chosen.)
   bool anisotropicOn() const { return smoothing == Smoothing::kAnisotropic; }
   // The furthest a particle's field reaches from its centre: h, or with anisotropic smoothing
   // the bound on the longest ellipsoid axis (anisotropicReachBound).
@@ -65,17 +69,40 @@ struct ParticleDesc {
   }
   // How far beyond a brick (or rank) the particles it is given must reach. Round metaballs: h.
   // Anisotropic smoothing: the reach bound plus each particle's whole neighbourhood (radius h_n),
-  // so its kernel comes out as on any other rank count. The slices method (round only) evaluates
-  // the field up to one ray step w before its brick (where its rays' brackets start) and takes
-  // gradients one spacing s further (per axis); interpolation there reads lattice points up to
-  // s further on each axis: points within w + sqrt(6) s < w + 2.5 s of the brick, each the sum
-  // of every particle within h of it.
+  // so its kernel comes out as on any other rank count. The slices method evaluates the field up
+  // to one ray step w before its brick (where its rays' brackets start) and takes gradients one
+  // spacing s further (per axis); interpolation there reads lattice points up to s further on
+  // each axis: points within w + sqrt(6) s < w + 2.5 s of the brick, each the sum of every
+  // particle whose field reaches it (round: within h; anisotropic: the reach bound, plus the
+  // neighbourhood as above).
   double ghostMargin() const {
     const double h = influenceRadius();
-    if (method == ParticleMethod::kSlices) return h * (1.0 + step + 2.5 * slice_spacing);
-    return reach() + (anisotropicOn() ? anisotropic.neighbourhood * h : 0.0);
+    const double own = reach() + (anisotropicOn() ? anisotropic.neighbourhood * h : 0.0);
+    if (method == ParticleMethod::kSlices) return own + h * (step + 2.5 * slice_spacing);
+    return own;
   }
 };
+
+// particles.smoothing: auto. SPH output has its particles closer together than the kernel radius
+// h (each particle's field overlaps dozens of others'), so its round metaballs show one bump per surface particle and anisotropic kernels
+// flatten them (the dam break: 41 neighbours within h on average; the procedural layers at
+// spacing 0.49 h: 27); a sparse set (droplets, point clouds with spacing near or above h) has few
+// neighbours within h and keeps round metaballs. Auto picks anisotropic when the mean number of
+// other particles within h is at least kAutoSmoothingNeighbours (a simple cubic lattice reaches
+// 18 at spacing 0.7 h and has none below h at spacing h).
+inline constexpr double kAutoSmoothingNeighbours = 10.0;
+// Sum over up to `max_sampled` particles of `ps` (evenly strided) of how many others lie within h
+// of each, and how many were sampled: summed over ranks' shares, their ratio is the mean.
+struct NeighbourCount {
+  double neighbours = 0.0;
+  double sampled = 0.0;
+};
+NeighbourCount countNeighbours(const std::vector<glm::vec3>& ps, double h, size_t max_sampled = 65536);
+// Resolves desc.smoothing == auto from the mean neighbour count (`count`, over the whole set), and
+// sets desc.smoothing_reason (also for an explicit none or anisotropic). Anisotropic kernels need
+// the grid or slices method: with billboards auto gives none. `in_situ`: auto gives none (in situ
+// refuses anisotropic smoothing).
+void resolveAutoSmoothing(ParticleDesc& desc, const NeighbourCount& count, bool in_situ = false);
 
 struct ParticleSet {
   std::vector<glm::vec3> positions;

@@ -57,6 +57,11 @@ FrameReference::FrameReference(Scene scene, int threads)
   if (scene.particles.enabled()) {
     MetaballModel m;
     ParticleSet set = loadParticles(scene.particles);
+    // particles.smoothing: auto as the GL session chooses it (the same count over the same set).
+    resolveAutoSmoothing(scene.particles,
+                         scene.particles.smoothing == Smoothing::kAuto
+                             ? countNeighbours(set.positions, scene.particles.influenceRadius())
+                             : NeighbourCount{});
     for (const glm::vec3& p : set.positions) m.positions.emplace_back(p);
     m.h = scene.particles.influenceRadius();
     m.threshold = scene.particles.threshold;

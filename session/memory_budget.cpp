@@ -242,17 +242,19 @@ MemoryNeed sessionNeed(const Scene& scene, const SessionLayout& layout, long lon
     if (scene.particles.method == ParticleMethod::kGrid) {
       // Cells of edge h/2 (the influence radius) over a brick grown by the reach, at most 2^24;
       // each particle listed in every cell its ball of the reach touches (round: 84 cells;
-      // anisotropic, by the reach bound: about 10 times as many).
+      // anisotropic, by the reach bound: about 10 times as many, each with a 4-byte index on the
+      // GPU for its kernel).
       const double cell = 0.5 * scene.particles.influenceRadius();
       double cells = 0;
       for (size_t i = 0; i < layout.mine.size(); ++i)
         cells += std::min(std::pow((side + 2 * h) / cell, 3.0), double(1 << 24));
       n.add("metaball grids (host and GPU)",
             held * ballCellsTouched(h, cell) * kGridEntryBytes + cells * kGridCellBytes,
-            held * ballCellsTouched(h, cell) * 16.0 + cells * 4.0);
-      if (anisotropic)
-        n.add("anisotropic kernels (host and GPU)", held * kAnisotropicBytes, held * 3.0 * 16.0);
+            held * ballCellsTouched(h, cell) * (anisotropic ? 20.0 : 16.0) + cells * 4.0);
     }
+    // The grid and the slices methods alike (the slices' GPU copy lives only during the splat).
+    if (anisotropic)
+      n.add("anisotropic kernels (host and GPU)", held * kAnisotropicBytes, held * 3.0 * 16.0);
     if (scene.particles.method == ParticleMethod::kSlices) {
       // A particle's ball (radius h) meets on average (e^3 + 6 e^2 h + 3 pi e h^2 + 4/3 pi h^3) / e^3
       // voxels of edge e (the volume of the cube grown by h; measured 20.6 list entries per

@@ -293,6 +293,19 @@ RenderSession::RenderSession(SessionOptions options, MPI_Comm comm) : s_(std::ma
     }
   }
   S.particles_total = first.total;
+  // particles.smoothing: auto, from the first step's set, before anything sized by the ghost
+  // margin: each rank counts over what it holds (rank 0 the whole set, or every rank its share),
+  // the sums make one mean and so one choice on every rank.
+  if (S.base.particles.enabled()) {
+    NeighbourCount count;
+    if (S.base.particles.smoothing == Smoothing::kAuto) {
+      count = countNeighbours(first.set.positions, S.base.particles.influenceRadius());
+      double sums[2] = {count.neighbours, count.sampled};
+      MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, comm);
+      count = {sums[0], sums[1]};
+    }
+    resolveAutoSmoothing(S.base.particles, count);
+  }
   collectively(comm, [&] {
     PhaseScope phase("laying out the bricks");
     S.layout = makeLayout(scene, centres, S.rank, S.size);
@@ -339,6 +352,7 @@ std::unique_ptr<RenderSession> RenderSession::external(SessionOptions options, M
   const int local_rank = nodeLocalRank(comm);
   collectively(comm, [&] {
     S->base = parseScene(S->opts.scene, S->opts.overrides);
+    resolveAutoSmoothing(S->base.particles, {}, true);  // in situ: round metaballs
     // The simulation's layout frames and bricks its own data only: a surface outside it would be
     // cut off or lie beyond the depth range, so surfaces are refused rather than drawn in part.
     if (!S->base.surfaces.empty())
@@ -447,6 +461,11 @@ Scene RenderSession::State::resolve(const FrameRequest& request) const {
   std::vector<std::string> all = opts.overrides;
   all.insert(all.end(), request.overrides.begin(), request.overrides.end());
   Scene sc = parseScene(opts.scene, all);
+  // particles.smoothing: auto is the session's choice, made from its particles at start.
+  if (sc.particles.smoothing == Smoothing::kAuto) sc.particles.smoothing = base.particles.smoothing;
+  sc.particles.smoothing_reason = base.particles.smoothing == sc.particles.smoothing
+                                      ? base.particles.smoothing_reason
+                                      : "set: particles.smoothing: " + std::string(nameOf(sc.particles.smoothing));
   resolveFileSteps(sc);
   if (external) {
     if (!ext) throw std::logic_error("RenderSession: no step published yet");
@@ -1055,6 +1074,10 @@ nlohmann::json RenderSession::jobStats() const {
   nlohmann::json top = nlohmann::json::object();
   top["ranks_gl"] = deviceJson(S.devices);  // each rank's GL_VENDOR, GL_RENDERER, device, host
   top["pixel_threads"] = pixelThreads();     // rank 0's (common/pixel_threads.h)
+  // particles.smoothing as drawn, and why (auto: the neighbour count that chose it).
+  if (S.base.particles.enabled())
+    top["smoothing"] = {{"chosen", std::string(nameOf(S.base.particles.smoothing))},
+                        {"reason", S.base.particles.smoothing_reason}};
   // The volume's data range (several fields: the first's) and, with several fields, each one's.
   if (S.current && S.current->has_volume) top["data_range"] = {S.current->data_min, S.current->data_max};
   if (S.current && !S.current->fields.empty()) {

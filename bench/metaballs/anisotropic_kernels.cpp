@@ -4,6 +4,8 @@
 // line: the fastest of `repeats` runs, seconds per million particles, and how many particles
 // came out splash (s = 0), in between, and surface (s = 1).
 // Usage: bench_anisotropic_kernels [procedural (splash | layers)] [count] [repeats]
+//        bench_anisotropic_kernels FILE.raw h [repeats]   (float32 xyz, e.g. the dam break with
+//                                                          h = 0.025 / (1 - 0.765625))
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -16,10 +18,22 @@
 int main(int argc, char** argv) {
   using namespace sortlast;
   const std::string name = argc > 1 ? argv[1] : "splash";
-  const long long count = argc > 2 ? std::atoll(argv[2]) : 1000000;
+  const bool file = name.size() > 4 && name.substr(name.size() - 4) == ".raw";
+  long long count = argc > 2 && !file ? std::atoll(argv[2]) : 1000000;
   const int repeats = argc > 3 ? std::atoi(argv[3]) : 3;
-  const double spacing = 0.3, h = 0.61;
-  ParticleSet set = proceduralParticles(name, count, spacing);
+  const double spacing = 0.3;
+  double h = 0.61;
+  ParticleSet set;
+  if (file) {
+    ParticleDesc desc;
+    desc.file = name;
+    desc.format = "raw";
+    set = loadParticles(desc);
+    count = (long long)set.positions.size();
+    h = argc > 2 ? std::atof(argv[2]) : 0.025 / (1.0 - 0.765625);
+  } else {
+    set = proceduralParticles(name, count, spacing);
+  }
   double best = 1e30;
   long long splash = 0, between = 0, surface = 0;
   for (int i = 0; i < repeats; ++i) {

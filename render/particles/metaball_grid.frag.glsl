@@ -81,23 +81,23 @@ vec2 gridInterval(vec3 d) {
 }
 #ifdef ANISOTROPIC
 // Smoothed anisotropic metaballs (io/anisotropic_kernels.h). How one particle adds to the
-// field, all in this block: its kernel from the particle index (a list entry's w holds it, as
-// bits), and its field and gradient at offset r = x - c from its centre, measured in its
-// ellipsoid's frame. Per particle 3 vec4: (A row 0, C), (A row 1, reach), (A row 2, unused); A is
-// symmetric, reach the longest semi-axis (what culling uses).
+// field, all in this block. A list entry is (centre, reach): the longest semi-axis, for the
+// cheap sphere test against the ray's stretch, which loads nothing more. Only a particle that
+// passes it loads its index (the parallel buffer Indices, entry for entry) and then its kernel:
+// per particle 3 vec4, (A row 0, C), (A row 1, reach), (A row 2, unused); A is symmetric. On the
+// ray x = eye + s d, with tb the centre's distance along it and perp its offset across, the
+// ellipsoid frame's offset is u(s) = A ((s - tb) d - perp) = (s - tb) A d - A perp: two
+// matrix products per particle and stretch, not one per sample, and an exact test of whether
+// the ellipsoid meets the stretch (the closest u to 0 over it) before any sample.
 layout(std430, binding = 3) readonly buffer Kernels { vec4 kernels[]; };
+layout(std430, binding = 4) readonly buffer Indices { uint indices[]; };
 struct Kernel { vec3 a0, a1, a2; float c, reach; };
-Kernel kernelOf(float entry_w) {
-  uint i = 3u * floatBitsToUint(entry_w);
+Kernel kernelOf(uint entry) {
+  uint i = 3u * indices[entry];
   vec4 k0 = kernels[i], k1 = kernels[i + 1u], k2 = kernels[i + 2u];
   return Kernel(k0.xyz, k1.xyz, k2.xyz, k0.w, k1.w);
 }
 vec3 ellipsoidFrame(Kernel k, vec3 r) { return vec3(dot(k.a0, r), dot(k.a1, r), dot(k.a2, r)); }
-// C (1 - |A r| / h)^2 inside the ellipsoid |A r| < h, else 0.
-float kernelField(Kernel k, vec3 r) {
-  float q = max(1.0 - length(ellipsoidFrame(k, r)) / u_h, 0.0);
-  return k.c * q * q;
-}
 // Its gradient: -2 C (1 - |u|/h) / (h |u|) A u with u = A r (A = A^T); 0 at the centre.
 vec3 kernelGradient(Kernel k, vec3 r) {
   vec3 u = ellipsoidFrame(k, r);
@@ -127,9 +127,18 @@ void sumSamples(uvec2 r, vec3 d, int m) {
     vec3 perp = oc - tb * d;
     float perp2 = dot(perp, perp);
     float e = tb - clamp(tb, first, last);
-    Kernel kern = kernelOf(entry.w);
-    if (perp2 + e * e >= kern.reach * kern.reach) continue;
-    for (int k = 0; k < m; ++k) g_f[k] += kernelField(kern, (g_s[k] - tb) * d - perp);
+    if (perp2 + e * e >= entry.w * entry.w) continue;
+    Kernel kern = kernelOf(j);
+    vec3 ad = ellipsoidFrame(kern, d), ap = ellipsoidFrame(kern, perp);
+    // The stretch's closest point to the centre in the ellipsoid's frame: outside, it adds 0.
+    float aa = dot(ad, ad);
+    float ds = aa > 0.0 ? clamp(dot(ad, ap) / aa, first - tb, last - tb) : 0.0;
+    vec3 u0 = ds * ad - ap;
+    if (dot(u0, u0) >= hh) continue;
+    for (int k = 0; k < m; ++k) {
+      float q = max(1.0 - length((g_s[k] - tb) * ad - ap) / u_h, 0.0);
+      g_f[k] += kern.c * q * q;
+    }
 #else
     vec3 oc = items[j].xyz - u_eye;
     float tb = dot(d, oc);
@@ -244,9 +253,8 @@ void main() {
     vec3 oc = entry.xyz - u_eye;
     float tb = dot(d, oc);
     vec3 perp = oc - tb * d;
-    Kernel kern = kernelOf(entry.w);
-    if (dot(perp, perp) >= kern.reach * kern.reach) continue;
-    grad += kernelGradient(kern, (t - tb) * d - perp);
+    if (dot(perp, perp) >= entry.w * entry.w) continue;
+    grad += kernelGradient(kernelOf(j), (t - tb) * d - perp);
 #else
     vec3 oc = items[j].xyz - u_eye;
     float tb = dot(d, oc);

@@ -36,8 +36,13 @@ constexpr double kGridPad = 0.01;
 // dims.x dims.y dims.z: the edge grows (x1.25 steps) until it fits.
 // `reach` (optional, one per particle): each particle's own reach instead of h (anisotropic
 // metaballs: the longest semi-axis of its ellipsoid), padded by kGridPad h likewise.
+// `axes` (optional, with `reach`): each particle's ellipsoid semi-axes (columns, orthogonal, world
+// units; ParticleKernel::axes): a particle is then listed only in the cells of its ellipsoid's
+// bounding box that pass a separating-axis test along each semi-axis as well as the ball test
+// (a superset of the cells the padded ellipsoid meets: a disc's slab, not its bounding ball).
 ParticleGrid buildParticleGrid(const std::vector<glm::vec3>& particles, const Box3& bound, double h,
                                double cell, size_t max_cells = size_t(1) << 24,
-                               const std::vector<float>* reach = nullptr);
+                               const std::vector<float>* reach = nullptr,
+                               const std::vector<glm::mat3>* axes = nullptr);
 
 }  // namespace sortlast

@@ -1,6 +1,5 @@
 #include "render/particles/metaball_grid_renderer.h"
 
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
@@ -50,7 +49,8 @@ int MetaballGridRenderer::addBrick(const Box3& clip, const std::vector<glm::vec3
   }
   const std::vector<glm::vec3>& particles = s_.anisotropic ? kept : all;
   std::vector<float> reach;
-  for (const ParticleKernel& k : kernels) reach.push_back(k.reach);
+  std::vector<glm::mat3> axes;
+  for (const ParticleKernel& k : kernels) reach.push_back(k.reach), axes.push_back(k.axes);
   const double field_reach = s_.anisotropic ? maxReach(kernels) : s_.h;
   g.count = int(particles.size());
   if (!particles.empty()) {
@@ -64,19 +64,21 @@ int MetaballGridRenderer::addBrick(const Box3& clip, const std::vector<glm::vec3
     // 0.14, 0.35 h 0.14. Coarser only if the lists outgrow one shader storage block.
     double cell = 0.5 * s_.h;
     const std::vector<float>* radii = s_.anisotropic ? &reach : nullptr;
+    const std::vector<glm::mat3>* shapes = s_.anisotropic ? &axes : nullptr;
     const size_t max_cells = size_t(1) << 24;
-    ParticleGrid grid = buildParticleGrid(particles, g.bound, s_.h, cell, max_cells, radii);
+    ParticleGrid grid = buildParticleGrid(particles, g.bound, s_.h, cell, max_cells, radii, shapes);
     while (double(grid.items.size()) * 16.0 > double(max_block_bytes_) ||
            double(grid.offsets.size()) * 4.0 > double(max_block_bytes_)) {
       cell *= 1.5;
-      grid = buildParticleGrid(particles, g.bound, s_.h, cell, max_cells, radii);
+      grid = buildParticleGrid(particles, g.bound, s_.h, cell, max_cells, radii, shapes);
     }
     // The lists hold the centres, not their indices: the shader then loads each entry once.
-    // Anisotropic: w holds the particle's index (as bits), for its kernel.
+    // Anisotropic: w holds the particle's reach (the cheap sphere test needs no more), and the
+    // indices (for the kernels) go up as a parallel buffer, loaded only past that test.
     std::vector<glm::vec4> items(grid.items.size());
     for (size_t i = 0; i < items.size(); ++i) {
       uint32_t j = grid.items[i];
-      items[i] = glm::vec4(particles[j], s_.anisotropic ? std::bit_cast<float>(j) : 0.0f);
+      items[i] = glm::vec4(particles[j], s_.anisotropic ? kernels[j].reach : 0.0f);
     }
     if (s_.anisotropic) {
       std::vector<glm::vec4> k(kernels.size() * 3);
@@ -91,6 +93,7 @@ int MetaballGridRenderer::addBrick(const Box3& clip, const std::vector<glm::vec3
                                  std::to_string(k.size() * 16) +
                                  " bytes) exceed one shader storage block; use more bricks");
       g.kernels = keepStorage(k.data(), k.size() * sizeof(glm::vec4));
+      g.indices = keepStorage(grid.items.data(), grid.items.size() * sizeof(uint32_t));
     }
     g.lo = grid.lo;
     g.cell = grid.cell;
@@ -113,7 +116,10 @@ SurfaceBrick MetaballGridRenderer::render(int handle, const Camera& cam, double,
     program_.set("u_dims", glm::ivec4(b.dims, 0));
     gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, b.offsets);
     gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, b.items);
-    if (s_.anisotropic) gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, b.kernels);
+    if (s_.anisotropic) {
+      gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, b.kernels);
+      gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, b.indices);
+    }
   });
 }
 

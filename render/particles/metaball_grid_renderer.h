@@ -35,7 +35,8 @@ class MetaballGridRenderer : public MetaballBase {
     glm::vec3 lo{0.0f};
     float cell = 1.0f;
     glm::ivec3 dims{0};
-    unsigned offsets = 0, items = 0, kernels = 0;  // SSBOs (kernels: anisotropic), kept by the base
+    // SSBOs, kept by the base (kernels and indices, the lists' particle numbers: anisotropic)
+    unsigned offsets = 0, items = 0, kernels = 0, indices = 0;
     int count = 0;
   };
 

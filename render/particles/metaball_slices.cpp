@@ -49,7 +49,8 @@ void forVoxelsOf(const SliceLattice& L, const glm::vec3& p, float r, F&& f) {
 }  // namespace
 
 SliceLattice markSliceVoxels(const std::vector<glm::vec3>& particles, const Box3& clip, double h,
-                             double spacing, double step, size_t max_entries) {
+                             double spacing, double step, size_t max_entries,
+                             const std::vector<float>* reach) {
   SliceLattice L;
   L.spacing = float(spacing);
   if (particles.empty()) return L;
@@ -57,8 +58,8 @@ SliceLattice markSliceVoxels(const std::vector<glm::vec3>& particles, const Box3
   // bracket starts) and, for gradients, one spacing beyond that; interpolation spreads the field
   // up to one cell diagonal past where it is non-zero. The part of that box the field can reach,
   // then the cells that part touches, then their voxels.
-  const Box3 reach{clip.lo - (spacing + step), clip.hi + (spacing + step)};
-  Box3 bound = fieldBoundInside(reach, particles, h + std::sqrt(3.0) * spacing);
+  const Box3 served{clip.lo - (spacing + step), clip.hi + (spacing + step)};
+  Box3 bound = fieldBoundInside(served, particles, h + std::sqrt(3.0) * spacing);
   if (glm::any(glm::greaterThanEqual(bound.lo, bound.hi))) return L;
   glm::dvec3 c_lo = glm::floor(bound.lo / spacing), c_hi = glm::floor(bound.hi / spacing);
   if (glm::any(glm::greaterThan(glm::max(glm::abs(c_lo), glm::abs(c_hi)), glm::dvec3(1 << 24))))
@@ -74,17 +75,19 @@ SliceLattice markSliceVoxels(const std::vector<glm::vec3>& particles, const Box3
     throw std::length_error("too many coarse voxels");
   const size_t n = L.voxelCount();
   const float r = float(h * (1.0 + kSlicePad));
+  auto radius = [&](size_t i) { return reach ? float((*reach)[i] + h * kSlicePad) : r; };
   // 1. The bit voxelization: one pass over the particles.
   L.bits.assign((n + 63) / 64, 0);
-  for (const glm::vec3& p : particles)
-    forVoxelsOf(L, p, r, [&](size_t v) { L.bits[v >> 6] |= uint64_t(1) << (v & 63); });
+  for (size_t i = 0; i < particles.size(); ++i)
+    forVoxelsOf(L, particles[i], radius(i), [&](size_t v) { L.bits[v >> 6] |= uint64_t(1) << (v & 63); });
   return L;
 }
 
 void allocateSlices(SliceLattice& L, const std::vector<glm::vec3>& particles, double h,
-                    size_t max_entries) {
+                    size_t max_entries, const std::vector<float>* reach) {
   const size_t n = L.voxelCount();
   const float r = float(h * (1.0 + kSlicePad));
+  auto radius = [&](size_t i) { return reach ? float((*reach)[i] + h * kSlicePad) : r; };
   // 2. Slots for the set bits, in voxel order.
   L.slot_of.assign(n, -1);
   for (size_t v = 0; v < n; ++v)
@@ -98,21 +101,22 @@ void allocateSlices(SliceLattice& L, const std::vector<glm::vec3>& particles, do
     throw std::length_error("too many samples");
   // 3. Each slot's particles, by counting sort: particles in order, so every list ascends.
   L.offsets.assign(L.slots() + 1, 0);
-  for (const glm::vec3& p : particles)
-    forVoxelsOf(L, p, r, [&](size_t v) { ++L.offsets[size_t(L.slot_of[v]) + 1]; });
+  for (size_t i = 0; i < particles.size(); ++i)
+    forVoxelsOf(L, particles[i], radius(i), [&](size_t v) { ++L.offsets[size_t(L.slot_of[v]) + 1]; });
   for (size_t s = 0; s < L.slots(); ++s) L.offsets[s + 1] += L.offsets[s];
   if (size_t(L.offsets.back()) * 4 > max_entries) throw std::length_error("too many list entries");
   L.items.resize(L.offsets.back());
   std::vector<uint32_t> cursor(L.offsets.begin(), L.offsets.end() - 1);
   for (size_t i = 0; i < particles.size(); ++i)
-    forVoxelsOf(L, particles[i], r,
+    forVoxelsOf(L, particles[i], radius(i),
                 [&](size_t v) { L.items[cursor[size_t(L.slot_of[v])]++] = uint32_t(i); });
 }
 
 SliceLattice buildSliceLattice(const std::vector<glm::vec3>& particles, const Box3& clip, double h,
-                               double spacing, double step, size_t max_entries) {
-  SliceLattice L = markSliceVoxels(particles, clip, h, spacing, step, max_entries);
-  if (L.voxelCount() > 0) allocateSlices(L, particles, h, max_entries);
+                               double spacing, double step, size_t max_entries,
+                               const std::vector<float>* reach) {
+  SliceLattice L = markSliceVoxels(particles, clip, h, spacing, step, max_entries, reach);
+  if (L.voxelCount() > 0) allocateSlices(L, particles, h, max_entries, reach);
   return L;
 }
 

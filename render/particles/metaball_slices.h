@@ -52,13 +52,17 @@ struct SliceLattice {
 // std::length_error when the voxels, the samples or the lists (4 words an entry) would pass
 // `max_entries` 4-byte words, what one GPU buffer holds (the caller turns it into an error naming
 // particles.slice_spacing).
+// `reach` (optional, one per particle; anisotropic kernels: the longest semi-axis): each
+// particle's own radius of influence instead of h, which must then be at least the largest.
 SliceLattice buildSliceLattice(const std::vector<glm::vec3>& particles, const Box3& clip, double h,
-                               double spacing, double step, size_t max_entries = size_t(1) << 28);
+                               double spacing, double step, size_t max_entries = size_t(1) << 28,
+                               const std::vector<float>* reach = nullptr);
 
 // The two steps of buildSliceLattice: the voxels and their bits; then the slots and lists.
 SliceLattice markSliceVoxels(const std::vector<glm::vec3>& particles, const Box3& clip, double h,
-                             double spacing, double step, size_t max_entries = size_t(1) << 28);
+                             double spacing, double step, size_t max_entries = size_t(1) << 28,
+                             const std::vector<float>* reach = nullptr);
 void allocateSlices(SliceLattice& L, const std::vector<glm::vec3>& particles, double h,
-                    size_t max_entries = size_t(1) << 28);
+                    size_t max_entries = size_t(1) << 28, const std::vector<float>* reach = nullptr);
 
 }  // namespace sortlast

@@ -23,29 +23,55 @@ MetaballSlicesRenderer::MetaballSlicesRenderer(const GlContext& ctx, int width, 
                                             .define("SIDE", side)
                                             .add(glsl::metaball_common)
                                             .add(glsl::metaball_slices_ray_frag)));
-  splat_ = GlProgram(
-      gl_, linkComputeProgram(
-               gl_, ShaderSource().define("SIDE", side).add(glsl::metaball_slices_splat_comp)));
+  // Anisotropic smoothing: the splat with the per-particle kernel (the round one stays as it
+  // was, so its images do not change). The ray pass is the same: it reads only the lattice.
+  splat_ = GlProgram(gl_, linkComputeProgram(gl_, ShaderSource()
+                                                      .define("SIDE", side)
+                                                      .defineIf(s_.anisotropic, "ANISOTROPIC")
+                                                      .add(glsl::metaball_slices_splat_comp)));
   gl_.check("metaball slices renderer setup");
 }
 
 void MetaballSlicesRenderer::setSettings(const MetaballSettings& settings) {
-  if (settings.h != s_.h || settings.slice_spacing != s_.slice_spacing || settings.step > s_.step)
+  if (settings.h != s_.h || settings.slice_spacing != s_.slice_spacing || settings.step > s_.step ||
+      settings.anisotropic != s_.anisotropic || settings.anisotropic_params != s_.anisotropic_params)
     throw std::logic_error(
-        "MetaballSlicesRenderer::setSettings: h or the slice spacing changed, or the step grew");
+        "MetaballSlicesRenderer::setSettings: h, the slice spacing or the smoothing changed, or the "
+        "step grew");
   s_ = settings;
 }
 
-int MetaballSlicesRenderer::addBrick(const Box3& clip, const std::vector<glm::vec3>& particles) {
+int MetaballSlicesRenderer::addBrick(const Box3& clip, const std::vector<glm::vec3>& all) {
   GpuBrick g;
   g.clip = clip;
   const double spacing = s_.slice_spacing * s_.h;
+  // Anisotropic: every particle's kernel from the brick's particles and ghosts, then only those
+  // whose ellipsoid reaches the box the lattice serves (the clip box grown by a ray step and 2.5
+  // spacings, ParticleDesc::ghostMargin) are kept, in order, at their kernels' centres. Their
+  // neighbourhoods lie wholly in the ghost margin, so their kernels are what any rank computes.
+  std::vector<glm::vec3> kept;
+  std::vector<ParticleKernel> kernels;
+  std::vector<float> reach;
+  double h_bound = s_.h;
+  if (s_.anisotropic && !all.empty()) {
+    std::vector<ParticleKernel> k = computeAnisotropicKernels(all, s_.h, s_.anisotropic_params);
+    const double serve = s_.step + 2.5 * spacing;
+    for (size_t i = 0; i < all.size(); ++i) {
+      glm::dvec3 q(k[i].centre);
+      glm::dvec3 d = glm::max(glm::max(clip.lo - q, q - clip.hi), glm::dvec3(0.0));
+      if (glm::length(d) <= double(k[i].reach) + serve)
+        kept.push_back(k[i].centre), kernels.push_back(k[i]), reach.push_back(k[i].reach);
+    }
+    h_bound = std::max(s_.h, maxReach(kernels));
+  }
+  const std::vector<glm::vec3>& particles = s_.anisotropic ? kept : all;
   // What one storage block holds bounds the voxels and samples (4 bytes each) and the list
   // entries (16).
   const size_t max_entries = size_t(max_block_bytes_ / 4);
   SliceLattice L;
   try {
-    L = buildSliceLattice(particles, clip, s_.h, spacing, s_.step, max_entries);
+    L = buildSliceLattice(particles, clip, h_bound, spacing, s_.step, max_entries,
+                          s_.anisotropic ? &reach : nullptr);
   } catch (const std::length_error& e) {
     std::ostringstream msg;
     msg << "scene key 'particles.slice_spacing': " << s_.slice_spacing
@@ -53,13 +79,14 @@ int MetaballSlicesRenderer::addBrick(const Box3& clip, const std::vector<glm::ve
         << e.what() << "); use a larger spacing or more bricks (bricks.per_axis)";
     throw InputError(msg.str());
   }
-  if (L.slots() > 0) splat(g, L, particles);
+  if (L.slots() > 0) splat(g, L, particles, s_.anisotropic ? &kernels : nullptr);
   bricks_.push_back(g);
   return int(bricks_.size()) - 1;
 }
 
 void MetaballSlicesRenderer::splat(GpuBrick& g, const SliceLattice& L,
-                                   const std::vector<glm::vec3>& particles) {
+                                   const std::vector<glm::vec3>& particles,
+                                   const std::vector<ParticleKernel>* kernels) {
   const float edge = L.spacing * float(kSliceVoxelCells);
   g.voxel_lo = L.voxel_lo;
   g.dims = L.dims;
@@ -78,6 +105,23 @@ void MetaballSlicesRenderer::splat(GpuBrick& g, const SliceLattice& L,
   unsigned offsets = uploadStorage(L.offsets.data(), L.offsets.size() * 4);
   unsigned list = uploadStorage(items.data(), items.size() * sizeof(glm::vec4));
   unsigned voxels = uploadStorage(L.slot_voxel.data(), L.slot_voxel.size() * sizeof(glm::ivec4));
+  // Anisotropic: per particle 3 vec4, (A row 0, C), (A row 1, reach), (A row 2, unused), as the
+  // grid method's (A is symmetric).
+  unsigned frames = 0;
+  if (kernels) {
+    std::vector<glm::vec4> k(kernels->size() * 3);
+    for (size_t i = 0; i < kernels->size(); ++i) {
+      const ParticleKernel& pk = (*kernels)[i];
+      k[3 * i] = glm::vec4(pk.a[0], pk.c);
+      k[3 * i + 1] = glm::vec4(pk.a[1], pk.reach);
+      k[3 * i + 2] = glm::vec4(pk.a[2], 0.0f);
+    }
+    if (double(k.size()) * 16.0 > double(max_block_bytes_))
+      throw std::runtime_error("metaball slices: a brick's anisotropic kernels (" +
+                               std::to_string(k.size() * 16) +
+                               " bytes) exceed one shader storage block; use more bricks");
+    frames = uploadStorage(k.data(), k.size() * sizeof(glm::vec4));
+  }
   g.slot_of = keepStorage(L.slot_of.data(), L.slot_of.size() * 4);
   g.samples = keepStorage(nullptr, 0);
   gl_.BindBuffer(GL_SHADER_STORAGE_BUFFER, g.samples);
@@ -92,6 +136,7 @@ void MetaballSlicesRenderer::splat(GpuBrick& g, const SliceLattice& L,
   gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, list);
   gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, voxels);
   gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, g.samples);
+  if (kernels) gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, frames);
   // At most 65,535 work groups per dispatch (the minimum GL guarantees).
   for (size_t first = 0; first < g.slots; first += 65535) {
     splat_.set("u_first", unsigned(first));
@@ -99,6 +144,7 @@ void MetaballSlicesRenderer::splat(GpuBrick& g, const SliceLattice& L,
   }
   gl_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   for (unsigned b : {offsets, list, voxels}) gl_.DeleteBuffers(1, &b);
+  if (frames) gl_.DeleteBuffers(1, &frames);
   gl_.check("metaball slices splat");
 }
 

@@ -16,6 +16,7 @@
 #include "render/gl/gl_context.h"
 #include "render/gl/gl_program.h"
 #include "render/particles/metaball_base.h"
+#include "io/anisotropic_kernels.h"
 #include "render/particles/metaball_slices.h"
 
 namespace sortlast {
@@ -43,7 +44,9 @@ class MetaballSlicesRenderer : public MetaballBase {
     unsigned slot_of = 0, samples = 0;  // SSBOs, kept by the base
     size_t slots = 0;
   };
-  void splat(GpuBrick& g, const SliceLattice& L, const std::vector<glm::vec3>& particles);
+  // `kernels` (anisotropic smoothing): one per particle, for the splat's kernel buffer.
+  void splat(GpuBrick& g, const SliceLattice& L, const std::vector<glm::vec3>& particles,
+             const std::vector<ParticleKernel>* kernels);
 
   GlProgram program_, splat_;  // the ray pass; the splat (compute)
   std::vector<GpuBrick> bricks_;

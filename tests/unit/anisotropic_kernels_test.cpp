@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "io/anisotropic_kernels.h"
+#include "io/particles.h"
 #include "scene/scene.h"
 #include "reference/surface_roughness.h"
 #include "input_error_of.h"
@@ -261,4 +262,52 @@ TEST(SurfaceRoughness, CountsConnectedPiecesOfTheSurface) {
 }
 
 }  // namespace
+
+// particles.smoothing: auto. A cubic lattice of spacing s has 6 neighbours at s, 12 at s sqrt(2),
+// 8 at s sqrt(3): at s = 0.7 h an inner particle has 6 + 12 = 18 within h, at s = 1.1 h none.
+TEST(AutoSmoothing, CountsNeighboursWithinHAndChoosesBySpacing) {
+  auto lattice = [](float s) {
+    std::vector<glm::vec3> ps;
+    for (int z = 0; z < 12; ++z)
+      for (int y = 0; y < 12; ++y)
+        for (int x = 0; x < 12; ++x) ps.emplace_back(x * s, y * s, z * s);
+    return ps;
+  };
+  const double h = 1.0;
+  NeighbourCount dense = countNeighbours(lattice(0.7f), h), sparse = countNeighbours(lattice(1.1f), h);
+  EXPECT_EQ(dense.sampled, 12.0 * 12 * 12);
+  const double mean = dense.neighbours / dense.sampled;
+  EXPECT_GT(mean, 12.0);  // 18 inside, fewer on the faces, edges and corners
+  EXPECT_LT(mean, 18.0);
+  EXPECT_EQ(sparse.neighbours, 0.0);
+  // Strided sampling: every 8th particle (max_sampled 216) gives a mean in the same range.
+  NeighbourCount strided = countNeighbours(lattice(0.7f), h, 216);
+  EXPECT_EQ(strided.sampled, 216.0);
+  EXPECT_GT(strided.neighbours / strided.sampled, 12.0);
+
+  ParticleDesc d;
+  d.smoothing = Smoothing::kAuto;
+  resolveAutoSmoothing(d, dense);
+  EXPECT_EQ(d.smoothing, Smoothing::kAnisotropic);
+  EXPECT_NE(d.smoothing_reason.find("auto: anisotropic"), std::string::npos) << d.smoothing_reason;
+  d.smoothing = Smoothing::kAuto;
+  resolveAutoSmoothing(d, sparse);
+  EXPECT_EQ(d.smoothing, Smoothing::kNone);
+  EXPECT_NE(d.smoothing_reason.find("auto: none"), std::string::npos) << d.smoothing_reason;
+  // Round-only settings: billboards and in situ give none however dense.
+  d.smoothing = Smoothing::kAuto;
+  d.method = ParticleMethod::kBillboards;
+  resolveAutoSmoothing(d, dense);
+  EXPECT_EQ(d.smoothing, Smoothing::kNone);
+  d.smoothing = Smoothing::kAuto;
+  d.method = ParticleMethod::kGrid;
+  resolveAutoSmoothing(d, dense, true);
+  EXPECT_EQ(d.smoothing, Smoothing::kNone);
+  // An explicit choice stands.
+  d.smoothing = Smoothing::kAnisotropic;
+  resolveAutoSmoothing(d, sparse);
+  EXPECT_EQ(d.smoothing, Smoothing::kAnisotropic);
+  EXPECT_EQ(d.smoothing_reason, "set: particles.smoothing: anisotropic");
+}
+
 }  // namespace sortlast
