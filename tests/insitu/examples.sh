@@ -45,14 +45,19 @@ renders:
       image: {width: $W, height: $W}
       camera: {look_at: [$C, $C, $C], position: [$PX, $PY, $PZ], fov: 30}
       transfer: {range: [0, 0.5], points: $TF}
+      render: {sample_spacing: 0.5}
 YAML
 }
 
+# The step pinned on both sides: render.sample_spacing auto chooses against the exact model where
+# the accuracy estimate applies (a batch render) and by the probes' differences where it does not
+# (in situ: the simulation's arrays), so the two could take different steps.
 render_dump() {  # render_dump OUT [--set ...]: V dumped on $np ranks, as the actions draw it
   render_one -o "$1" --set volume.file=np$np/f64.raw --set volume.type=float32 \
     --set "volume.dims=[$N,$N,$N]" --set image.width=$W --set image.height=$W \
     --set "camera.look_at=[0,0,0]" --set "camera.position=[50,45,74]" --set camera.fov=30 \
-    --set "transfer.range=[0,0.5]" --set "transfer.points=$TF" "${@:2}" || fail "render np=$np"
+    --set "transfer.range=[0,0.5]" --set "transfer.points=$TF" --set render.sample_spacing=0.5 "${@:2}" ||
+    fail "render np=$np"
 }
 
 case $MODE in
