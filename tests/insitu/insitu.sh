@@ -15,13 +15,18 @@ DRIVER=$2
 MODE=$3
 run_driver() { local np=$1; shift; timeout 120 "${MPIRUN[@]}" -np "$np" "$DRIVER" "$@"; }
 size=24
+# The step pinned on both sides (actions and batch): render.sample_spacing auto chooses against the
+# exact model in a batch render and by the probes' differences in situ (no accuracy estimate
+# there), so the two could take different steps.
 actions() {  # actions file: one render every step, 96x96
+  local extra=${3:-}
+  [[ $extra == *render:* ]] || extra=", render: {sample_spacing: 0.5}$extra"
   cat > "$WORK/actions.yaml" <<YAML
 on_error: ${2:-report}
 renders:
   - name: v
     output: "$WORK/$1_{step}.png"
-    scene: {image: {width: 96, height: 96}${3:-}}
+    scene: {image: {width: 96, height: 96}$extra}
 YAML
 }
 # The batch render of the dumped field, framed like the in-situ one (same grid, spacing 0.5).
@@ -29,7 +34,7 @@ batch() {  # batch OUT.png TYPE-of-dump [extra --set]
   local out=$1; shift
   run_np 1 render -q -o "$out" --set volume.file="$WORK/field.raw" --set volume.type=float32 \
     --set "volume.dims=[$size,$size,$size]" --set "volume.spacing=[0.5,0.5,0.5]" \
-    --set image.width=96 --set image.height=96 "$@" || fail "batch render"
+    --set image.width=96 --set image.height=96 --set render.sample_spacing=0.5 "$@" || fail "batch render"
 }
 same() { "$SORTLAST" compare "$1" "$2" --max-diff 1 || fail "$3"; }
 # Another decomposition than the batch render's 2x2x2 bricks: each brick image is rounded to 8 bits
@@ -56,7 +61,7 @@ case "$MODE" in
     # The ray caster and binary-swap on an uneven decomposition, three steps of a changing field:
     # steps 1 and 2 overwrite the brick textures step 0 left (render/volume/volume_texture_pool.h),
     # so a texel left stale would show against the batch render of step 2's field.
-    actions "rc" report ", render: {method: raycast}, compositing: {strategy: binary-swap}"
+    actions "rc" report ", render: {method: raycast, sample_spacing: 0.5}, compositing: {strategy: binary-swap}"
     run_driver 3 --size $size --split uneven --steps 3 --actions "$WORK/actions.yaml" --dump "$WORK/field.raw" > /dev/null ||
       fail "driver raycast"
     batch "$WORK/batch_rc.png" --set render.method=raycast
