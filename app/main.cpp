@@ -17,6 +17,7 @@
 #include "session/mpi_errors.h"
 #include "app/reference_job.h"
 #include "app/render_job.h"
+#include "app/singleton_start.h"
 #include "service/serve_job.h"
 
 using namespace sortlast;
@@ -357,6 +358,7 @@ int main(int argc, char** argv) {
 
   // The service's front end runs threads on rank 0, but only the main thread calls MPI.
   int provided = 0;
+  isolateSingletonStart();
   MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
   installMpiErrorHandler(MPI_COMM_WORLD);
   int code = 1;

@@ -13,6 +13,13 @@ export OMPI_MCA_btl_vader_single_copy_mechanism=none  # containers often forbid 
 # (killed_ranks.sh, the service's) put the grace back: KILL_GRACE=1 before sourcing.
 export OMPI_MCA_pml=ob1
 export OMPI_MCA_odls_base_sigkill_timeout=${KILL_GRACE:-0}
+# A one-process run without mpirun (the in-situ driver, the examples; `sortlast` sets this itself,
+# app/singleton_start.h) would fork Open MPI's orted daemon first: a third of a small frame's CPU.
+export OMPI_MCA_ess_singleton_isolated=1
+# Ranks waiting on a message yield the core instead of spinning (Open MPI does so by itself only
+# when a job has more ranks than cores): 2-rank jobs spun ~15 % of their CPU in opal_progress
+# (perf), taken from the test running beside them.
+export OMPI_MCA_mpi_yield_when_idle=1
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
 # The helpers run Debian's python3 (scripts/install-deps installs it), found first on PATH: a
