@@ -29,13 +29,7 @@ double WholeVolume::at(const glm::dvec3& u) const {
 }
 
 glm::dvec3 WholeVolume::gradient(const glm::dvec3& u) const {
-  glm::dvec3 g;
-  for (int a = 0; a < 3; ++a) {
-    glm::dvec3 e(0.0);
-    e[a] = 1.0;
-    g[a] = (at(u + e) - at(u - e)) / (2.0 * grid.spacing[a]);
-  }
-  return g;
+  return centralGradient([this](const glm::dvec3& p) { return at(p); }, u, grid.spacing);
 }
 
 namespace {

@@ -7,11 +7,12 @@ namespace sortlast {
 
 namespace {
 
-// Calls f(cell number) for every cell of g that the ball (p, r) overlaps (the closed cell box
-// within distance r of p).
+// Calls f(cell number, the cell's low corner) for every cell of g inside the box p +- half that
+// the ball (p, r) overlaps (the closed cell box within distance r of p): the one walk of the
+// round and the anisotropic kernels' cell lists.
 template <class F>
-void forCellsOf(const ParticleGrid& g, const glm::vec3& p, float r, F&& f) {
-  glm::vec3 a = (p - r - g.lo) / g.cell, b = (p + r - g.lo) / g.cell;
+void forCellsNear(const ParticleGrid& g, const glm::vec3& p, const glm::vec3& half, float r, F&& f) {
+  glm::vec3 a = (p - half - g.lo) / g.cell, b = (p + half - g.lo) / g.cell;
   glm::ivec3 lo = glm::max(glm::ivec3(glm::floor(a)), glm::ivec3(0));
   glm::ivec3 hi = glm::min(glm::ivec3(glm::floor(b)), g.dims - 1);
   if (glm::any(glm::greaterThan(lo, hi))) return;
@@ -28,10 +29,16 @@ void forCellsOf(const ParticleGrid& g, const glm::vec3& p, float r, F&& f) {
       for (int x = lo.x; x <= hi.x; ++x) {
         float cx = g.lo.x + float(x) * g.cell;
         float dx = std::max({cx - p.x, 0.0f, p.x - (cx + g.cell)});
-        if (dzy + dx * dx <= r2) f(row + size_t(x));
+        if (dzy + dx * dx <= r2) f(row + size_t(x), glm::vec3(cx, cy, cz));
       }
     }
   }
+}
+
+// Calls f(cell number) for every cell of g that the ball (p, r) overlaps.
+template <class F>
+void forCellsOf(const ParticleGrid& g, const glm::vec3& p, float r, F&& f) {
+  forCellsNear(g, p, glm::vec3(r), r, [&](size_t cell, const glm::vec3&) { f(cell); });
 }
 
 // Calls f(cell number) for every cell of g that the ellipsoid {p + M v : |v| <= 1}, grown by
@@ -51,38 +58,20 @@ void forCellsOfEllipsoid(const ParticleGrid& g, const glm::vec3& p, float r, con
     n[i] = len[i] > 0.0f ? m[i] / len[i] : glm::vec3(0.0f);
   }
   half = glm::min(half, glm::vec3(r));
-  glm::vec3 a = (p - half - g.lo) / g.cell, b = (p + half - g.lo) / g.cell;
-  glm::ivec3 lo = glm::max(glm::ivec3(glm::floor(a)), glm::ivec3(0));
-  glm::ivec3 hi = glm::min(glm::ivec3(glm::floor(b)), g.dims - 1);
-  if (glm::any(glm::greaterThan(lo, hi))) return;
-  const float r2 = r * r, hc = 0.5f * g.cell;
+  const float hc = 0.5f * g.cell;
   float box[3], limit[3];
   for (int k = 0; k < 3; ++k) {
     box[k] = hc * (std::abs(n[k].x) + std::abs(n[k].y) + std::abs(n[k].z));
     // A little slack for the float arithmetic of the test itself.
     limit[k] = (len[k] + pad + box[k]) * (1.0f + 1e-5f) + 1e-6f * g.cell;
   }
-  for (int z = lo.z; z <= hi.z; ++z) {
-    float cz = g.lo.z + float(z) * g.cell;
-    float dz = std::max({cz - p.z, 0.0f, p.z - (cz + g.cell)});
-    for (int y = lo.y; y <= hi.y; ++y) {
-      float cy = g.lo.y + float(y) * g.cell;
-      float dy = std::max({cy - p.y, 0.0f, p.y - (cy + g.cell)});
-      float dzy = dz * dz + dy * dy;
-      if (dzy > r2) continue;
-      size_t row = (size_t(z) * g.dims.y + y) * g.dims.x;
-      for (int x = lo.x; x <= hi.x; ++x) {
-        float cx = g.lo.x + float(x) * g.cell;
-        float dx = std::max({cx - p.x, 0.0f, p.x - (cx + g.cell)});
-        if (dzy + dx * dx > r2) continue;
-        glm::vec3 v = glm::vec3(cx + hc, cy + hc, cz + hc) - p;
-        if (std::abs(glm::dot(n[0], v)) > limit[0] || std::abs(glm::dot(n[1], v)) > limit[1] ||
-            std::abs(glm::dot(n[2], v)) > limit[2])
-          continue;
-        f(row + size_t(x));
-      }
-    }
-  }
+  forCellsNear(g, p, half, r, [&](size_t cell, const glm::vec3& corner) {
+    glm::vec3 v = corner + hc - p;
+    if (std::abs(glm::dot(n[0], v)) > limit[0] || std::abs(glm::dot(n[1], v)) > limit[1] ||
+        std::abs(glm::dot(n[2], v)) > limit[2])
+      return;
+    f(cell);
+  });
 }
 
 }  // namespace
