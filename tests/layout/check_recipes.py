@@ -173,9 +173,14 @@ def check_apptainer(root):
 
 
 STUB_DPKG = """#!/bin/bash
-# dpkg-query -W -f=... PACKAGE: every package installed except libvtk9-dev and python3
-for p in "$@"; do :; done
-case $p in libvtk9-dev|python3) exit 1 ;; *) echo -n "install ok installed" ;; esac
+# dpkg-query -W -f='${Package} ${Status}\\n' PACKAGE...: every package installed except
+# libvtk9-dev and python3 (not known to dpkg: no line, exit status 1)
+shift 2
+rc=0
+for p in "$@"; do
+  case $p in libvtk9-dev|python3) rc=1 ;; *) echo "$p install ok installed" ;; esac
+done
+exit $rc
 """
 STUB_APT = """#!/bin/bash
 echo "$*" >>"$LOG"
