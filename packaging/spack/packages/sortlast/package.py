@@ -1,7 +1,8 @@
-# Spack recipe for sortlast (docs/install.md), in a package repository of the layout Spack 0.x reads
+# Spack recipe for sortlast (docs/install.md), in a package repository of the layout Spack 0.23 reads
 # (repo.yaml beside packages/; `from spack.package import *` brings CMakePackage). Add it:
 #   spack repo add packaging/spack
 # sortlast publishes no release tarball, so build a checkout in place:
+#   spack env create -d . && spack env activate .   (spack develop works in an environment)
 #   spack develop --path "$PWD" sortlast@=main && spack add sortlast@=main ~vtk && spack install
 #
 # Each variant is one CMake option (SORTLAST_OPTIONS below; tests/layout/check_recipes.py holds the
