@@ -215,8 +215,14 @@ int main(int argc, char** argv) {
   serve->add_option("--listen", serve_opts.listen,
                     "ADDRESS:PORT to serve on (default 127.0.0.1:8080; port 0: any free port). An "
                     "address other than 127.0.0.1, ::1 or localhost needs --token");
-  serve->add_option("--token", serve_opts.token,
-                    "Every /api/ request must carry it (Authorization: Bearer TOKEN, or ?token=TOKEN)");
+  auto* token_opt = serve->add_option(
+      "--token", serve_opts.token,
+      "Every /api/ request must carry it (Authorization: Bearer TOKEN, or ?token=TOKEN). Every user "
+      "of the node can read it in ps: prefer --token-file");
+  serve->add_option("--token-file", serve_opts.token_file,
+                    "Read the token from this file (one line; readable by you only, chmod 600), so "
+                    "that it is not on the command line")
+      ->excludes(token_opt);
   serve->add_option("--data-dir", serve_opts.data_dir,
                     "Clients may load scene files from under this directory (POST /api/load); the "
                     "scene argument is then relative to it");

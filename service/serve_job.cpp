@@ -23,6 +23,7 @@
 #include "common/listen_address.h"
 #include "session/render_session.h"
 #include "service/request_queue.h"
+#include "service/token_file.h"
 
 #ifndef SORTLAST_VIEWER_SOURCE_DIR
 #define SORTLAST_VIEWER_SOURCE_DIR ""
@@ -282,17 +283,26 @@ std::string findViewerDir(const std::string& given) {
   return SORTLAST_VIEWER_SOURCE_DIR;
 }
 
-int runServeJob(const ServeOptions& opts, MPI_Comm comm) {
+int runServeJob(const ServeOptions& given, MPI_Comm comm) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   installStopHandlers();
+  ServeOptions opts = given;
   try {
     std::string scene_path = opts.scene;
     collectively(comm, [&] {
       auto [address, port] = parseListen(opts.listen);
-      if (!isDefaultLoopback(address) && opts.token.empty())
+      if (!isDefaultLoopback(address) && opts.token.empty() && opts.token_file.empty())
         throw InputError("--listen " + opts.listen + " is not the loopback address (127.0.0.1, ::1, "
-                         "localhost): others may reach it, so give --token TOKEN");
+                         "localhost): others may reach it, so give --token-file PATH (or --token TOKEN)");
+      if (!opts.token.empty() && !opts.token_file.empty())
+        throw InputError("--token and --token-file: give one of them");
+      // Only rank 0 answers requests, so only it reads the file (the other ranks' nodes need not
+      // see it); a bad file still stops every rank here.
+      if (rank == 0 && !opts.token_file.empty()) opts.token = readTokenFile(opts.token_file);
+      if (rank == 0 && !given.token.empty())
+        std::fprintf(stderr, "sortlast serve: warning: --token is on the command line, which every "
+                     "user of this node can read (ps, /proc/PID/cmdline); use --token-file PATH\n");
       if (!opts.data_dir.empty()) {
         if (!std::filesystem::is_directory(opts.data_dir))
           throw InputError("--data-dir " + opts.data_dir + ": not a directory");

@@ -16,6 +16,7 @@ struct ServeOptions {
   std::vector<std::string> overrides;  // --set: part of the base scene
   std::string listen = "127.0.0.1:8080";
   std::string token;                   // required unless the address is 127.0.0.1, ::1 or localhost
+  std::string token_file;              // --token-file: rank 0 reads the token from it (token_file.h)
   std::string data_dir;                // non-empty: clients may load scene files from under it
   std::string record_dir;              // non-empty: clients may record movies into files under it
   std::string viewer_dir;              // empty: the installed viewer, else the source tree's

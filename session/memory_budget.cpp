@@ -11,6 +11,7 @@
 
 #include "io/anisotropic_kernels.h"
 #include "common/error.h"
+#include "session/cgroup_memory.h"
 #include "session/device_report.h"  // nodePlace
 #include "render/particles/metaball_slices.h"  // kSliceVoxelCells, kSliceSlotPoints
 
@@ -81,6 +82,7 @@ MemoryBudget gpuMemoryBudget(const GlDeviceInfo& gpu, int sharing) {
   if (!(gpu.gpu_free_mib >= 0)) {
     b.bytes = INFINITY;
     b.source = "unknown (the driver reports no GPU memory)";
+    b.bound = "unknown";
     return b;
   }
   sharing = std::max(sharing, 1);
@@ -90,6 +92,7 @@ MemoryBudget gpuMemoryBudget(const GlDeviceInfo& gpu, int sharing) {
     << gpu.renderer << ", EGL device " << gpu.device << " of host " << gpu.host << ", by "
     << gpu.gpu_memory_source << ", shared by " << sharing << " rank(s) on that GPU)";
   b.source = s.str();
+  b.bound = "gpu";
   return b;
 }
 
@@ -99,18 +102,32 @@ MemoryBudget memoryBudget(const Scene& scene, MPI_Comm comm) {
   if (scene.limits.memory_mib) {
     b.bytes = *scene.limits.memory_mib * kMiB;
     b.source = mib(b.bytes) + " (limits.memory_mib)";
+    b.bound = "limits.memory_mib";
     return b;
   }
-  double avail = memAvailable();
-  if (!(avail > 0)) {  // no /proc/meminfo: no bound we could state
-    b.bytes = INFINITY;
-    b.source = "unknown (no MemAvailable in /proc/meminfo; set limits.memory_mib)";
-    return b;
-  }
-  b.bytes = kMemorySafety * avail / on_node;
+  const double avail = memAvailable();
+  const std::optional<CgroupLimit> cgroup = processCgroupMemoryLimit();
   std::ostringstream s;
-  s << mib(b.bytes) << " (90% of MemAvailable " << mib(avail) << " shared by " << on_node
-    << " rank(s) on this node; limits.memory_mib sets it)";
+  if (cgroup && !(cgroup->bytes >= avail)) {
+    // The job's limit on this node: past it the kernel kills a rank, whatever the node has free.
+    b.bytes = kMemorySafety * cgroup->bytes / on_node;
+    b.bound = "cgroup";
+    s << mib(b.bytes) << " (90% of the cgroup memory limit " << mib(cgroup->bytes) << ", "
+      << cgroup->file << ", shared by " << on_node << " rank(s) on this node";
+    if (avail > 0) s << "; MemAvailable is " << mib(avail);
+    s << "; limits.memory_mib sets it)";
+  } else if (avail > 0) {
+    b.bytes = kMemorySafety * avail / on_node;
+    b.bound = "MemAvailable";
+    s << mib(b.bytes) << " (90% of MemAvailable " << mib(avail) << " shared by " << on_node
+      << " rank(s) on this node";
+    if (cgroup) s << "; the cgroup's limit " << mib(cgroup->bytes) << " is larger";
+    s << "; limits.memory_mib sets it)";
+  } else {  // no /proc/meminfo and no cgroup limit: no bound we could state
+    b.bytes = INFINITY;
+    b.bound = "unknown";
+    s << "unknown (no MemAvailable in /proc/meminfo, no cgroup memory limit; set limits.memory_mib)";
+  }
   b.source = s.str();
   return b;
 }

@@ -37,14 +37,18 @@ struct MemoryNeed {
 struct MemoryBudget {
   double bytes = 0;
   std::string source;
+  // Which bound set it (--stats): "limits.memory_mib", "cgroup" (the job's memory limit on this
+  // node), "MemAvailable", "gpu" or "unknown".
+  std::string bound;
 };
 
 // Share of MemAvailable a rank may plan for: the rest is for the system, the MPI library, the
 // GL driver's own copies and the estimate's error.
 constexpr double kMemorySafety = 0.9;
 
-// limits.memory_mib, else kMemorySafety x MemAvailable / the ranks on this node. Collective
-// (counts the node's ranks).
+// limits.memory_mib, else kMemorySafety x the smaller of MemAvailable and the cgroup's memory limit
+// (cgroup_memory.h: a batch job's limit on this node, which all its ranks there share) / the ranks
+// of this job on this node. Collective (counts the node's ranks).
 MemoryBudget memoryBudget(const Scene& scene, MPI_Comm comm);
 
 // Rank 0's copy of the whole particle set, before it is loaded (procedural count, or the file's

@@ -1074,6 +1074,11 @@ nlohmann::json RenderSession::jobStats() const {
   nlohmann::json top = nlohmann::json::object();
   top["ranks_gl"] = deviceJson(S.devices);  // each rank's GL_VENDOR, GL_RENDERER, device, host
   top["pixel_threads"] = pixelThreads();     // rank 0's (common/pixel_threads.h)
+  // Rank 0's host memory budget and the bound that set it (memory_budget.h).
+  top["memory_budget"] = {{"mib", std::isfinite(S.budget.bytes) ? nlohmann::json(S.budget.bytes / (1024.0 * 1024.0))
+                                                                : nlohmann::json(nullptr)},
+                          {"bound", S.budget.bound},
+                          {"source", S.budget.source}};
   // particles.smoothing as drawn, and why (auto: the neighbour count that chose it).
   if (S.base.particles.enabled())
     top["smoothing"] = {{"chosen", std::string(nameOf(S.base.particles.smoothing))},

@@ -29,10 +29,23 @@ refused 2 "100000^3 volume" "needs about" 30 --set "volume.dims=[100000,100000,1
 refused 2 "a 32768^2 image" "image targets (32768 x 32768)" 30 --set image.width=32768 --set image.height=32768
 refused 2 "2^31 procedural particles" "the particle set on rank 0" 30 --set volume.procedural=none \
   --set particles.procedural=layers --set particles.count=2147483648
-# limits.memory_mib: refused under it, rendered within it.
+# A job's cgroup memory limit (Slurm's, a container's), from a stand-in for the cgroup mounts
+# (SORTLAST_CGROUP_ROOT): under a 2 GiB memory.max a 900^3 volume on 2 ranks (5.9 GB in all, which
+# MemAvailable here would let it try) is refused naming the bound; the default scene renders and
+# --stats names the bound.
+mkdir -p "$WORK/cg2g" "$WORK/cg1m" && echo 2147483648 >"$WORK/cg2g/memory.max" && echo 1048576 >"$WORK/cg1m/memory.max"
+(export SORTLAST_CGROUP_ROOT=$WORK/cg2g
+ refused 2 "900^3 volume under a 2 GiB cgroup limit" "but 922 MiB (90% of the cgroup memory limit 2048 MiB, $WORK/cg2g/memory.max, shared by 2 rank(s) on this node" 30 \
+   "${sphere[@]}" --set "volume.dims=[900,900,900]"
+ run_np 2 render -q -o "$WORK/ok.png" --stats "$WORK/cg.json" --set image.width=64 --set image.height=64 ||
+   fail "the default scene did not render under a 2 GiB cgroup limit"
+ python3 -c 'import json,sys; b=json.load(open(sys.argv[1]))["memory_budget"]; assert b["bound"]=="cgroup" and abs(b["mib"]-921.6)<0.1, b' \
+   "$WORK/cg.json" || fail "--stats: memory_budget does not name the cgroup bound")
+echo "ok: --stats memory_budget under the stand-in cgroup: bound cgroup, 921.6 MiB"
+# limits.memory_mib: refused under it, rendered within it, and over a cgroup limit (1 MiB here).
 refused 3 "the default scene in 1 MiB" "1 MiB (limits.memory_mib)" 30 --set limits.memory_mib=1
-run_np 2 render -q -o "$WORK/ok.png" --set limits.memory_mib=512 --set image.width=64 --set image.height=64 ||
-  fail "the default scene did not render within 512 MiB"
+SORTLAST_CGROUP_ROOT=$WORK/cg1m run_np 2 render -q -o "$WORK/ok.png" --set limits.memory_mib=512 --set image.width=64 --set image.height=64 ||
+  fail "the default scene did not render within 512 MiB (limits.memory_mib over a 1 MiB cgroup limit)"
 # The last resort: an allocation fails despite the estimate (a 2 GB address-space limit, the
 # estimate told there are 100 GB): the message names the phase, not a bare std::bad_alloc.
 (ulimit -v 2000000; refused 1 "allocation failing under ulimit -v" "out of memory while loading time step 0" 60 \

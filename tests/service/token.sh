@@ -2,7 +2,8 @@
 # Security of the listening address: on an address other than 127.0.0.1/::1/localhost (here
 # 127.0.0.2, which only this machine reaches) the service refuses to start without --token, with a
 # message; with --token every /api/ request and the WebSocket need it (401 without it or with a
-# wrong one, 200 with `Authorization: Bearer T` or `?token=T`).
+# wrong one, 200 with `Authorization: Bearer T` or `?token=T`). The token from --token-file is on
+# no command line (ps); a file others may read is refused; --token still works, with a warning.
 # Usage: token.sh SORTLAST
 source "$(dirname "$0")/service_lib.sh" "$1"
 failures=()
@@ -22,10 +23,46 @@ for addr in 127.0.0.2:0 0.0.0.0:0; do
   grep -q 'sortlast serve: http' "$WORK/refused.log" && bad "serve --listen $addr without --token listened anyway"
 done
 
-# 2. With --token on 127.0.0.2.
-TOKEN=secret
-start_server 2 --listen 127.0.0.2:0 --token "$TOKEN"
+# 1b. --token-file refusals, on every rank: a file its group or others may read; both options.
+TOKEN=t$(od -An -N12 -tx1 /dev/urandom | tr -d ' \n')
+printf '%s\n' "$TOKEN" >"$WORK/token" && chmod 640 "$WORK/token"
+rc=0
+timeout 60 "${MPIRUN[@]}" -np 2 "$SORTLAST" serve --listen 127.0.0.2:0 --token-file "$WORK/token" >"$WORK/refused.log" 2>&1 || rc=$?
+if [ "$rc" = 0 ] || [ "$rc" = 124 ] || ! grep -q "readable by its group or by others (mode 0640).*chmod 600" "$WORK/refused.log"; then
+  bad "--token-file of mode 640: exit $rc, $(grep -m1 error "$WORK/refused.log")"
+else
+  echo "ok: --token-file of mode 640 refused (exit $rc): $(grep -m1 error "$WORK/refused.log")"
+fi
+chmod 600 "$WORK/token"
+rc=0
+# (the command line is parsed before MPI starts, the same on every rank: no mpirun needed)
+timeout 60 "$SORTLAST" serve --token x --token-file "$WORK/token" >"$WORK/refused.log" 2>&1 || rc=$?
+[ "$rc" != 0 ] && [ "$rc" != 124 ] && grep -q "excludes" "$WORK/refused.log" \
+  && echo "ok: --token with --token-file refused (exit $rc): $(head -1 "$WORK/refused.log")" \
+  || bad "--token with --token-file: exit $rc, $(head -2 "$WORK/refused.log")"
+
+# cmdline_with_token: the processes whose command line (ps, /proc/PID/cmdline) holds $TOKEN.
+# The token goes to the scan by the environment, so the scan's own command line does not hold it.
+cmdline_with_token() {
+  TOKEN_SCAN=$TOKEN python3 -c '
+import os, subprocess
+token, me = os.environ["TOKEN_SCAN"], str(os.getpid())
+rows = subprocess.run(["ps", "-eo", "pid=,args="], capture_output=True, text=True).stdout.splitlines()
+print(" ".join(r.split(None, 1)[0] for r in rows if token in r and r.split(None, 1)[0] != me))'
+}
+
+# 2. With --token-file on 127.0.0.2 (one line break after the token, mode 600).
+start_server 2 --listen 127.0.0.2:0 --token-file "$WORK/token"
 case $BASE in http://127.0.0.2:*) ;; *) bad "listening on $BASE, not 127.0.0.2" ;; esac
+# No process shows the token: not mpirun, not a rank (ps reads /proc/PID/cmdline).
+ranks=$(pgrep -P "$MPIRUN_PID" | wc -l)
+seen=$(cmdline_with_token)
+if [ -n "$seen" ] || [ "$ranks" -lt 2 ]; then
+  bad "--token-file: the token is on a command line ($seen) or the ranks were not found ($ranks)"
+else
+  echo "ok: --token-file: no command line holds the token (mpirun and its $ranks ranks running)"
+fi
+grep -q "warning: --token" "$SERVER_LOG" && bad "--token-file: warned about --token"
 expect() {  # expect STATUS WHAT curl-args...
   local want=$1 what=$2 code; shift 2
   code=$(curl -s --max-time 30 -o "$WORK/reply" -w '%{http_code}' "$@") || true
@@ -41,7 +78,7 @@ for path in /api/health /api/scene; do
   expect 401 "GET $path without the token" "$BASE$path"
   expect 401 "GET $path with a wrong Bearer token" -H "Authorization: Bearer wrong" "$BASE$path"
   expect 401 "GET $path with ?token=wrong" "$BASE$path?token=wrong"
-  expect 401 "GET $path with a token prefix" "$BASE$path?token=secre"
+  expect 401 "GET $path with a token prefix" "$BASE$path?token=${TOKEN%?}"
   expect 200 "GET $path with the Bearer token" -H "Authorization: Bearer $TOKEN" "$BASE$path"
   expect 200 "GET $path with ?token=" "$BASE$path?token=$TOKEN"
 done
@@ -68,6 +105,16 @@ if command -v node >/dev/null && [ -d "$HERE/node_modules/ws" ]; then
   fi
 fi
 stop_server || bad "sortlast serve did not stop on SIGTERM"
+
+# 3. --token still works, with a warning; its ranks' command lines do show it (which is also
+# what makes the check above able to fail).
+start_server 1 --listen 127.0.0.2:0 --token "$TOKEN"
+grep -q "warning: --token is on the command line, which every user of this node can read" "$SERVER_LOG" \
+  && echo "ok: --token warns: $(grep -m1 warning "$SERVER_LOG")" || bad "--token: no warning"
+[ -n "$(cmdline_with_token)" ] && echo "ok: --token: the token is on a command line (as warned)" \
+  || bad "--token: the token found on no command line: the --token-file check above cannot fail"
+expect 200 "GET /api/health with --token's Bearer token" -H "Authorization: Bearer $TOKEN" "$BASE/api/health"
+stop_server || bad "sortlast serve (--token) did not stop on SIGTERM"
 
 [ ${#failures[@]} = 0 ] || { printf 'FAIL: %s\n' "${failures[@]}"; exit 1; }
 echo "token passed"
