@@ -402,16 +402,16 @@ void main() {
   bool ends_here = t1 < span.y || span.y >= g_span_t1;
 #endif
   vec4 acc = vec4(0.0);
+#ifdef MIP_EXACT  // the exact extremum over the brick's own part of the ray (its span in double)
+  projectExact(acc, px);
+  frag = projectionPixel(acc, px);
+  return;
+#endif
 #ifdef PROJECTION  // no volume here: the opaque layer's colour alone (raycast_projection.frag.glsl)
   if (!(t0 < t1)) {
     frag = projectionPixel(acc, px);
     return;
   }
-#endif
-#ifdef MIP_EXACT  // the exact extremum over the brick's own part of the ray: no lattice
-  projectExact(acc, t0, t1, dir);
-  frag = projectionPixel(acc, px);
-  return;
 #endif
 #ifdef GLOW
   glowBegin(dir, px, t0, t1);
