@@ -4,11 +4,14 @@
 // Emission without opacity, added to acc.rgb and never to acc.a. The ray's glow is integrated over
 // [g_t, g_end] seen through the transmittance the reference (reference/reference.cpp) uses:
 // in front of the volume 1; over a sample's segment [(k - 1/2) delta, (k + 1/2) delta] (an
-// anchor's: its steps) the transmittance at its middle, T_k = (1 - acc.a) exp(-tau len / 2) (its
-// square: 1 - alpha); over jumped empty blocks the (constant) transmittance; behind the volume what
-// is left. Only inside this brick's part of the glow box (u_glow_lo, u_glow_hi), so the bricks'
-// pieces tile every ray; up to the surface's t. After early ray termination the rest is dropped (at
-// most 1 - u_ert of it).
+// anchor's: its steps; the span's first and last reach its ends, raycast_march.frag.glsl
+// stepsLength) the transmittance at its middle, T_k = (1 - acc.a) exp(-tau len / 2) (its square:
+// 1 - alpha); over jumped empty blocks the (constant) transmittance; behind the volume what is
+// left. The volume's span is the clipped one (clip.planes, clip.box cut volumes only): in front of
+// and behind a cut the glow is seen as through empty space, as the reference sees it. Only inside
+// this brick's part of the glow box (u_glow_lo, u_glow_hi), so the bricks' pieces tile every ray,
+// also in a brick the clip leaves no volume in (its rectangle is the glow box's); up to the
+// surface's t. After early ray termination the rest is dropped (at most 1 - u_ert of it).
 //
 // Consecutive segments make one piece of length L, middle t_m. Per sample two FMAs gather
 // S = sum T_k len_k and the first moment of T about the piece's start; at the piece's end the

@@ -127,28 +127,24 @@ void volumeSpan(vec3 dir) {
 // segment delta long, the span's two ends were off by up to delta / 2 each (a first-order error
 // where the ray enters or leaves dense data: the head CT's cut face showed wood-grain rings of
 // up to 33/255 at 0.5 voxel, halving with the step; issue 43). Inside the span the length is the
-// product it always was, so frames away from those ends keep every bit. Not with GLOW, whose
-// bricks reach beyond the volume (its samples there keep their whole steps).
+// product it always was, so frames away from those ends keep every bit. The GLOW variant too: its
+// pieces end where the segments do (backT), so the glow of the span's end segments is seen through
+// their own transmittance; on a clip plane cutting dense data next to an emitter's core whole
+// steps there were 8 levels off the reference, the span's ends 3 (tests/mpi/glow.sh).
 float stepsLength(int k_from, int k_to) {
   float len = float(k_to - k_from) * u_delta;
-#ifndef GLOW
   if (k_from == g_k_first) len += (float(k_from) - 0.5) * u_delta - g_span_t0;
   if (k_to - 1 == g_k_last) len += g_span_t1 - (float(k_to) - 0.5) * u_delta;
-#endif
   return len;
 }
 // Where segment k's front and back values are read (pre-integration): its ends, the span's ends
 // for the span's first and last samples.
 float frontT(int k) {
-#ifndef GLOW
   if (k == g_k_first) return g_span_t0;
-#endif
   return (float(k) - 0.5) * u_delta;
 }
 float backT(int k) {
-#ifndef GLOW
   if (k == g_k_last) return g_span_t1;
-#endif
   return (float(k) + 0.5) * u_delta;
 }
 
@@ -160,16 +156,14 @@ float backT(int k) {
 // was up to a step inside it: a first-order error of up to 51/255 at 1 voxel on the head CT's
 // rim, 14/255 at 0.5 (issue 43, results/accuracy/causes.md).
 float sampleT(int k) {
-#ifndef GLOW
   if (k == g_k_first || k == g_k_last)
     return 0.5 * ((k == g_k_first ? g_span_t0 : (float(k) - 0.5) * u_delta) +
                   (k == g_k_last ? g_span_t1 : (float(k) + 0.5) * u_delta));
-#endif
   return float(k) * u_delta;
 }
 
 // A sample standing for `len` of the ray, front to back (opacity corrected for len); its segment
-// ends at t_end (the glow variant's piece).
+// ends at t_end (backT: the glow variant's piece).
 void composite(inout vec4 acc, vec4 e, float len, float t_end) {
 #ifdef GLOW
   // The half segment's transmittance exp(-tau len / 2) is the glow's weight; its square gives
@@ -284,7 +278,7 @@ void sampleBlock(inout vec4 acc, inout Walk w, int k_end, int m, vec3 dir) {
     float vf = w.k == w.k_back ? w.v_back : sampleVolume(u_eye + frontT(w.k) * dir);
     for (; w.k < k_end; ++w.k) {
       float vb = sampleVolume(u_eye + backT(w.k) * dir);
-      compositeSegment(acc, vf, vb, sampleT(w.k), stepsLength(w.k, w.k + 1), dir, (float(w.k) + 0.5) * u_delta);
+      compositeSegment(acc, vf, vb, sampleT(w.k), stepsLength(w.k, w.k + 1), dir, backT(w.k));
       vf = vb;
       if (acc.a >= u_ert || GLOW_STOP) { ++w.k; break; }
     }
@@ -297,7 +291,7 @@ void sampleBlock(inout vec4 acc, inout Walk w, int k_end, int m, vec3 dir) {
       int anchor = (w.k + m / 2) / m * m;
       int next = min(anchor - m / 2 + m, k_end);
       float vb = sampleVolume(u_eye + backT(next - 1) * dir);
-      compositeSegment(acc, vf, vb, float(anchor) * u_delta, stepsLength(w.k, next), dir, (float(next) - 0.5) * u_delta);
+      compositeSegment(acc, vf, vb, float(anchor) * u_delta, stepsLength(w.k, next), dir, backT(next - 1));
       vf = vb;
       w.k = next;
       if (acc.a >= u_ert || GLOW_STOP) break;
@@ -308,8 +302,7 @@ void sampleBlock(inout vec4 acc, inout Walk w, int k_end, int m, vec3 dir) {
 #else
   if (m == 1) {  // every sample (the same arithmetic as below with m = 1, without its cost)
     for (; w.k < k_end; ++w.k) {
-      composite(acc, sampleAt(u_eye + sampleT(w.k) * dir), stepsLength(w.k, w.k + 1),
-                (float(w.k) + 0.5) * u_delta);
+      composite(acc, sampleAt(u_eye + sampleT(w.k) * dir), stepsLength(w.k, w.k + 1), backT(w.k));
       if (acc.a >= u_ert) break;
       if (GLOW_STOP) { ++w.k; break; }
     }
@@ -318,7 +311,7 @@ void sampleBlock(inout vec4 acc, inout Walk w, int k_end, int m, vec3 dir) {
       int anchor = (w.k + m / 2) / m * m;
       int next = min(anchor - m / 2 + m, k_end);
       composite(acc, sampleAt(u_eye + float(anchor) * u_delta * dir), stepsLength(w.k, next),
-                (float(next) - 0.5) * u_delta);
+                backT(next - 1));
       w.k = next;
       if (acc.a >= u_ert || GLOW_STOP) break;
     }
@@ -402,16 +395,16 @@ void main() {
   bool ends_here = t1 < span.y || span.y >= g_span_t1;
 #endif
   vec4 acc = vec4(0.0);
+#ifdef MIP_EXACT  // the exact extremum over the brick's own part of the ray (its span in double)
+  projectExact(acc, px);
+  frag = projectionPixel(acc, px);
+  return;
+#endif
 #ifdef PROJECTION  // no volume here: the opaque layer's colour alone (raycast_projection.frag.glsl)
   if (!(t0 < t1)) {
     frag = projectionPixel(acc, px);
     return;
   }
-#endif
-#ifdef MIP_EXACT  // the exact extremum over the brick's own part of the ray: no lattice
-  projectExact(acc, t0, t1, dir);
-  frag = projectionPixel(acc, px);
-  return;
 #endif
 #ifdef GLOW
   glowBegin(dir, px, t0, t1);

@@ -134,26 +134,50 @@ float cellExtremum(float c[8], vec3 l0, vec3 dl) {
   return best;
 }
 
-// The exact extremum of the field along [t0, t1] (this brick's own box) into acc.
-// The pixel's ray in double (Camera::pixelRay's arithmetic): the float ray, from float camera
-// vectors, is off by ~1e-7 rad, ~1e-5 voxel at 100 voxels from the eye. On the lattice of 1-voxel
-// lines (tests/mpi/projection.sh) it took the values more than 5e-6 of the range from the exact
-// reference from 714 to 36 of 12,288; the largest stays 1.6-1.7e-5 at 4 pixels (also on one
-// brick, and with the cell walk's 1e-4 nudges at 1e-5: not found yet).
+// The exact extremum of the field along the pixel's ray inside this brick's own box (clipped, up
+// to the opaque layer) into acc. The ray, its span and its texel coordinates are taken in double
+// (Camera::pixelRay's and the reference's arithmetic): in float, the eye and the direction are
+// off by ~1e-7 rad (~1e-5 voxel at 100 voxels from the eye), and the span's ends t0, t1 (brickSpan,
+// clipRay: float products of t ~ 100) by up to an ulp of t, 7.6e-6-1.5e-5 world units at
+// t in [64, 256]. Where the ray's extremum lies at an end (a line of the lattice in
+// tests/mpi/projection.sh reaching the volume's face, the field falling by its value per voxel
+// away from it), an end off by that much moved the value by 1.6e-5 of the range (measured on
+// that lattice, the float ends with the double ray).
 uniform dvec3 u_eye_d;
 uniform dvec3 u_forward_d;
 uniform dvec3 u_right_d;
 uniform dvec3 u_up_d;
 uniform dvec2 u_pixel_scale_d;
+uniform dvec3 u_box_lo_d, u_box_hi_d;             // the brick's own box (world)
+uniform dvec3 u_index_scale_d, u_index_offset_d;  // texel index = world * scale + offset
 
-void projectExact(inout vec4 acc, float t0, float t1, vec3 dir) {
+// The span of o + t d (t >= 0) in the brick's own box, cut by the clip region (volume_clip.glsl's
+// clipRay in double, its planes as float uniforms) and the opaque layer at pixel px. A ray lying
+// in a face plane shared by two bricks is walked by both: the max (min) of the two is the same.
+dvec2 exactSpan(dvec3 o, dvec3 d, ivec2 px) {
+  double t0 = 0.0LF, t1 = 1.0e300LF;
+  for (int a = 0; a < 3; ++a) {
+    if (d[a] != 0.0LF) {
+      double ta = (u_box_lo_d[a] - o[a]) / d[a], tb = (u_box_hi_d[a] - o[a]) / d[a];
+      t0 = max(t0, min(ta, tb));
+      t1 = min(t1, max(ta, tb));
+    } else if (o[a] < u_box_lo_d[a] || o[a] > u_box_hi_d[a]) {
+      t1 = t0;
+    }
+  }
+  for (int i = 0; i < u_clip_count; ++i) {
+    dvec3 n = dvec3(u_clip[i].xyz);
+    double nd = dot(n, d), gap = double(u_clip[i].w) - dot(n, o);
+    if (nd > 0.0LF) t1 = min(t1, gap / nd);
+    else if (nd < 0.0LF) t0 = max(t0, gap / nd);
+    else if (gap < 0.0LF) t1 = min(t1, t0);
+  }
+  if (surfaceAt(px)) t1 = min(t1, double(texelFetch(u_surface, px, 0).x));
+  return dvec2(t0, t1);
+}
+
+void projectExact(inout vec4 acc, ivec2 px) {
   ivec3 size = textureSize(u_volume, 0);
-  // Texel index coordinates (texel centres at integers) of the ray, from its entry into the brick:
-  // u(s) = u_o + s u_d, s = t - t0. Relative to the entry, s and u stay small (a brick's extent
-  // in voxels), so their float rounding does not grow with the eye's distance (from the eye,
-  // t u_d ~ 100 voxels rounds to 8e-6 voxel a step: measured 2.5e-5 of the range on a lattice of
-  // lines, against 1e-5 from the entry). The entry point and the direction come from the double
-  // ray (t0, the float ray's entry, only slides the point along it).
   dvec2 sd = dvec2(double(gl_FragCoord.x) * u_pixel_scale_d.x - 1.0LF,
                    1.0LF - double(gl_FragCoord.y) * u_pixel_scale_d.y);
   dvec3 od = u_eye_d, dd;
@@ -163,10 +187,18 @@ void projectExact(inout vec4 acc, float t0, float t1, vec3 dir) {
   } else {
     dd = normalize(u_forward_d + sd.x * u_right_d + sd.y * u_up_d);
   }
-  dvec3 p0 = od + double(t0) * dd;
-  vec3 u_o = vec3((p0 * dvec3(u_tex_scale) + dvec3(u_tex_offset)) * dvec3(size) - 0.5LF);
-  vec3 u_d = vec3(dd * dvec3(u_tex_scale) * dvec3(size));
-  float s = 0.0, s1 = t1 - t0;
+  dvec2 span = exactSpan(od, dd, px);
+  if (!(span.x < span.y)) return;
+  // Texel index coordinates (texel centres at integers) of the ray from its entry into the brick:
+  // u(s) = u_o + s u_d, s = t - t0. Relative to the entry, s and u stay small (a brick's extent
+  // in voxels), so their float rounding does not grow with the eye's distance (from the eye,
+  // t u_d ~ 100 voxels rounds to 8e-6 voxel a step: measured 2.5e-5 of the range on a lattice of
+  // lines, against 1e-5 from the entry). What the float walk and the float cubic leave: 1.4e-6 of
+  // the range on that lattice (the walk in double: 3.6e-7, the cubic's rounding; not taken, since
+  // a GPU's doubles are 1/2-1/64 of its float rate and the walk divides three times a cell).
+  vec3 u_o = vec3((od + span.x * dd) * u_index_scale_d + u_index_offset_d);
+  vec3 u_d = vec3(dd * u_index_scale_d);
+  float s = 0.0, s1 = float(span.y - span.x);
   int guard = 3 * (size.x + size.y + size.z) + 8;
   while (s < s1 && guard-- > 0) {
     vec3 ua = u_o + s * u_d;

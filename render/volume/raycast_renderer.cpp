@@ -370,7 +370,17 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
                       (fields << kFieldsShift));
     gl_.UseProgram(program);
     setPixelRayUniforms(program, cam);
-    if (projection & kMipExact) setDoublePixelRayUniforms(program, cam);
+    if (projection & kMipExact) {
+      setDoublePixelRayUniforms(program, cam);
+      // The brick's own box and the texel index map in double: the span and the cell walk
+      // (raycast_projection.frag.glsl projectExact).
+      glm::dvec3 lo, hi;
+      for (int a = 0; a < 3; ++a) lo[a] = g.blocks.planes[a].front(), hi[a] = g.blocks.planes[a].back();
+      program.set("u_box_lo_d", lo);
+      program.set("u_box_hi_d", hi);
+      program.set("u_index_scale_d", b.index_scale);
+      program.set("u_index_offset_d", b.index_offset);
+    }
     setClipUniforms(program, clip_);
     if (g.adaptive) {
       program.set("u_index_scale", g.lookup.index_scale);

@@ -71,6 +71,8 @@ VolumeBrick uploadVolumeBrick(const GlApi& gl, const Brick& brick, const GridGeo
   g.tex_scale = glm::vec3(inv_n / grid.spacing);
   g.tex_offset =
       glm::vec3((0.5 * glm::dvec3(grid.dims - 1) - glm::dvec3(brick.stored.lo) + 0.5) * inv_n);
+  g.index_scale = 1.0 / grid.spacing;
+  g.index_offset = 0.5 * glm::dvec3(grid.dims - 1) - glm::dvec3(brick.stored.lo);
   gl.ActiveTexture(GL_TEXTURE0);
   if (pool) {
     g.texture = pool->take(n);

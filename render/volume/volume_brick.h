@@ -31,6 +31,9 @@ struct VolumeBrick {
   std::vector<VolumeBlock> blocks;                  // x fastest over the block grid
   unsigned texture = 0;                             // GL_R32F 3D texture; the owner deletes it
   glm::vec3 tex_scale, tex_offset;                  // texture coordinate = world * scale + offset
+  // The same map in double to texel index coordinates (texel centres at integers): index =
+  // world * index_scale + index_offset (exact MIP's cell walk, raycast_projection.frag.glsl).
+  glm::dvec3 index_scale{1.0}, index_offset{0.0};
   glm::dvec3 spacing{1.0};                          // the grid's (gradients: render/volume/volume_shading.h)
 };
 

@@ -10,7 +10,8 @@ std::vector<sortlast::SceneKey> sortlast::clipKeys() {
     {"clip.planes", "[]",
      "Clip planes: a list of maps `{normal: [x, y, z], offset: w}`; each keeps the side "
      "normal . x <= offset (world units; the normal need not be unit, must not be zero). Volumes "
-     "only: particles, surfaces and glow are not clipped. Every renderer cuts each ray's span to "
+     "only: particles, surfaces and glow are not clipped (the glow is seen through the cut as "
+     "through empty space). Every renderer cuts each ray's span to "
      "the kept side, and bricks wholly outside are not drawn.",
      Structured{"list of {normal, offset}", {kCoordinate}}},
     {"clip.box", "none",
@@ -79,10 +80,6 @@ void readClipKeys(const Reader& r, Scene& s) {
                          "at least 1e-12)" + where(box));
     c.has_box = true;
   }
-  if (c.active() && s.glow.enabled())
-    throw InputError("scene keys 'clip.planes' / 'clip.box' and 'glow.emitters': clipping a volume "
-                     "with glow emitters is not available (the glow is integrated along the "
-                     "volume's span of each ray); remove the clip or the emitters");
   if (int(c.halfSpaces().size()) > kMaxClipHalfSpaces)
     throw InputError("scene key 'clip.planes': " + std::to_string(c.planes.size()) +
                      " planes; at most " + std::to_string(kMaxClipHalfSpaces - (c.has_box ? 6 : 0)) +

@@ -240,6 +240,8 @@ TEST(Clip, SceneKeysAndBadInput) {
   EXPECT_NO_THROW(loadScene("", {"camera.projection=orthographic", "surfaces=[{procedural: pole5}]"}));
   EXPECT_NO_THROW(loadScene("", {"camera.projection=orthographic", "glow.emitters=[{center: [0, 0, 0]}]",
                                  "glow.box=[[-1, -1, -1], [1, 1, 1]]"}));
+  // A clip cuts volumes only: glow emitters are drawn with it (tests/mpi/glow.sh against the reference).
+  EXPECT_NO_THROW(loadScene("", {"clip.planes=[{normal: [1, 0, 0], offset: 0}]", "glow.emitters=[{center: [0, 0, 0]}]"}));
   // parallel_scale auto: the perspective view's half height at the look-at point.
   Scene o = loadScene("", {"camera.projection=orthographic", "camera.position=[0, 0, 4]", "camera.look_at=[0, 0, 0]", "camera.fov=90"});
   const Camera c = o.frameCameras(Box3{{-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5}})[0];
