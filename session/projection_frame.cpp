@@ -30,9 +30,8 @@ WireFormat projectionFormat(VolumeBlend blend, bool bounded) {
 std::function<void(float*, size_t)> projectionColouring(VolumeBlend blend,
                                                         std::shared_ptr<const TransferFunction> tf,
                                                         bool bounded) {
-  if (projectionFormat(blend, bounded) == WireFormat::RGBA8)
-    throw std::logic_error("projectionColouring: not a projection");
   const WireFormat f = projectionFormat(blend, bounded);
+  if (f == WireFormat::RGBA8) throw std::logic_error("projectionColouring: not a projection");
   return [blend, tf, bounded, f](float* px, size_t n) {
     parallelFor(n, size_t(1) << 14, [&](size_t b, size_t e) {
       for (size_t i = b; i < e; ++i) {

@@ -18,7 +18,7 @@
 // or at a root of the derivative k1 + 2 k2 s + 3 k3 s^2 inside (0, 1). A cell touching a NaN
 // corner is skipped.
 //
-// Bounded by an opaque layer (particles or subdivision surfaces; mip and minip): the rays end at
+// Bounded by an opaque layer (particles or subdivision surfaces): the rays end at
 // the brick's layer t as every variant's do (raycast_march.frag.glsl main), and the pixel carries
 // the layer's colour for the compositor's over-like operator (compositing/projection_pixels.h's
 // bounded formats): (v, r + 256 g + 65536 b of its 8-bit rgb, 0, flags), flags = 1 (a value) + 2

@@ -1,7 +1,7 @@
 // The projection blend modes' partial images (compositing/projection_pixels.h): their wire
 // formats round-trip (value formats bit for bit, Additive within half rounding), absent pixels
 // become runs, the operators are order-free, and radix-k's groupings give the same frame as
-// combining every brick image at once. The bounded formats (mip and minip with an opaque layer)
+// combining every brick image at once. The bounded formats (every projection with an opaque layer)
 // round-trip exactly, and their over-like operator gives one result for every grouping that keeps
 // the visibility order (and another for the reverse order), in radix-k too.
 #include <gtest/gtest.h>
@@ -416,7 +416,10 @@ TEST(ProjectionPixels, BoundedSumsOperatorKeepsTheVisibilityOrder) {
       const SumsOf got = sumsOf(f, left);
       EXPECT_EQ(got.flags, want.flags);
       EXPECT_EQ(got.layer, want.layer);
-      EXPECT_EQ(got.a, want.a), EXPECT_EQ(got.b, want.b), EXPECT_EQ(got.c, want.c), EXPECT_EQ(got.d, want.d);
+      EXPECT_EQ(got.a, want.a);
+      EXPECT_EQ(got.b, want.b);
+      EXPECT_EQ(got.c, want.c);
+      EXPECT_EQ(got.d, want.d);
       bounded_seen += front_layer > 0;
       float rev[4] = {0, 0, 0, 0};
       for (int i = 5; i >= 0; --i) combineProjected(f, p[i], rev);
