@@ -12,7 +12,7 @@
 // identity), or the channel-wise sum. All are associative and commutative, up to float rounding
 // for the sums (about 2^-24 relative a sum).
 //
-// On the wire, 8 bytes a pixel (RLE-coded as RGBA16 is: a pixel whose bytes 6 and 7 are zero is
+// On the wire, 8 bytes a pixel (12 for two bounded formats, below; RLE-coded as RGBA16 is: a pixel whose bytes 6 and 7 are zero is
 // a run of absent pixels, rle.h):
 //   ValueMax, ValueMin, ValueSum: float32 v (or the sum) in bytes 0-3, and float32 -w in bytes
 //     4-7, w = 1 (mip, minip) or the count (average). A present pixel has w > 0, so byte 7 holds
@@ -36,8 +36,16 @@
 //     colour is s = r + 256 g + 65536 b, its 8-bit rgb, exact in float; its alpha is 1); 0: absent.
 //   On the wire (8 bytes, exact): float32 v (0 without a value), the layer's r, g, b bytes, and a
 //     flags byte (0x80: a value; 0x01: a layer), never 0 on a present pixel: byte 7 marks runs.
-// Average and additive have no such format (their pixel has no room for the colour): the scene
-// refuses them with particles or surfaces.
+//   ValueSumBounded (average): in float (sum, s, count, flags), s and flags as above (flags 1:
+//     count > 0). On the wire 12 bytes, exact: float32 sum, float32 count, the layer's r, g, b, flags.
+//   AdditiveBounded: four sums and the layer do not fit four floats as floats, so each float holds
+//     an integer below 2^24 (exact): p[k] = h_k + 65536 l_k, h_k the IEEE half bits of the sum k
+//     (r, g, b, alpha: the wire's own rounding, 2^-11 relative, compositing/half.h), l_k the layer's
+//     8-bit r, g, b for k < 3 and the flags for k = 3 (so p[3] > 0 on a present pixel). combine()
+//     adds the halves in float and rounds once to half. On the wire 12 bytes: the four halves, the
+//     layer's r, g, b, flags.
+// The last byte of every bounded pixel on the wire is its flags, never 0 on a present pixel: a
+// run is marked by zero last bytes (rle.h), 2 of 8 or 3 of 12.
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -48,33 +56,60 @@
 namespace sortlast {
 
 inline bool isBoundedProjection(WireFormat f) {
-  return f == WireFormat::ValueMaxBounded || f == WireFormat::ValueMinBounded;
+  return f == WireFormat::ValueMaxBounded || f == WireFormat::ValueMinBounded ||
+         f == WireFormat::ValueSumBounded || f == WireFormat::AdditiveBounded;
 }
 inline bool isProjection(WireFormat f) {
   return f == WireFormat::ValueMax || f == WireFormat::ValueMin || f == WireFormat::ValueSum ||
          f == WireFormat::Additive || isBoundedProjection(f);
 }
 
-// The bounded formats' float flags (p[3]) and the layer's packed colour (p[1]).
+// The bounded formats' float flags and the layer's packed colour (r + 256 g + 65536 b).
 inline constexpr float kBoundedValue = 1.0f, kBoundedLayer = 2.0f;
-inline bool boundedHasValue(const float* p) { return p[3] == 1.0f || p[3] == 3.0f; }
-inline bool boundedHasLayer(const float* p) { return p[3] >= 2.0f; }
+// Flags (1: a value, 2: a layer) of a bounded float pixel: p[3], or p[3]'s high bits (additive).
+inline int boundedFlags(WireFormat f, const float* p) {
+  return f == WireFormat::AdditiveBounded ? int(uint32_t(p[3]) >> 16) : int(p[3]);
+}
+inline bool boundedHasValue(WireFormat f, const float* p) { return (boundedFlags(f, p) & 1) != 0; }
+inline bool boundedHasLayer(WireFormat f, const float* p) { return (boundedFlags(f, p) & 2) != 0; }
+// The layer's 8-bit rgb packed as r + 256 g + 65536 b (0 without a layer).
+inline uint32_t boundedLayer(WireFormat f, const float* p) {
+  if (f != WireFormat::AdditiveBounded) return uint32_t(p[1]);
+  return (uint32_t(p[0]) >> 16) | (uint32_t(p[1]) >> 16) << 8 | (uint32_t(p[2]) >> 16) << 16;
+}
+// AdditiveBounded: the four sums of a float pixel (0 where a half is not finite, a corrupt one),
+// and the pixel of sums `sum`, layer `layer` and flags `flags` (each sum rounded to half).
+void additiveBoundedSums(const float* p, float* sum);
+void packAdditiveBounded(const float* sum, uint32_t layer, int flags, float* p);
 
 // dst = dst (op) src, in float, for projection format `f`.
 inline void combineProjected(WireFormat f, const float* src, float* dst) {
   if (isBoundedProjection(f)) {  // src in front of dst
-    if (boundedHasLayer(src)) {  // the front layer hides all behind it
+    if (boundedHasLayer(f, src)) {  // the front layer hides all behind it
       for (int c = 0; c < 4; ++c) dst[c] = src[c];
       return;
     }
-    if (!boundedHasValue(src)) return;  // absent: the identity
-    const bool back_layer = boundedHasLayer(dst);
-    if (!boundedHasValue(dst))
+    if (!boundedHasValue(f, src)) return;  // absent: the identity
+    const bool back_layer = boundedHasLayer(f, dst);
+    const float flags = kBoundedValue + (back_layer ? kBoundedLayer : 0.0f);
+    if (f == WireFormat::AdditiveBounded) {  // the sums add; the layer behind stays
+      float a[4], b[4];
+      additiveBoundedSums(src, a);
+      additiveBoundedSums(dst, b);
+      for (int c = 0; c < 4; ++c) b[c] += a[c];
+      packAdditiveBounded(b, boundedLayer(f, dst), int(flags), dst);
+      return;
+    }
+    if (f == WireFormat::ValueSumBounded) {  // (sum, layer, count, flags): sum and count add
+      dst[0] += src[0];
+      dst[2] += src[2];
+    } else if (!boundedHasValue(f, dst)) {
       dst[0] = src[0];
-    else
+    } else {
       dst[0] = f == WireFormat::ValueMaxBounded ? (src[0] > dst[0] ? src[0] : dst[0])
                                                 : (src[0] < dst[0] ? src[0] : dst[0]);
-    dst[3] = kBoundedValue + (back_layer ? kBoundedLayer : 0.0f);
+    }
+    dst[3] = flags;
     return;
   }
   if (f == WireFormat::ValueMax || f == WireFormat::ValueMin) {
@@ -95,7 +130,7 @@ inline bool projectedPresent(WireFormat f, const float* p) {
   return f == WireFormat::Additive ? shows(p) : p[3] > 0.0f;
 }
 
-// One float pixel to / from the wire (8 bytes). toProjected of an absent pixel writes zeros; a
+// One float pixel to / from the wire (pixelBytes(f): 8 or 12 bytes). toProjected of an absent pixel writes zeros; a
 // corrupt pixel (non-finite, or w <= 0 for the value formats) decodes as absent.
 void toProjected(WireFormat f, const float* in, uint8_t* out);
 void fromProjected(WireFormat f, const uint8_t* in, float* out);

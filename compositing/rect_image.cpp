@@ -272,7 +272,7 @@ RectImage decodePart(const BrickImage& b, WireFormat format, const Rect& within)
   if (format == WireFormat::Emission)
     for (size_t i = 0; i < size_t(b.rect.area()); ++i) fromEmission16(&px[8 * i], &out.px[4 * i]);
   else if (isProjection(format))
-    for (size_t i = 0; i < size_t(b.rect.area()); ++i) fromProjected(format, &px[8 * i], &out.px[4 * i]);
+    for (size_t i = 0; i < size_t(b.rect.area()); ++i) fromProjected(format, &px[size_t(bytes) * i], &out.px[4 * i]);
   else if (format == WireFormat::RGBA16)
     for (size_t i = 0; i < out.px.size(); ++i) out.px[i] = fromRGBA16(&px[2 * i]);
   else

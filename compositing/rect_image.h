@@ -48,9 +48,15 @@ RectImage crop(const RectImage& img, const Rect& r);
 // precision (2^-11) near 0, where it dims bright glow behind dense material.
 // ValueMax, ValueMin, ValueSum, Additive: the projection blend modes' partial images
 // (compositing/projection_pixels.h), combined by max, min or sum instead of over;
-// ValueMaxBounded, ValueMinBounded: mip and minip bounded by an opaque layer, which carry it.
-enum class WireFormat { RGBA8, RGBA16, Emission, ValueMax, ValueMin, ValueSum, Additive, ValueMaxBounded, ValueMinBounded };
-inline int pixelBytes(WireFormat f) { return f == WireFormat::RGBA8 ? 4 : 8; }
+// ValueMaxBounded, ValueMinBounded, ValueSumBounded, AdditiveBounded: the four bounded by an
+// opaque layer, which carry it; the last two need 12 bytes a pixel (a sum and a count, or four
+// sums, and the layer's rgb and flags).
+enum class WireFormat { RGBA8, RGBA16, Emission, ValueMax, ValueMin, ValueSum, Additive, ValueMaxBounded,
+                        ValueMinBounded, ValueSumBounded, AdditiveBounded };
+inline int pixelBytes(WireFormat f) {
+  if (f == WireFormat::RGBA8) return 4;
+  return f == WireFormat::ValueSumBounded || f == WireFormat::AdditiveBounded ? 12 : 8;
+}
 
 // Whether a float pixel shows anything: alpha > 0, or (emission) light without opacity. Without
 // emission colour <= alpha, so this is alpha > 0.

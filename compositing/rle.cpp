@@ -160,7 +160,7 @@ size_t countPixels(const uint8_t* s, size_t count, bool& zero_run) {
     uint32_t lo, hi;
     std::memcpy(&lo, s + B * i, 4);
     std::memcpy(&hi, s + B * i + B - 4, 4);
-    const uint32_t marker = B == 4 ? uint32_t((hi >> 24) == 0) : uint32_t((hi >> 16) == 0);
+    const uint32_t marker = uint32_t((hi >> (32 - 8 * (B / 4))) == 0);  // the last B / 4 bytes 0
     const uint32_t run = lo & 0xffffffu;
     pixels += marker ? run : 1u;
     zero |= marker & uint32_t(run == 0);
@@ -199,8 +199,8 @@ std::vector<RlePiece> split(std::span<const uint8_t> s, size_t pixel_count, int 
 }
 
 void checkPixelBytes(int pixel_bytes) {
-  if (pixel_bytes != 4 && pixel_bytes != 8)
-    throw std::invalid_argument("RLE: pixels are 4 or 8 bytes, not " + std::to_string(pixel_bytes));
+  if (pixel_bytes != 4 && pixel_bytes != 8 && pixel_bytes != 12)
+    throw std::invalid_argument("RLE: pixels are 4, 8 or 12 bytes, not " + std::to_string(pixel_bytes));
 }
 
 }  // namespace
@@ -213,8 +213,10 @@ void rleEncode(std::span<const uint8_t> px, std::vector<uint8_t>& out, int pixel
   const int parts = pixelParts(px.size() / size_t(pixel_bytes), kRleGrain);
   if (pixel_bytes == 4)
     parts > 1 ? encodeParallel<4>(px, out, max_run, parts) : encode<4>(px, out, max_run);
-  else
+  else if (pixel_bytes == 8)
     parts > 1 ? encodeParallel<8>(px, out, max_run, parts) : encode<8>(px, out, max_run);
+  else
+    parts > 1 ? encodeParallel<12>(px, out, max_run, parts) : encode<12>(px, out, max_run);
 }
 
 std::vector<uint8_t> rleEncode(std::span<const uint8_t> px, int pixel_bytes, uint32_t max_run) {
@@ -231,8 +233,10 @@ void rleDecode(std::span<const uint8_t> s, size_t pixel_count, std::span<uint8_t
   if (parts <= 1) {
     if (pixel_bytes == 4)
       decode<4>(s, pixel_count, out);
-    else
+    else if (pixel_bytes == 8)
       decode<8>(s, pixel_count, out);
+    else
+      decode<12>(s, pixel_count, out);
     return;
   }
   const size_t b = size_t(pixel_bytes);
@@ -249,7 +253,8 @@ void rleDecode(std::span<const uint8_t> s, size_t pixel_count, std::span<uint8_t
 std::vector<RlePiece> rleSplit(std::span<const uint8_t> s, size_t pixel_count, int pixel_bytes,
                                int parts) {
   checkPixelBytes(pixel_bytes);
-  return pixel_bytes == 4 ? split<4>(s, pixel_count, parts) : split<8>(s, pixel_count, parts);
+  if (pixel_bytes == 4) return split<4>(s, pixel_count, parts);
+  return pixel_bytes == 8 ? split<8>(s, pixel_count, parts) : split<12>(s, pixel_count, parts);
 }
 
 }  // namespace sortlast

@@ -3,7 +3,8 @@
 // A = 0 becomes one pixel whose first three bytes hold N (little-endian, 24 bits) and whose other
 // bytes are 0; every other pixel is copied as is. Runs longer than 2^24 - 1 are split. Since A = 0
 // marks a run, the stream needs no other framing. Pixels are RGBA8 (4 bytes, the paper's
-// intermediate images) or RGBA16 (8 bytes, four little-endian uint16: partial composites).
+// intermediate images) or RGBA16 (8 bytes, four little-endian uint16: partial composites); the
+// bounded sums of compositing/projection_pixels.h are 12 bytes, a run marked by the last 3 zero.
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -21,7 +22,7 @@ struct RleError : std::runtime_error {
 // Large inputs (from 128 K pixels) are encoded and decoded on the pixel threads
 // (common/pixel_threads.h) with exactly the bytes of the serial code: see rle.cpp.
 
-// Appends the encoding of `pixels` (`pixel_bytes` = 4 or 8 each) to `out`. `max_run` = 1 turns
+// Appends the encoding of `pixels` (`pixel_bytes` = 4, 8 or 12 each) to `out`. `max_run` = 1 turns
 // the compression off while keeping the format: each transparent pixel becomes its own marker, so
 // the stream is exactly as long as the raw pixels (what "RLE off" measures).
 void rleEncode(std::span<const uint8_t> pixels, std::vector<uint8_t>& out, int pixel_bytes = 4,
@@ -51,7 +52,9 @@ std::vector<RlePiece> rleSplit(std::span<const uint8_t> stream, size_t pixel_cou
 
 // Whether a stream element is a run marker (alpha 0: the last pixel_bytes / 4 bytes are 0).
 inline bool rleIsRun(const uint8_t* p, int pixel_bytes) {
-  return pixel_bytes == 4 ? p[3] == 0 : (p[6] | p[7]) == 0;
+  if (pixel_bytes == 4) return p[3] == 0;
+  if (pixel_bytes == 8) return (p[6] | p[7]) == 0;
+  return (p[9] | p[10] | p[11]) == 0;  // 12: the bounded sums (compositing/projection_pixels.h)
 }
 
 // Walks one piece of a checked stream (rleSplit's): visible(first_pixel, bytes, count) for each

@@ -176,7 +176,7 @@ ImageF FrameReference::render(const Camera& cam, SurfaceImage* surface_out, int 
     else if (g)
       addGlowOnly(out, cam, *g, nullptr);
   } else {
-    if (volume_ && volume_->blend != VolumeBlend::kComposite) {  // mip / minip, bounded by the layer
+    if (volume_ && volume_->blend != VolumeBlend::kComposite) {  // a projection, bounded by the layer
       out = renderProjectionReference(volume_->vol, volume_->tf, cam, volume_->step, threads_, volume_->blend,
                                       volume_->mip_exact, &*surface, &colour);
     } else if (volume_) {

@@ -9,7 +9,7 @@
 // surface composited behind it. Glow emitters: their light along each ray inside the glow box, in
 // front of the volume, inside it (dimmed step by step) and behind it, up to the surface.
 // Subdivision surfaces (reference/surface_reference.h): an opaque layer merged by depth with the
-// metaball surface; the volume and glow end at the nearer of the two, and so do mip and minip
+// metaball surface; the volume and glow end at the nearer of the two, and so do the projections
 // (reference/projection_reference.h, their colour over the layer's). Isosurfaces: the surface
 // image (`surface`) also holds their opaque hits, the nearer per pixel.
 #include <optional>

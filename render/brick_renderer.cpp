@@ -20,6 +20,9 @@ VolumeMethod volumeMethod(const Scene& scene) {
   if (scene.render.projection()) {
     m.raycast_settings.blend = scene.render.blend;
     m.raycast_settings.mip_exact = scene.render.mip_exact;
+    // The session's projectionBounded (session/projection_frame.h), a layer above this one.
+    m.raycast_settings.bounded = scene.particles.enabled() || !scene.surfaces.empty();
+    m.slicing_settings.bounded = m.raycast_settings.bounded;
     m.slicing_settings.blend = scene.render.blend;  // (the scene refuses mip_exact with slicing)
   }
   if (scene.render.blend == VolumeBlend::kIsosurface) m.raycast_settings.isovalues = scene.render.isovalues;
@@ -257,12 +260,18 @@ void mergeIsoDepth(std::vector<float>& surface, const Rect& to, const RenderedBr
 }
 
 // The opaque layer's RGBA8 pixels as a bounded projection's partial pixels without a value
-// (compositing/projection_pixels.h: (0, r + 256 g + 65536 b, 0, 2) where it is hit, else absent),
-// the bytes the ray caster packs (raycast_projection.frag.glsl projectionPixel).
-std::vector<float> boundedLayerPixels(const ImageRGBA8& layer) {
+// (compositing/projection_pixels.h: (0, r + 256 g + 65536 b, 0, 2) where it is hit, else absent;
+// additive: each rgb byte and the flags 2 times 65536, the half sums 0), the bytes the ray caster
+// packs (raycast_projection.frag.glsl projectionPixel).
+std::vector<float> boundedLayerPixels(const ImageRGBA8& layer, VolumeBlend blend) {
   std::vector<float> out(layer.px.size(), 0.0f);
   for (size_t i = 0; i < out.size(); i += 4)
     if (layer.px[i + 3] > 0) {
+      if (blend == VolumeBlend::kAdditive) {
+        for (int c = 0; c < 3; ++c) out[i + c] = 65536.0f * float(layer.px[i + c]);
+        out[i + 3] = 65536.0f * 2.0f;
+        continue;
+      }
       out[i + 1] = float(uint32_t(layer.px[i]) | uint32_t(layer.px[i + 1]) << 8 | uint32_t(layer.px[i + 2]) << 16);
       out[i + 3] = 2.0f;
     }
@@ -313,8 +322,10 @@ BrickFrame BrickRenderer::render(int handle, const Camera& cam, double slice_spa
   if (h.volume < 0) {
     out.rect = surface.rect;
     const RaycastRenderer* ray = volume_ ? volume_->raycaster() : nullptr;
-    if (ray && ray->projecting())  // a bounded projection's partial pixels: the layer alone
-      out.pixels_f = boundedLayerPixels(surface.pixels);
+    const SlicingRenderer* slicer = volume_ ? volume_->slicer() : nullptr;
+    const VolumeBlend blend = ray ? ray->settings().blend : slicer ? slicer->settings().blend : VolumeBlend::kComposite;
+    if (blend != VolumeBlend::kComposite && blend != VolumeBlend::kIsosurface)  // a bounded projection's: the layer alone
+      out.pixels_f = boundedLayerPixels(surface.pixels, blend);
     else
       out.pixels = std::move(surface.pixels);
     return out;

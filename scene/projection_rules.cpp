@@ -22,20 +22,6 @@ void checkProjectionKeys(const Scene& s) {
     refuse("compositing.precision: rgba8",
            "a projection's partial results are values, sums and counts, not colours; 8-bit "
            "colour has no meaning for them (compositing.precision: float)");
-  // mip and minip stop at the first opaque surface, whose colour their partial pixels carry
-  // (compositing/projection_pixels.h); a sum and a count (average) or four sums (additive) leave
-  // no room in the 8-byte pixel for it.
-  if ((s.particles.enabled() || !s.surfaces.empty()) && s.render.blend != VolumeBlend::kMip &&
-      s.render.blend != VolumeBlend::kMinip)
-    refuse(s.particles.enabled() ? "particles.file / particles.procedural" : "surfaces",
-           "only mip and minip are bounded by opaque particles and surfaces (average and additive "
-           "partial pixels have no room for the surface's colour); use render.blend: mip or minip");
-  // The bounded partial pixels are the ray caster's (it stops each ray at the surface's depth);
-  // the slices are blended order-free into one value per pixel, with no depth to stop at.
-  if ((s.particles.enabled() || !s.surfaces.empty()) && !s.render.raycast())
-    refuse("render.method: slicing",
-           "with particles or surfaces a projection stops at the first opaque hit, which only the ray "
-           "caster does (render.method: raycast)");
   if (s.glow.enabled()) refuse("glow.emitters", "glow is integrated in emission-absorption only");
   if (s.render.shading.enabled)
     refuse("render.shading", "a projection colours one value per pixel, which has no gradient");

@@ -14,7 +14,9 @@ WireFormat projectionFormat(VolumeBlend blend, bool bounded) {
   if (bounded) {
     if (blend == VolumeBlend::kMip) return WireFormat::ValueMaxBounded;
     if (blend == VolumeBlend::kMinip) return WireFormat::ValueMinBounded;
-    throw std::logic_error("projectionFormat: only mip and minip are bounded by opaque surfaces");
+    if (blend == VolumeBlend::kAverage) return WireFormat::ValueSumBounded;
+    if (blend == VolumeBlend::kAdditive) return WireFormat::AdditiveBounded;
+    throw std::logic_error("projectionFormat: not a projection");
   }
   switch (blend) {
     case VolumeBlend::kMip: return WireFormat::ValueMax;
@@ -28,21 +30,30 @@ WireFormat projectionFormat(VolumeBlend blend, bool bounded) {
 std::function<void(float*, size_t)> projectionColouring(VolumeBlend blend,
                                                         std::shared_ptr<const TransferFunction> tf,
                                                         bool bounded) {
-  if (projectionFormat(blend, bounded) == WireFormat::RGBA8)
-    throw std::logic_error("projectionColouring: not a projection");
-  return [blend, tf, bounded](float* px, size_t n) {
+  const WireFormat f = projectionFormat(blend, bounded);
+  if (f == WireFormat::RGBA8) throw std::logic_error("projectionColouring: not a projection");
+  return [blend, tf, bounded, f](float* px, size_t n) {
     parallelFor(n, size_t(1) << 14, [&](size_t b, size_t e) {
       for (size_t i = b; i < e; ++i) {
         float* p = px + 4 * i;
-        if (bounded) {  // (v, packed layer rgb, 0, flags): compositing/projection_pixels.h
-          const bool layer = boundedHasLayer(p);
+        if (bounded) {  // the value's colour over the layer's: compositing/projection_pixels.h
           std::array<double, 4> c{0.0, 0.0, 0.0, 0.0};
-          if (boundedHasValue(p)) c = projectedColour(*tf, double(p[0]));
-          if (layer) {
-            const uint32_t s = uint32_t(p[1]);
+          if (boundedHasValue(f, p)) {
+            if (f == WireFormat::AdditiveBounded) {
+              float sum[4];
+              additiveBoundedSums(p, sum);
+              clampAdditive(sum);
+              for (int k = 0; k < 4; ++k) c[size_t(k)] = double(sum[k]);
+            } else {
+              const double v = f == WireFormat::ValueSumBounded ? double(p[0]) / double(p[2]) : double(p[0]);
+              c = projectedColour(*tf, v);
+            }
+          }
+          if (boundedHasLayer(f, p)) {
+            const uint32_t s = boundedLayer(f, p);
             c = overOpaque(c, {(s & 0xff) / 255.0, ((s >> 8) & 0xff) / 255.0, (s >> 16) / 255.0});
           }
-          for (int k = 0; k < 4; ++k) p[k] = float(c[k]);
+          for (int k = 0; k < 4; ++k) p[k] = float(c[size_t(k)]);
           continue;
         }
         if (blend == VolumeBlend::kAdditive) {

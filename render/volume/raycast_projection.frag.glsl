@@ -18,26 +18,55 @@
 // or at a root of the derivative k1 + 2 k2 s + 3 k3 s^2 inside (0, 1). A cell touching a NaN
 // corner is skipped.
 //
-// Bounded by an opaque layer (particles or subdivision surfaces; mip and minip): the rays end at
+// Bounded by an opaque layer (particles or subdivision surfaces): the rays end at
 // the brick's layer t as every variant's do (raycast_march.frag.glsl main), and the pixel carries
 // the layer's colour for the compositor's over-like operator (compositing/projection_pixels.h's
 // bounded formats): (v, r + 256 g + 65536 b of its 8-bit rgb, 0, flags), flags = 1 (a value) + 2
-// (a layer). Without a layer the pixel is the unbounded one, (v, 0, 0, 1) or absent.
+// (a layer). Without a layer the pixel is the unbounded one, (v, 0, 0, 1) or absent. Average and
+// additive (u_bounded: the frame has a layer, so every brick's pixels take the bounded format,
+// with or without a layer of its own): ValueSumBounded's (sum, rgb, count, flags) and
+// AdditiveBounded's packed halves.
 #ifndef PROJECTION
 #error raycast_projection.frag.glsl needs PROJECTION
 #endif
 #define ERT_REACHED(a) false
 
-#if PROJECTION <= 2
 uniform sampler2D u_surface_colour;  // the layer's colour (premultiplied RGBA32F, alpha 1 where hit)
+uniform int u_bounded;  // 1: the frame has an opaque layer, the pixels are the bounded formats'
+// The opaque layer's 8-bit rgb at px, or (-1) where this brick has none.
+ivec3 layerAt(ivec2 px) {
+  if (!surfaceAt(px) || !(texelFetch(u_surface, px, 0).x < 1e29)) return ivec3(-1);
+  return ivec3(clamp(texelFetch(u_surface_colour, px, 0).rgb, 0.0, 1.0) * 255.0 + 0.5);
+}
+#if PROJECTION <= 2
 // The partial pixel of ray result acc at px: with the opaque layer's colour where the brick has one.
 vec4 projectionPixel(vec4 acc, ivec2 px) {
-  if (!surfaceAt(px) || !(texelFetch(u_surface, px, 0).x < 1e29)) return acc;
-  uvec3 b = uvec3(clamp(texelFetch(u_surface_colour, px, 0).rgb, 0.0, 1.0) * 255.0 + 0.5);
-  return vec4(acc.x, float(b.r + 256u * b.g + 65536u * b.b), 0.0, acc.w + 2.0);
+  ivec3 b = layerAt(px);
+  if (b.r < 0) return acc;
+  return vec4(acc.x, float(b.r + 256 * b.g + 65536 * b.b), 0.0, acc.w + 2.0);
+}
+#elif PROJECTION == 3
+// average bounded: (sum, layer r + 256 g + 65536 b, count, flags) (ValueSumBounded).
+vec4 projectionPixel(vec4 acc, ivec2 px) {
+  if (u_bounded == 0) return acc;
+  vec4 p = vec4(acc.x, 0.0, acc.w, acc.w > 0.0 ? 1.0 : 0.0);
+  ivec3 b = layerAt(px);
+  if (b.r >= 0) p.y = float(b.r + 256 * b.g + 65536 * b.b), p.w += 2.0;
+  return p;
 }
 #else
-vec4 projectionPixel(vec4 acc, ivec2 px) { return acc; }  // average, additive: never bounded
+// additive bounded (AdditiveBounded): each float the integer h + 65536 l, h a sum's half bits, l
+// the layer's r, g, b, then the flags (1: a sum, 2: a layer). The same rounding as the wire's.
+vec4 projectionPixel(vec4 acc, ivec2 px) {
+  if (u_bounded == 0) return acc;
+  ivec3 b = layerAt(px);
+  bool value = any(greaterThan(acc, vec4(0.0)));
+  uvec4 hi = uvec4(b.r >= 0 ? uvec3(b) : uvec3(0u), (value ? 1u : 0u) + (b.r >= 0 ? 2u : 0u));
+  vec4 s = value ? min(acc, vec4(65504.0)) : vec4(0.0);
+  uvec4 h = uvec4(packHalf2x16(vec2(s.x, 0.0)), packHalf2x16(vec2(s.y, 0.0)),
+                  packHalf2x16(vec2(s.z, 0.0)), packHalf2x16(vec2(s.w, 0.0))) & 0xffffu;
+  return vec4((h & 0xffffu) + 65536u * hi);
+}
 #endif
 
 // mip / minip: a block whose samples all lie at or below (above) what the ray already holds cannot

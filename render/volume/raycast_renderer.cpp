@@ -322,12 +322,13 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
   const VolumeBrick& b = g.volume;
   RenderedBrick out;
   const unsigned projection = projectionBits(settings_.blend, settings_.mip_exact);
-  // mip and minip are bounded by an opaque layer (raycast_projection.frag.glsl); the scene refuses
-  // average and additive with one.
-  const bool boundable = settings_.blend == VolumeBlend::kMip || settings_.blend == VolumeBlend::kMinip;
-  if (projection && (glow || (surface && !surface->rect.empty() && !boundable) || g.adaptive || shading_.enabled))
-    throw std::logic_error("ray caster: a projection with glow, adaptive blocks or shading, or average or "
-                           "additive with a surface");
+  // Every projection is bounded by an opaque layer (raycast_projection.frag.glsl); average's and
+  // additive's pixels take the bounded format only where the frame has a layer (settings_.bounded).
+  if (projection && (glow || g.adaptive || shading_.enabled ||
+                     (surface && !surface->rect.empty() && !settings_.bounded &&
+                      (settings_.blend == VolumeBlend::kAverage || settings_.blend == VolumeBlend::kAdditive))))
+    throw std::logic_error("ray caster: a projection with glow, adaptive blocks or shading, or a surface "
+                           "in a frame not drawn in the bounded formats");
   const bool preint = table_.preintegrated() && !projection;  // segments mean nothing to a projection
   if (preint && g.adaptive)  // the scene refuses this (transfer.preintegrated with adaptive.tolerance)
     throw std::logic_error("ray caster: pre-integration of adaptive bricks is not supported");
@@ -433,6 +434,9 @@ RenderedBrick RaycastRenderer::render(int handle, const Camera& cam, double spac
       program.set("u_block_range", 12);
       gl_.ActiveTexture(GL_TEXTURE12);
       gl_.BindTexture(GL_TEXTURE_3D, g.range);
+    }
+    if (projection) {
+      program.set("u_bounded", settings_.bounded ? 1 : 0);
       program.set("u_surface_colour", 13);
       gl_.ActiveTexture(GL_TEXTURE13);
       gl_.BindTexture(GL_TEXTURE_2D, has_surface ? surface->colour_texture : 0u);

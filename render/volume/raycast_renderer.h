@@ -60,6 +60,9 @@ struct RaycastSettings {
   // compositing/projection_pixels.h's), every lattice sample taken, none stopping early.
   VolumeBlend blend = VolumeBlend::kComposite;
   bool mip_exact = false;  // mip / minip: the exact extremum along each ray (render.mip_exact)
+  // A projection in a frame with an opaque layer (particles or subdivision surfaces): the pixels
+  // take the bounded formats (compositing/projection_pixels.h), in every brick, layer or not.
+  bool bounded = false;
   // render.blend: isosurface: these isovalues' crossings instead of the emission-absorption
   // integral (render/volume/raycast_isosurface.frag.glsl); empty: the integral. With iso_debug
   // (tests), each pixel gets the first hit's (t, unit gradient) in float instead (t = 0: none).
@@ -86,6 +89,7 @@ class RaycastRenderer : public VolumeRenderer {
   // Early ray termination and adaptive stepping can change between frames.
   void setSettings(const RaycastSettings& settings) { settings_ = settings; }
   bool projecting() const { return settings_.blend != VolumeBlend::kComposite; }
+  const RaycastSettings& settings() const { return settings_; }
   bool isosurfaces() const { return !settings_.isovalues.empty(); }
   // Gradient shading (transfer/shading.h) for the next frames; not for adaptive bricks.
   void setShading(const Shading& shading) override { shading_ = shading; }

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "common/visibility.h"
+#include "render/volume/bounded_pixels.h"
 #include "render/volume/glsl_files.h"  // generated from render/volume/*.glsl
 #include "render/volume/slice_geometry.h"
 #include "render/volume/volume_clip.h"
@@ -116,8 +117,9 @@ RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spac
   RenderedBrick out;
   const unsigned projection = projectionOf(settings_.blend);
   const bool has_surface = surface && !surface->rect.empty();
-  if (projection && (has_surface || shading_.enabled))  // the scene refuses these
-    throw std::logic_error("slicing: a projection with a surface or shading");
+  if (projection && ((has_surface && !settings_.bounded) || shading_.enabled))  // the scene refuses these
+    throw std::logic_error("slicing: a projection with shading, or a surface in a frame not drawn in "
+                           "the bounded formats");
   const bool preint = table_.preintegrated() && !projection;  // segments mean nothing to a projection
   // mip, minip and average count every sample whatever its opacity: every block holding samples
   // is drawn. Additive adds c a, exactly zero where the table's opacity is: its empty blocks are
@@ -148,7 +150,8 @@ RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spac
   if (has_surface) r = r.empty() ? surface->rect : unite(r, surface->rect);
   if (r.empty()) return out;
 
-  target_.begin(r, has_surface ? surface : nullptr);
+  // A projection's target starts empty: the layer's colour is added after (toBoundedPixels).
+  target_.begin(r, has_surface && !projection ? surface : nullptr);
   // mip and minip blend with GL_MAX (minip of the negated values, slicing.frag.glsl): the
   // target starts at the operator's identity in the value channel, -FLT_MAX, below any sample
   // (cleared again over begin()'s zeros, within the same scissor); the weight channel stays 0
@@ -207,6 +210,15 @@ RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spac
   if (projection) {  // a projection's pixels are values and sums: float
     out.pixels_f = target_.finishFloat(r);
     if (max_blend) finishExtremum(out.pixels_f, projection == 2);
+    if (settings_.bounded) {
+      // The layer's colour read back the way composite mode gets it into its target.
+      std::vector<float> layer;
+      if (has_surface) {
+        target_.begin(r, surface);
+        layer = target_.finishFloat(r);
+      }
+      toBoundedPixels(settings_.blend, out.pixels_f, has_surface ? &layer : nullptr);
+    }
   } else {
     target_.finish(r, out);
   }

@@ -38,6 +38,9 @@ struct SlicingSettings {
   // render.blend: a projection (mip, minip, average, additive) or emission-absorption
   // (composite); isosurfaces are the ray caster's only (std::logic_error here).
   VolumeBlend blend = VolumeBlend::kComposite;
+  // A projection in a frame with an opaque layer (particles or subdivision surfaces): the pixels
+  // take the bounded formats (render/volume/bounded_pixels.h), in every brick, layer or not.
+  bool bounded = false;
 };
 
 class SlicingRenderer : public VolumeRenderer {
@@ -57,6 +60,7 @@ class SlicingRenderer : public VolumeRenderer {
   void setShading(const Shading& shading) override { shading_ = shading; }
   // The blend mode for the next frames.
   void setSettings(const SlicingSettings& settings) { settings_ = settings; }
+  const SlicingSettings& settings() const { return settings_; }
   SlicingRenderer* slicer() override { return this; }
   // Uploads a brick's stored samples (x fastest); returns a handle for render(). The samples'
   // min and max are kept so invisible bricks can be skipped.

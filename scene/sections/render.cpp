@@ -63,7 +63,7 @@ std::vector<sortlast::SceneKey> sortlast::renderKeys() {
      "no sample reached stays transparent. Projections never stop early (no early ray "
      "termination) and combine bricks with max / min / sum (docs/volumes.md). With "
      "`render.method: slicing` the samples are where the ray crosses the slice planes. With "
-     "particles or surfaces (mip and minip, ray casting only) a ray counts the samples in front of "
+     "particles or surfaces (every projection, ray casting and slicing) a ray counts the samples in front of "
      "the first opaque hit, the surface's colour behind the projection's. "
      "compositing.precision float, without glow, shading, adaptive sampling or adaptive steps; "
      "transfer.preintegrated does not apply.",

@@ -209,6 +209,7 @@ std::vector<uint8_t> randomLayer(size_t n, int bytes, std::mt19937& rng, size_t 
         for (int c = 0; c < bytes; ++c) p[c] = uint8_t(rng());
         if (bytes == 4 && p[3] == 0) p[3] = 1;
         if (bytes == 8 && p[6] == 0 && p[7] == 0) p[7] = 1;
+        if (bytes == 12 && p[9] == 0 && p[10] == 0 && p[11] == 0) p[11] = 1;  // the bounded sums
         if (bytes == 4)
           for (int c = 0; c < 3; ++c) p[c] = uint8_t(p[c] % (p[3] + 1));
       }
@@ -225,7 +226,7 @@ TEST(PixelParallel, RleEncodeAndDecodeMatchSerial) {
   struct Case {
     size_t n, longest_run;
   };
-  for (int bytes : {4, 8})
+  for (int bytes : {4, 8, 12})
     for (Case c : {Case{big, 30}, Case{big, 70000}, Case{big, 250000}, Case{2 * 65536, 5000},
                    Case{1000, 50}})
       for (uint32_t max_run : {1u, 2u, 3u, 7u, 1000u, kMaxRun}) {

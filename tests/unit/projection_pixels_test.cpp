@@ -1,7 +1,7 @@
 // The projection blend modes' partial images (compositing/projection_pixels.h): their wire
 // formats round-trip (value formats bit for bit, Additive within half rounding), absent pixels
 // become runs, the operators are order-free, and radix-k's groupings give the same frame as
-// combining every brick image at once. The bounded formats (mip and minip with an opaque layer)
+// combining every brick image at once. The bounded formats (every projection with an opaque layer)
 // round-trip exactly, and their over-like operator gives one result for every grouping that keeps
 // the visibility order (and another for the reverse order), in radix-k too.
 #include <gtest/gtest.h>
@@ -198,7 +198,7 @@ TEST(ProjectionPixels, BoundedWireRoundTripIsExact) {
     int layers = 0;
     for (int y = back.rect.y; y < back.rect.y + back.rect.h; ++y)
       for (int x = back.rect.x; x < back.rect.x + back.rect.w; ++x) {
-        layers += boundedHasLayer(img.at(x, y));
+        layers += boundedHasLayer(f, img.at(x, y));
         for (int c = 0; c < 4; ++c) EXPECT_EQ(back.at(x, y)[c], img.at(x, y)[c]) << x << "," << y << " " << c;
       }
     EXPECT_GT(layers, 20);
@@ -232,15 +232,15 @@ TEST(ProjectionPixels, BoundedOperatorKeepsTheVisibilityOrder) {
       // The frontmost layer hides what lies behind it: the result's value comes from in front of it.
       int front_layer = -1;
       for (int i = 5; i >= 0 && front_layer < 0; --i)
-        if (boundedHasLayer(p[i])) front_layer = i;
+        if (boundedHasLayer(f, p[i])) front_layer = i;
       if (front_layer >= 0) {
         EXPECT_EQ(left[1], p[front_layer][1]);
         float v[4] = {0, 0, 0, 0};
         for (int i = front_layer; i < 6; ++i) {
-          float q[4] = {p[i][0], 0.0f, 0.0f, boundedHasValue(p[i]) ? 1.0f : 0.0f};
+          float q[4] = {p[i][0], 0.0f, 0.0f, boundedHasValue(f, p[i]) ? 1.0f : 0.0f};
           combineProjected(f == WireFormat::ValueMaxBounded ? WireFormat::ValueMax : WireFormat::ValueMin, q, v);
         }
-        EXPECT_EQ(boundedHasValue(left), v[3] > 0.0f);
+        EXPECT_EQ(boundedHasValue(f, left), v[3] > 0.0f);
         if (v[3] > 0.0f) EXPECT_EQ(left[0], v[0]);
       }
       float rev[4] = {0, 0, 0, 0};
@@ -258,7 +258,7 @@ TEST(ProjectionPixels, BoundedRadixKMatchesOneOrderedCombine) {
     for (size_t i = 0; i < n; ++i) {
       float* p = px + 4 * i;
       if (!(p[3] > 0.0f)) continue;
-      const float v = boundedHasValue(p) ? std::clamp(p[0] * 0.1f + 0.4f, 0.0f, 1.0f) : 0.0f;
+      const float v = boundedHasValue(WireFormat::ValueMaxBounded, p) ? std::clamp(p[0] * 0.1f + 0.4f, 0.0f, 1.0f) : 0.0f;
       const float s = float(uint32_t(p[1]) & 0xffu) / 255.0f;
       p[0] = v, p[1] = s, p[2] = p[3] / 3.0f, p[3] = 1.0f;
     }
@@ -316,4 +316,118 @@ TEST(ProjectionPixels, BoundedRadixKMatchesOneOrderedCombine) {
 }
 
 }  // namespace
+
+// The bounded sums (average, additive): 12 bytes a pixel. Values are multiples of 1/8 below 4, so
+// every sum of a few of them is exact in float and in half, and the groupings compare exactly.
+constexpr WireFormat kBoundedSums[] = {WireFormat::ValueSumBounded, WireFormat::AdditiveBounded};
+
+void randomBoundedSumPixel(WireFormat f, std::mt19937& rng, float* p) {
+  const unsigned kind = rng() % 4;  // 0 absent, 1 sums, 2 layer, 3 both
+  const uint32_t layer = (kind & 2u) ? 1u + rng() % 16777215u : 0u;
+  auto eighth = [&] { return float(rng() % 32u) / 8.0f; };
+  if (f == WireFormat::ValueSumBounded) {
+    p[0] = (kind & 1u) ? eighth() - 2.0f : 0.0f;
+    p[1] = float(layer);
+    p[2] = (kind & 1u) ? float(1 + rng() % 5u) : 0.0f;
+    p[3] = float(kind);
+    return;
+  }
+  float sum[4] = {0, 0, 0, 0};
+  if (kind & 1u)
+    for (float& x : sum) x = eighth();
+  packAdditiveBounded(sum, layer, int(kind), p);
+}
+
+// The sums of a bounded-sum pixel, the layer and the flags, for comparisons.
+struct SumsOf {
+  float a = 0, b = 0, c = 0, d = 0;
+  uint32_t layer = 0;
+  int flags = 0;
+};
+SumsOf sumsOf(WireFormat f, const float* p) {
+  SumsOf s;
+  s.flags = boundedFlags(f, p);
+  s.layer = (s.flags & 2) ? boundedLayer(f, p) : 0u;
+  if (f == WireFormat::ValueSumBounded) {
+    s.a = p[0], s.b = p[2];
+  } else {
+    float x[4];
+    additiveBoundedSums(p, x);
+    s.a = x[0], s.b = x[1], s.c = x[2], s.d = x[3];
+  }
+  return s;
+}
+
+TEST(ProjectionPixels, BoundedSumsWireRoundTripIsExact) {
+  std::mt19937 rng(23);
+  for (WireFormat f : kBoundedSums) {
+    EXPECT_EQ(pixelBytes(f), 12);
+    RectImage img(Rect{3, 1, 29, 9});
+    for (size_t i = 0; i < img.px.size(); i += 4) randomBoundedSumPixel(f, rng, &img.px[i]);
+    for (int x = 3; x < 32; ++x) std::fill_n(img.at(x, 5), 4, 0.0f);  // an absent row: a run
+    BrickImage b = encodePart(img, img.rect, 1, f);
+    RectImage back = decodePart(unpackBrickImage(packBrickImage(b)), f, Rect{0, 0, 64, 64});
+    int layers = 0, sums = 0;
+    for (int y = back.rect.y; y < back.rect.y + back.rect.h; ++y)
+      for (int x = back.rect.x; x < back.rect.x + back.rect.w; ++x) {
+        layers += boundedHasLayer(f, img.at(x, y));
+        sums += boundedHasValue(f, img.at(x, y));
+        for (int c = 0; c < 4; ++c) EXPECT_EQ(back.at(x, y)[c], img.at(x, y)[c]) << x << "," << y << " " << c;
+      }
+    EXPECT_GT(layers, 40);
+    EXPECT_GT(sums, 40);
+    uint8_t wire[12];
+    for (size_t i = 0; i < img.px.size(); i += 4)
+      if (projectedPresent(f, &img.px[i])) {
+        toProjected(f, &img.px[i], wire);
+        EXPECT_FALSE(rleIsRun(wire, 12));
+      }
+  }
+}
+
+TEST(ProjectionPixels, BoundedSumsOperatorKeepsTheVisibilityOrder) {
+  std::mt19937 rng(29);
+  for (WireFormat f : kBoundedSums) {
+    int reversed_differs = 0, bounded_seen = 0;
+    for (int trial = 0; trial < 400; ++trial) {
+      float p[6][4];  // back to front
+      for (auto& q : p) randomBoundedSumPixel(f, rng, q);
+      float left[4] = {0, 0, 0, 0};
+      for (auto& q : p) combineProjected(f, q, left);
+      float a[4] = {0, 0, 0, 0}, b[4] = {0, 0, 0, 0}, c[4] = {0, 0, 0, 0};
+      combineProjected(f, p[0], a), combineProjected(f, p[1], a);
+      combineProjected(f, p[2], b), combineProjected(f, p[3], b), combineProjected(f, p[4], b);
+      combineProjected(f, p[5], c);
+      float all[4] = {0, 0, 0, 0};
+      combineProjected(f, a, all), combineProjected(f, b, all), combineProjected(f, c, all);
+      for (int k = 0; k < 4; ++k) EXPECT_EQ(all[k], left[k]);
+      // Only what lies in front of the frontmost layer adds up, and that layer is the pixel's.
+      int front_layer = -1;
+      for (int i = 5; i >= 0 && front_layer < 0; --i)
+        if (boundedHasLayer(f, p[i])) front_layer = i;
+      SumsOf want;
+      want.layer = front_layer >= 0 ? boundedLayer(f, p[front_layer]) : 0u;
+      want.flags = front_layer >= 0 ? 2 : 0;
+      for (int i = std::max(front_layer, 0); i < 6; ++i) {
+        const SumsOf q = sumsOf(f, p[i]);
+        if (!(q.flags & 1)) continue;
+        want.a += q.a, want.b += q.b, want.c += q.c, want.d += q.d, want.flags |= 1;
+      }
+      const SumsOf got = sumsOf(f, left);
+      EXPECT_EQ(got.flags, want.flags);
+      EXPECT_EQ(got.layer, want.layer);
+      EXPECT_EQ(got.a, want.a);
+      EXPECT_EQ(got.b, want.b);
+      EXPECT_EQ(got.c, want.c);
+      EXPECT_EQ(got.d, want.d);
+      bounded_seen += front_layer > 0;
+      float rev[4] = {0, 0, 0, 0};
+      for (int i = 5; i >= 0; --i) combineProjected(f, p[i], rev);
+      reversed_differs += !std::equal(rev, rev + 4, left);
+    }
+    EXPECT_GT(bounded_seen, 100);
+    EXPECT_GT(reversed_differs, 100);  // not commutative: the order is what bounds the rays
+  }
+}
+
 }  // namespace sortlast
