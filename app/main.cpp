@@ -6,7 +6,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include "common/build_features.h"
 #include "common/error.h"
+#include "common/missing_feature.h"
 #include "scene/scene.h"
 #include "app/adaptive_stats_job.h"
 #include "app/command_line_hint.h"
@@ -369,8 +371,17 @@ int main(int argc, char** argv) {
   installMpiErrorHandler(MPI_COMM_WORLD);
   int code = 1;
   try {
-    code = *serve ? runServeJob(serve_opts, MPI_COMM_WORLD)
-                  : runRenderJob(render_opts, MPI_COMM_WORLD);
+    if (!*serve) {
+      code = runRenderJob(render_opts, MPI_COMM_WORLD);
+    } else if constexpr (build::kService) {
+      code = runServeJob(serve_opts, MPI_COMM_WORLD);
+    } else {  // every rank ends with 1; rank 0 says why
+      int rank = 0;
+      MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+      if (rank == 0)
+        std::fprintf(stderr, "sortlast: error: %s\n",
+                     missingFeatureMessage(Feature::kService, "sortlast serve").c_str());
+    }
   } catch (const std::bad_alloc&) {
     // Outside any collective step: the other ranks cannot learn of it, so the job ends here.
     int rank = 0;

@@ -8,7 +8,9 @@
 #include <limits>
 #include <set>
 
+#include "common/build_features.h"
 #include "common/error.h"
+#include "common/missing_feature.h"
 #include "scene/scene.h"
 #include "insitu/output_names.h"
 #include "common/listen_address.h"
@@ -316,6 +318,8 @@ Actions parseActions(const std::string& yaml_text, const std::string& source_nam
   }
   if (root["serve"]) {
     a.serve = stringOf(root["serve"], "serve", w);
+    if (!build::kService)  // the live view is the service's front end
+      w.fail(root["serve"], "serve", missingFeatureMessage(Feature::kService, "the live view"));
     std::string host;
     try {
       host = parseListen(a.serve).first;

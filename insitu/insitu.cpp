@@ -23,10 +23,15 @@
 #include "insitu/trigger.h"
 #include "render/brick_renderer.h"
 #include "session/collective.h"
-#include "service/frame_service.h"
 #include "session/render_session.h"
+#include "common/build_features.h"
 #include "common/listen_address.h"
+// The live view (actions' `serve:`) is the service's front end: only where the build has it
+// (SORTLAST_WITH_SERVICE; parseActions refuses `serve:` elsewhere).
+#if SORTLAST_HAVE_SERVICE
+#include "service/frame_service.h"
 #include "service/serve_job.h"
+#endif
 #include "session/session_layout.h"
 
 namespace sortlast {
@@ -96,7 +101,9 @@ struct InSitu::Impl {
   double texture_bytes = 0;
   bool prepared = false;               // prepareStep ran for the published step
   bool described = false;              // the live view's GET /api/scene has a step to show
+#if SORTLAST_HAVE_SERVICE
   std::unique_ptr<LiveView> live;      // rank 0, with `serve:` in the actions
+#endif
 
   ~Impl() {
     session.reset();
@@ -111,6 +118,7 @@ struct InSitu::Impl {
 // Between steps: a browser's pending requests are answered from the newest step (uploaded for it
 // when no render fired on this step).
 void InSitu::Impl::answerLiveView() {
+#if SORTLAST_HAVE_SERVICE
   long long pending = live ? (long long)live->pending() : 0;
   MPI_Bcast(&pending, 1, MPI_LONG_LONG, 0, comm);
   // The first step is prepared even unasked, so a browser's first GET /api/scene finds a scene.
@@ -131,6 +139,7 @@ void InSitu::Impl::answerLiveView() {
   } catch (const JobFailed& e) {
     if (rank == 0) std::fprintf(stderr, "sortlast in situ: live view: %s\n", e.message.c_str());
   }
+#endif
 }
 
 void InSitu::Impl::prepareStep(const std::vector<size_t>& firing) {
@@ -305,6 +314,7 @@ std::unique_ptr<InSitu::Impl> InSitu::open(MPI_Comm user_comm, const std::string
     so.quiet = true;
     so.overrides = impl->actions.session_overrides;
     impl->session = RenderSession::external(so, impl->comm);
+#if SORTLAST_HAVE_SERVICE
     if (!impl->actions.serve.empty())
       collectively(impl->comm, [&] {
         if (impl->rank != 0) return;
@@ -318,6 +328,7 @@ std::unique_ptr<InSitu::Impl> InSitu::open(MPI_Comm user_comm, const std::string
         std::fprintf(stderr, "sortlast in situ: live view at http://%s:%d/ (answered between steps)\n",
                      address.c_str(), impl->live->port());
       });
+#endif
   } catch (const JobFailed& e) {
     throw InSituError("sortlast in situ: " + e.message);
   }

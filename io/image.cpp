@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "common/build_features.h"
 #include "common/error.h"
+#include "common/missing_feature.h"
 #include "common/pixel_threads.h"
 #include "io/image_files.h"
 
@@ -116,6 +118,7 @@ std::vector<uint8_t> opaqueRGB8(const ImageRGBA8& img, const glm::dvec3& bg) {
 void checkOutputFormat(const std::string& path) {
   if (files::formatOf(path) == files::Format::other)
     throw InputError("output " + path + ": no image writer for this file extension (.png, .jpg, .ppm or .exr; movies: .mp4 or .webm)");
+  if (files::formatOf(path) == files::Format::exr && !build::kExr) refuseMissingFeature(Feature::kExr, "output " + path);
 }
 
 namespace {
@@ -149,10 +152,11 @@ void writeEncoded(const std::string& path, const files::Pixels8& rgb) {
 void writeImage(const std::string& path, const ImageF& img, const glm::dvec3& bg) {
   checkOutputFormat(path);
   namingOutput(path, [&] {
-    if (files::formatOf(path) == files::Format::exr)
-      files::writeExr(path, img.width, img.height, {"R", "G", "B"}, overBackground(img, bg));
-    else
-      writeEncoded(path, {img.width, img.height, 3, toRGB8(overBackground(img, bg))});
+    if constexpr (build::kExr) {
+      if (files::formatOf(path) == files::Format::exr)
+        return files::writeExr(path, img.width, img.height, {"R", "G", "B"}, overBackground(img, bg));
+    }
+    writeEncoded(path, {img.width, img.height, 3, toRGB8(overBackground(img, bg))});
   });
 }
 
@@ -177,7 +181,10 @@ namespace {
 ImageChannels readAnyImage(const std::string& path) {
   try {
     const std::string bytes = files::readFile(path, "image");
-    if (bytes.compare(0, 4, std::string("\x76\x2f\x31\x01", 4)) == 0) return files::readExr(path);  // EXR's magic
+    if (bytes.compare(0, 4, std::string("\x76\x2f\x31\x01", 4)) == 0) {  // EXR's magic
+      if constexpr (build::kExr) return files::readExr(path);
+      refuseMissingFeature(Feature::kExr, "image " + path);
+    }
     files::Pixels8 p = files::decodeRGBA8(bytes, "");
     ImageChannels img;
     img.width = p.width;

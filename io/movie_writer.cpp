@@ -9,6 +9,7 @@
 #include <cstdlib>
 
 #include "common/error.h"
+#include "common/install_prefix.h"
 #include "io/movie_module_abi.h"
 
 namespace sortlast {
@@ -43,7 +44,8 @@ struct LoadedModule {
 };
 
 // Where the module may be: SORTLAST_MOVIE_MODULE (a file), beside the program (the build tree:
-// build/sortlast and build/libsortlast_movie.so), the installed layout (bin/../lib/sortlast/), and
+// build/sortlast and build/libsortlast_movie.so), the installed layout (<prefix>/BINDIR/sortlast and
+// <prefix>/LIBDIR/sortlast/), and
 // the build tree and install prefix configured in (test programs, the Python module).
 std::vector<std::string> moduleCandidates() {
   std::vector<std::string> c;
@@ -52,7 +54,9 @@ std::vector<std::string> moduleCandidates() {
   const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
   if (!ec) {
     c.push_back((exe.parent_path() / SORTLAST_MOVIE_MODULE_NAME).string());
-    c.push_back((exe.parent_path() / ".." / SORTLAST_MOVIE_MODULE_INSTALL_SUBDIR / SORTLAST_MOVIE_MODULE_NAME).string());
+    const std::filesystem::path prefix = installPrefixOf(exe, SORTLAST_INSTALL_BINDIR);
+    if (!prefix.empty())
+      c.push_back((prefix / SORTLAST_MOVIE_MODULE_INSTALL_SUBDIR / SORTLAST_MOVIE_MODULE_NAME).string());
   }
   c.push_back(SORTLAST_MOVIE_MODULE_BUILD_PATH);
   c.push_back(SORTLAST_MOVIE_MODULE_INSTALL_PATH);

@@ -19,7 +19,9 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "common/build_features.h"
 #include "common/error.h"
+#include "common/missing_feature.h"
 
 namespace sortlast {
 
@@ -27,7 +29,7 @@ namespace {
 
 constexpr long long kDefaultProceduralCount = 4096;
 
-std::string formatOf(const ParticleDesc& d) {
+std::string formatByName(const ParticleDesc& d) {
   if (d.format != "auto") {
     if (d.format != "vtk" && d.format != "raw" && d.format != "csv" && d.format != "hdf5")
       throw InputError("particles.format: unknown format '" + d.format +
@@ -40,6 +42,14 @@ std::string formatOf(const ParticleDesc& d) {
   if (ext == ".csv") return "csv";
   if (ext == ".h5" || ext == ".hdf5") return "hdf5";
   return "raw";
+}
+
+// The format, refused with the CMake option that builds it where this build has no reader for it.
+std::string formatOf(const ParticleDesc& d) {
+  const std::string format = formatByName(d);
+  if (format == "vtk" && !build::kVtk) refuseMissingFeature(Feature::kVtk, "particles.file " + d.file);
+  if (format == "hdf5" && !build::kHdf5) refuseMissingFeature(Feature::kHdf5, "particles.file " + d.file);
+  return format;
 }
 
 // A raw file holds little-endian float32 x,y,z triples, no header: its size must be a multiple of
@@ -179,7 +189,7 @@ ParticleSet loadParticleShare(const ParticleDesc& d, int part, int parts, long l
   std::error_code ec;
   if (!std::filesystem::is_regular_file(d.file, ec)) throw InputError("particles.file " + d.file + ": no such file");
   ParticleSet s;
-  s.positions = readHdf5Particles(d.file, d.dataset, part, parts, total);
+  if constexpr (build::kHdf5) s.positions = readHdf5Particles(d.file, d.dataset, part, parts, total);
   const long long first = (long long)((unsigned long long)*total * unsigned(part) / unsigned(parts));
   if (d.count >= 0 && *total != d.count)
     throw InputError("particles.file " + d.file + ": holds " + std::to_string(*total) +
@@ -214,11 +224,11 @@ ParticleSet loadParticles(const ParticleDesc& d) {
   }
   if (format == "csv") s.positions = parseCsvParticles(readWholeFile(d.file, std::ios::in), d.file, d.count);
   if (format == "vtk") {
-    s.positions = readVtkParticles(d.file);
+    if constexpr (build::kVtk) s.positions = readVtkParticles(d.file);
     checkLoaded(s.positions, d.file, d.count);
   }
   if (format == "hdf5") {
-    s.positions = readHdf5Particles(d.file, d.dataset);
+    if constexpr (build::kHdf5) s.positions = readHdf5Particles(d.file, d.dataset);
     checkLoaded(s.positions, d.file, d.count);
   }
   return s;

@@ -4,7 +4,9 @@
 #include <array>
 #include <limits>
 
+#include "common/build_features.h"
 #include "common/error.h"
+#include "common/missing_feature.h"
 #include "io/image_files.h"
 
 namespace sortlast {
@@ -27,6 +29,7 @@ void writeSurfaceImage(const std::string& path, const SurfaceImage& img) {
     throw InputError("surface output " + path + ": empty or inconsistent surface image");
   if (files::formatOf(path) != files::Format::exr)
     throw InputError("surface output " + path + ": must be an OpenEXR file (.exr)");
+  if constexpr (!build::kExr) refuseMissingFeature(Feature::kExr, "surface output " + path);
   std::vector<float> px(4 * n);
   for (size_t i = 0; i < n; ++i) {
     bool hit = img.hit(i);
@@ -34,7 +37,7 @@ void writeSurfaceImage(const std::string& path, const SurfaceImage& img) {
     for (int c = 0; c < 3; ++c) px[4 * i + 1 + c] = hit ? img.normal[i][c] : 0.0f;
   }
   try {
-    files::writeExr(path, img.width, img.height, {kChannels.begin(), kChannels.end()}, px);
+    if constexpr (build::kExr) files::writeExr(path, img.width, img.height, {kChannels.begin(), kChannels.end()}, px);
   } catch (const InputError& e) {
     throw InputError("surface output " + path + ": " + e.what());
   }
@@ -44,7 +47,8 @@ SurfaceImage readSurfaceImage(const std::string& path) {
   ImageChannels f;
   try {
     files::readFile(path, "surface image");  // a missing file: "cannot open" with the reason
-    f = files::readExr(path);
+    if constexpr (!build::kExr) refuseMissingFeature(Feature::kExr, "surface image " + path);
+    else f = files::readExr(path);
   } catch (const InputError& e) {
     const std::string what = e.what();
     if (what.rfind("surface image ", 0) == 0) throw;

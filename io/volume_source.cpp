@@ -13,7 +13,9 @@
 #include <fstream>
 #include <sstream>
 
+#include "common/build_features.h"
 #include "common/error.h"
+#include "common/missing_feature.h"
 #include "io/nrrd_header.h"
 
 namespace sortlast {
@@ -190,7 +192,27 @@ std::vector<float> proceduralBox(const VolumeDesc& d, const IndexBox& box) {
 
 }  // namespace
 
+void requireVolumeFormatBuilt(const VolumeDesc& d) {
+  if (d.isProcedural()) return;
+  const std::string what = "volume.file " + d.file;
+  switch (d.formatOf()) {
+    case VolumeFormat::kVti:
+    case VolumeFormat::kLegacyVtk:
+      if (!build::kVtk) refuseMissingFeature(Feature::kVtk, what);
+      break;
+    case VolumeFormat::kHdf5:
+      if (!build::kHdf5) refuseMissingFeature(Feature::kHdf5, what);
+      break;
+    case VolumeFormat::kNetcdf:
+      if (!build::kNetcdf) refuseMissingFeature(Feature::kNetcdf, what);
+      break;
+    case VolumeFormat::kRaw:
+    case VolumeFormat::kNrrd: break;
+  }
+}
+
 void validateVolume(VolumeDesc& d) {
+  requireVolumeFormatBuilt(d);
   if (d.isProcedural()) {
     proceduralValue(d.procedural, glm::dvec3(0.0));  // rejects unknown names
   } else {
@@ -198,14 +220,16 @@ void validateVolume(VolumeDesc& d) {
     if (!std::filesystem::is_regular_file(d.file, ec))
       throw InputError("volume.file " + d.file + ": no such file");
     const VolumeFormat format = d.formatOf();
+    // Each `if constexpr`: a format's reader is compiled only where the build has its library
+    // (requireVolumeFormatBuilt has refused the others).
     if (format == VolumeFormat::kVti || format == VolumeFormat::kLegacyVtk) {
-      readVtkGeometry(d);
+      if constexpr (build::kVtk) readVtkGeometry(d);
     } else if (format == VolumeFormat::kNrrd) {
       describeNrrd(d);
     } else if (format == VolumeFormat::kHdf5) {
-      describeHdf5(d);
+      if constexpr (build::kHdf5) describeHdf5(d);
     } else if (format == VolumeFormat::kNetcdf) {
-      describeNetcdf(d);
+      if constexpr (build::kNetcdf) describeNetcdf(d);
     } else {
       auto size = (long long)std::filesystem::file_size(d.file, ec);
       long long need = d.header_bytes + d.grid.sampleCount() * sampleTypeBytes(d.type);
@@ -226,14 +250,21 @@ void validateVolume(VolumeDesc& d) {
 
 std::vector<float> readSamples(const VolumeDesc& d, const IndexBox& box) {
   if (d.isProcedural()) return proceduralBox(d, box);
+  requireVolumeFormatBuilt(d);
   switch (d.formatOf()) {
     case VolumeFormat::kLegacyVtk:
       throw std::logic_error("readSamples: legacy VTK volumes are read whole (readWholeVtk)");
-    case VolumeFormat::kVti: return readVtiBox(d, box);
+    case VolumeFormat::kVti:
+      if constexpr (build::kVtk) return readVtiBox(d, box);
+      break;
     case VolumeFormat::kNrrd: return d.gzip ? readGzipBox(d, box) : readRawBox(d, box);
     case VolumeFormat::kRaw: return readRawBox(d, box);
-    case VolumeFormat::kHdf5: return readHdf5Box(d, box);
-    case VolumeFormat::kNetcdf: return readNetcdfBox(d, box);
+    case VolumeFormat::kHdf5:
+      if constexpr (build::kHdf5) return readHdf5Box(d, box);
+      break;
+    case VolumeFormat::kNetcdf:
+      if constexpr (build::kNetcdf) return readNetcdfBox(d, box);
+      break;
   }
   return {};
 }
@@ -252,7 +283,10 @@ std::pair<float, float> presentRange(const std::vector<float>& samples, const st
 }
 
 std::vector<float> readWholeVolume(const VolumeDesc& d) {
-  if (d.readsWhole()) return readWholeVtk(d);
+  if (d.readsWhole()) {
+    requireVolumeFormatBuilt(d);
+    if constexpr (build::kVtk) return readWholeVtk(d);
+  }
   return readSamples(d, {{0, 0, 0}, d.grid.dims - 1});
 }
 

@@ -68,6 +68,9 @@ struct VolumeDesc {
 // Checks what can be checked without reading samples (file exists, size matches dims and type)
 // and, for VTK files, fills in dims and spacing from the file. Throws InputError.
 void validateVolume(VolumeDesc& desc);
+// Refuses a volume file whose format this build was configured without (VTK, HDF5, NetCDF), with
+// the CMake option that builds it; validateVolume calls it first.
+void requireVolumeFormatBuilt(const VolumeDesc& desc);
 
 // Samples of `box` as float (x fastest), read from the file's format: raw and NRRD raw with one
 // seek per row, NRRD gzip as one stream up to the box's last row, .vti through VTK for the box's

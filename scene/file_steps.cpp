@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <string>
 
+#include "common/build_features.h"
 #include "common/error.h"
+#include "common/missing_feature.h"
 
 namespace sortlast {
 
@@ -27,9 +29,12 @@ void resolveFileSteps(Scene& s) {
   VolumeDesc& vol = s.volume;
   const size_t particle_steps = s.time.particle_files.size();
   size_t records = 0;
+  // The file's steps are read through its format's library: refused where the build has none.
+  requireVolumeFormatBuilt(vol);
+  if (!build::kHdf5 && hdf5Series(s)) refuseMissingFeature(Feature::kHdf5, "volume.dataset " + vol.dataset);
   if (netcdfVolume(s)) {
     VolumeDesc probe = vol;
-    describeNetcdf(probe);
+    if constexpr (build::kNetcdf) describeNetcdf(probe);
     if (probe.records > 1) records = size_t(probe.records);
     if (records > 0 && particle_steps > 0 && particle_steps != records)
       throw InputError("volume.file " + vol.file + " holds " + std::to_string(records) +
@@ -38,7 +43,7 @@ void resolveFileSteps(Scene& s) {
   }
   const bool hdf5_series = hdf5Series(s);
   if (hdf5_series) {
-    records = size_t(countHdf5Steps(vol));
+    if constexpr (build::kHdf5) records = size_t(countHdf5Steps(vol));
     if (particle_steps > 0 && particle_steps != records)
       throw InputError("volume.file " + vol.file + " holds " + std::to_string(records) + " time steps (datasets " +
                        vol.dataset + ") and particles.files names " + std::to_string(particle_steps) +
@@ -49,7 +54,8 @@ void resolveFileSteps(Scene& s) {
     throw InputError("scene key 'time.step': " + std::to_string(s.time.step) + " is out of range: the scene has " +
                      std::to_string(s.time.steps) + " time step(s), 0 ... " + std::to_string(s.time.steps - 1));
   if (records > 0) vol.step = s.time.step;
-  if (hdf5_series) vol.dataset = hdf5StepPath(vol.dataset, s.time.step);
+  if constexpr (build::kHdf5)
+    if (hdf5_series) vol.dataset = hdf5StepPath(vol.dataset, s.time.step);
   checkGlowRates(s.glow.emitters, s.time.steps * std::max(1, s.orbit.frames));
 }
 

@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "common/error.h"
+#include "common/install_prefix.h"
 #include "session/collective.h"
 #include "service/data_dir.h"
 #include "service/frame_commands.h"
@@ -268,18 +269,23 @@ void follow(std::unique_ptr<RenderSession>& session, const ServeOptions& opts, c
 
 std::string findViewerDir(const std::string& given) {
   if (!given.empty()) return given;
-  std::vector<std::filesystem::path> binaries;
+  // The binaries we run in, each with the folder it is installed in under the prefix: the program
+  // (<prefix>/BINDIR), and for a simulation linking libsortlast.so the library (<prefix>/LIBDIR:
+  // Debian's lib/x86_64-linux-gnu, where "../share" would miss). The viewer is under
+  // <prefix>/DATADIR/sortlast/viewer (GNUInstallDirs), else at the install path configured in,
+  // else in the source tree (a build tree's program).
+  std::vector<std::filesystem::path> candidates;
   std::error_code ec;
-  std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) binaries.push_back(exe);
-  // A simulation linking libsortlast.so: the library's own folder (PREFIX/lib).
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) candidates.push_back(installPrefixOf(exe, SORTLAST_INSTALL_BINDIR));
   Dl_info info{};
   if (dladdr(reinterpret_cast<void*>(&findViewerDir), &info) && info.dli_fname)
-    binaries.push_back(std::filesystem::absolute(info.dli_fname));
-  for (const auto& b : binaries) {
-    auto installed = b.parent_path().parent_path() / "share" / "sortlast" / "viewer";
-    if (std::filesystem::exists(installed / "index.html")) return installed.string();
-  }
+    candidates.push_back(installPrefixOf(std::filesystem::absolute(info.dli_fname), SORTLAST_INSTALL_LIBDIR));
+  for (auto& prefix : candidates)
+    if (!prefix.empty()) prefix = prefix / SORTLAST_INSTALL_DATADIR / "sortlast" / "viewer";
+  candidates.push_back(SORTLAST_VIEWER_INSTALL_DIR);
+  for (const auto& dir : candidates)
+    if (!dir.empty() && std::filesystem::exists(dir / "index.html")) return dir.string();
   return SORTLAST_VIEWER_SOURCE_DIR;
 }
 

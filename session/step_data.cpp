@@ -5,6 +5,7 @@
 
 #include "session/collective.h"
 #include "session/frame_stats.h"  // peakRssMiB
+#include "common/build_features.h"
 #include "session/hdf5_loading.h"
 #include "session/volume_loading.h"
 
@@ -85,8 +86,10 @@ StepData loadStep(const Scene& scene, const SessionLayout& layout, bool adaptive
       const double t0 = MPI_Wtime();
       d.samples = loadOwnBricks(desc, layout.volume_bricks, layout.mine, layout.assignment, comm);
       const double mine_s[2] = {MPI_Wtime() - t0, peakRssMiB()};
-      if (desc.formatOf() == VolumeFormat::kHdf5)
-        d.hdf5_transfers = hdf5ReadsCollectively(desc, comm) ? "collective" : "independent";
+      if constexpr (build::kHdf5) {
+        if (desc.formatOf() == VolumeFormat::kHdf5)
+          d.hdf5_transfers = hdf5ReadsCollectively(desc, comm) ? "collective" : "independent";
+      }
       std::vector<double> all(rank == 0 ? 2 * size_t(size) : 0);
       MPI_Gather(mine_s, 2, MPI_DOUBLE, all.data(), 2, MPI_DOUBLE, 0, comm);
       for (size_t r = 0; r < all.size() / 2; ++r) {

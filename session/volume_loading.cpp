@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "session/collective.h"
+#include "common/build_features.h"
 #include "session/hdf5_loading.h"
 
 namespace sortlast {
@@ -18,10 +19,13 @@ std::vector<std::vector<float>> loadOwnBricks(const VolumeDesc& desc, const std:
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   std::vector<std::vector<float>> out(mine.size());
-  if (!desc.isProcedural() && desc.formatOf() == VolumeFormat::kHdf5) {  // collectively, MPI-IO
-    std::vector<IndexBox> boxes;
-    for (int id : mine) boxes.push_back(bricks[size_t(id)].stored);
-    return readHdf5Collective(desc, boxes, comm);
+  // (A format the build has no library for was refused by validateVolume, on every rank.)
+  if constexpr (build::kHdf5) {
+    if (!desc.isProcedural() && desc.formatOf() == VolumeFormat::kHdf5) {  // collectively, MPI-IO
+      std::vector<IndexBox> boxes;
+      for (int id : mine) boxes.push_back(bricks[size_t(id)].stored);
+      return readHdf5Collective(desc, boxes, comm);
+    }
   }
   if (!desc.readsWhole()) {  // each rank reads its own bricks
     collectively(comm, [&] {
@@ -31,7 +35,7 @@ std::vector<std::vector<float>> loadOwnBricks(const VolumeDesc& desc, const std:
   }
   std::vector<float> whole;
   collectively(comm, [&] {
-    if (rank == 0) whole = readWholeVtk(desc);
+    if (rank == 0) whole = readWholeVolume(desc);
   });
   if (rank == 0) {
     std::vector<std::vector<float>> pending;

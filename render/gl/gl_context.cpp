@@ -5,6 +5,9 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "common/build_features.h"
+#include "common/missing_feature.h"
+
 namespace sortlast {
 
 namespace {
@@ -66,8 +69,16 @@ void GlContext::finishSetup() {
 }
 
 std::unique_ptr<GlContext> createGlContext(const std::string& backend, const DeviceRequest& request) {
-  if (backend == "osmesa") return createOsMesaContext();
-  if (backend == "egl") return createEglContext(request);
+  // Each backend is compiled only where the build has it (SORTLAST_WITH_OSMESA, _EGL). Every rank
+  // opens its context, so every rank refuses the other here, by the option's name.
+  if (backend == "osmesa") {
+    if constexpr (build::kOsmesa) return createOsMesaContext();
+    refuseMissingFeature(Feature::kOsmesa, "render.backend osmesa");
+  }
+  if (backend == "egl") {
+    if constexpr (build::kEgl) return createEglContext(request);
+    refuseMissingFeature(Feature::kEgl, "render.backend egl");
+  }
   throw std::runtime_error("unknown render.backend '" + backend + "'");
 }
 

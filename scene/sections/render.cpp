@@ -1,11 +1,13 @@
 // The render section's keys: how bricks are drawn: GL backend and device, volume renderer,
 // sampling, shading.
+#include "common/build_features.h"
 #include "scene/key_rows.h"
 #include "scene/scene_reader.h"
 
 std::vector<sortlast::SceneKey> sortlast::renderKeys() {
   return {
-    {"render.backend", "osmesa",
+    // A build without OSMesa (SORTLAST_WITH_OSMESA=OFF) has EGL, and draws there by default.
+    {"render.backend", build::kOsmesa ? "osmesa" : "egl",
      "OpenGL backend: `osmesa` (software) or `egl` (surfaceless platform, or the device "
      "platform on an NVIDIA GPU).",
      Choice{member<&Scene::render, &RenderSection::backend>}},

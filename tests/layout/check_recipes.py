@@ -6,7 +6,7 @@ Usage: check_recipes.py REPO_ROOT
 
 1. packaging/spack/packages/sortlast/package.py parses, and runs against a stand-in for Spack's
    `spack.package` module that records the directives: its variants are one-to-one with the CMake
-   options (CMAKE_OPTIONS below), and cmake_args() passes each option, ON or OFF as its variant.
+   options (cmake/features.cmake's SORTLAST_FEATURES), and cmake_args() passes each option, ON or OFF as its variant.
 2. packaging/apptainer/sortlast.def bootstraps Debian 12 and its %post runs scripts/install-deps
    and the build.
 3. scripts/install-deps, with apt-get and dpkg-query replaced by stand-ins, on a machine where apt
@@ -22,14 +22,16 @@ import sys
 import tempfile
 import types
 
-# The CMake options of the optional features. This list must match the options the top-level
-# CMake defines (SORTLAST_WITH_* and SORTLAST_PYTHON); once they live in cmake/features.cmake,
-# read them from there instead of keeping this copy.
-CMAKE_OPTIONS = [
-    "SORTLAST_WITH_VTK", "SORTLAST_WITH_HDF5", "SORTLAST_WITH_NETCDF", "SORTLAST_WITH_EXR",
-    "SORTLAST_WITH_SERVICE", "SORTLAST_WITH_OSMESA", "SORTLAST_WITH_EGL",
-    "SORTLAST_WITH_SUBDIV_REFERENCE", "SORTLAST_WITH_BENCH", "SORTLAST_PYTHON",
-]
+# The CMake options of the optional features, read from cmake/features.cmake (its
+# SORTLAST_FEATURES list: SORTLAST_WITH_<F>, the Python module's SORTLAST_PYTHON).
+def cmake_options(root):
+    text = open(os.path.join(root, "cmake/features.cmake")).read()
+    m = re.search(r"set\(SORTLAST_FEATURES ([A-Z0-9_ ]+)\)", text)
+    if not m:
+        print("FAIL: cmake/features.cmake: no set(SORTLAST_FEATURES ...) list")
+        sys.exit(1)
+    return ["SORTLAST_PYTHON" if f == "PYTHON" else "SORTLAST_WITH_" + f for f in m.group(1).split()]
+
 
 failures = []
 
@@ -105,6 +107,7 @@ class FakeSpec:
 
 
 def check_spack(root):
+    CMAKE_OPTIONS = cmake_options(root)
     path = os.path.join(root, "packaging/spack/packages/sortlast/package.py")
     source = open(path).read()
     try:

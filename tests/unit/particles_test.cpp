@@ -15,6 +15,7 @@
 #include <unistd.h>
 #include <vector>
 
+#include "common/build_features.h"
 #include "tests/unit/input_error_of.h"
 #include "common/error.h"
 #include "io/particles.h"
@@ -152,6 +153,7 @@ TEST_F(ParticleFiles, UnknownFormat) {
 }
 
 TEST_F(ParticleFiles, VtkLegacyAsciiPolyData) {
+  if (!build::kVtk) GTEST_SKIP() << "this build has no VTK (SORTLAST_WITH_VTK)";
   std::string f = write("p.vtk",
                         "# vtk DataFile Version 3.0\nthree particles\nASCII\nDATASET POLYDATA\n"
                         "POINTS 3 float\n0 1 2\n-3.5 4.25 5\n6 -7 0.001\n"
@@ -165,6 +167,7 @@ TEST_F(ParticleFiles, VtkLegacyAsciiPolyData) {
 // Like the dam-break file: binary, big-endian, an unstructured grid with point data after the
 // points.
 TEST_F(ParticleFiles, VtkLegacyBinaryUnstructuredGrid) {
+  if (!build::kVtk) GTEST_SKIP() << "this build has no VTK (SORTLAST_WITH_VTK)";
   std::string f = write("p.vtk",
                         "# vtk DataFile Version 4.1\nSPH\nBINARY\nDATASET UNSTRUCTURED_GRID\n"
                         "POINTS 3 float\n" +
@@ -180,6 +183,7 @@ TEST_F(ParticleFiles, VtkLegacyBinaryUnstructuredGrid) {
 }
 
 TEST_F(ParticleFiles, VtkXml) {
+  if (!build::kVtk) GTEST_SKIP() << "this build has no VTK (SORTLAST_WITH_VTK)";
   std::string vtp =
       write("p.vtp",
             "<?xml version=\"1.0\"?>\n"
@@ -217,6 +221,7 @@ TEST_F(ParticleFiles, VtkXml) {
 }
 
 TEST_F(ParticleFiles, VtkErrors) {
+  if (!build::kVtk) GTEST_SKIP() << "this build has no VTK (SORTLAST_WITH_VTK)";
   std::string img = write("img.vtk",
                           "# vtk DataFile Version 3.0\nimage\nASCII\nDATASET STRUCTURED_POINTS\n"
                           "DIMENSIONS 2 1 1\nSPACING 1 1 1\nORIGIN 0 0 0\n"
