@@ -186,6 +186,7 @@ int runRenderJob(const RenderOptions& opts, MPI_Comm comm) {
       request.orbit_frame = steps.empty() ? f : f % orbit;
       if (!steps.empty()) request.overrides.push_back("time.step=" + std::to_string(steps[size_t(f)]));
       request.float_frame = float_output;
+      request.job_frames = frames;  // one: a still image, for which auto does not probe
       request.surface = !opts.surface_out.empty();
       if (f == 0) request.dump_layers = opts.dump_layers;
       FrameResult result = session.render(request);

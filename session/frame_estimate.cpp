@@ -286,10 +286,12 @@ EstimateVolume estimateVolumeOf(const Scene& sc, const SessionLayout& layout, co
     v.boxes.push_back(b.world);
   }
   v.tf = sc.transfer.build(range.first, range.second, layout.grid.minSpacing());
-  for (const BrickField& f : v.bricks) v.empty.emplace_back(f, v.tf, v.step, v.shading.enabled);
   v.shading = sc.render.shading;
   v.clip = sc.clip;
   v.step = sc.reference.step * layout.grid.minSpacing();
+  // After the step and the shading: the blocks' step multiples depend on both (built before
+  // them, every block's multiple was 1 and the estimate marched the fine step everywhere).
+  for (const BrickField& f : v.bricks) v.empty.emplace_back(f, v.tf, v.step, v.shading.enabled);
   return v;
 }
 

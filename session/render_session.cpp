@@ -608,8 +608,10 @@ void RenderSession::State::bringGpuTo(const Scene& scene) {
   if (scene.hasVolume()) shareBlockRanges(*renderer, layout.grid, comm);
   gpu = want;
   // The textures hold the data now; a batch session keeps no second copy, unless the accuracy
-  // estimate reads the samples (session/frame_estimate.h).
-  if (!opts.resident && (scene.render.estimate == EstimateMode::kOff || !estimateUnavailable(scene, adaptive, external, &d).empty()))
+  // estimate or auto's probes read the samples (session/frame_estimate.h; so a batch frame with
+  // render.estimate: off takes the step a service frame with the same keys takes).
+  const bool reads_samples = scene.render.estimate != EstimateMode::kOff || scene.render.sample_spacing_auto;
+  if (!opts.resident && (!reads_samples || !estimateUnavailable(scene, adaptive, external, &d).empty()))
     d.dropHostCopies();
 }
 
@@ -904,6 +906,9 @@ FrameResult RenderSession::render(const FrameRequest& request) {
   // (auto_spacing.h). Its probe frames count in this frame's total_s (they are what auto costs).
   nlohmann::json spacing_info;
   double probe_s = 0.0;
+  if (sc.render.sample_spacing_auto && sc.hasVolume() && !request.probe && request.job_frames == 1 &&
+      sc.render.estimate != EstimateMode::kOff && estimateUnavailable(sc, S.adaptive, S.external, S.current).empty())
+    return renderStill(request, sc);
   if (sc.render.sample_spacing_auto && sc.hasVolume() && !request.probe) {
     const double t0 = MPI_Wtime();
     sc.render.sample_spacing = autoSpacing(sc, request, spacing_info);
@@ -942,6 +947,79 @@ FrameResult RenderSession::render(const FrameRequest& request) {
   }
   out.scene = std::move(sc);
   if (!request.probe) ++S.frames_rendered;
+  return out;
+}
+
+// A still image's step (auto_spacing.h, stillSpacings): the frame at each step, safest first, until
+// its own estimate meets the target. The sampled pixels are chosen from the first try and their
+// exact values integrated once: every later try is compared with the same values. The frame
+// returned is the one taken; its total_s holds every try, its accuracy_estimate is the check.
+FrameResult RenderSession::renderStill(const FrameRequest& request, const Scene& sc) {
+  State& S = *s_;
+  const Camera cam = sc.frameCameras(S.layout.bounds)[size_t(std::max(0, request.orbit_frame))];
+  const std::vector<double>& steps = stillSpacings();
+  EstimateSample sample;
+  std::vector<double> exact;  // rank 0's
+  double estimate_s = 0.0, tries_s = 0.0;
+  nlohmann::json tried = nlohmann::json::array();
+  AccuracyEstimate e;
+  FrameResult out;
+  bool met = false;
+  for (size_t i = 0; i < steps.size(); ++i) {
+    FrameRequest r = request;
+    r.overrides.push_back("render.sample_spacing=" + std::to_string(steps[i]));
+    r.probe = true;  // no probe, no estimate, not counted: this function does those
+    r.job_frames = 0;
+    if (i > 0 && S.rank == 0) tries_s += out.stats["total_s"].get<double>();
+    out = render(r);
+    const double te = MPI_Wtime();
+    if (i == 0) {
+      if (S.rank == 0)
+        sample = chooseEstimatePixels(out.image, sc.image.background, screenRectOf(cam, S.layout.grid.worldBox()),
+                                      sc.render.estimate_pixels);
+      broadcastSample(sample, S.comm);
+      const EstimateVolume mine = estimateVolumeOf(sc, S.layout, *S.current, S.dataRange());
+      exact = exactSampledPixels(sample, cam, mine, sc.image.background,
+                                 int(std::max(1u, std::thread::hardware_concurrency())), S.comm);
+    }
+    int pass = 0;
+    if (S.rank == 0) {
+      e = compareWithExact(sample, exact, &out.image, nullptr, sc.image.background);
+      nlohmann::json j = e.json();
+      j["step"] = steps[i];
+      j["view"] = "frame";
+      tried.push_back(j);
+      pass = meetsTarget(e, sc.render.target_db);
+    }
+    MPI_Bcast(&pass, 1, MPI_INT, 0, S.comm);
+    estimate_s += MPI_Wtime() - te;
+    met = pass;
+    if (pass) break;
+  }
+  const int frame = request.orbit_frame >= 0 ? request.orbit_frame : S.frames_rendered;
+  if (S.rank == 0) {
+    const double frame_s = out.stats["total_s"].get<double>();
+    out.stats["total_s"] = frame_s + tries_s;
+    out.stats["sample_spacing_auto"] = {{"chosen", out.scene.render.sample_spacing},
+                                        {"by", "still image: the frame checked by its estimate"},
+                                        {"steps", tried},
+                                        {"target_db", sc.render.target_db},
+                                        {"target_over4_share", kTargetOver4Share},
+                                        {"target_met", met},
+                                        {"probed", false},
+                                        {"probe_s", tries_s}};
+    nlohmann::json j = e.json();
+    j["seconds"] = estimate_s;
+    j["available"] = true;
+    j["fresh"] = true;
+    j["frame"] = frame;
+    out.stats["accuracy_estimate"] = j;
+  }
+  // What a later frame with these settings would reuse (render.estimate: auto).
+  std::vector<double> key = S.spacingKey(out.scene, {cam.width, cam.height});
+  key.insert(key.end(), {out.scene.render.sample_spacing, double(sc.render.estimate_pixels)});
+  S.estimate = {std::move(key), S.rank == 0 ? out.stats["accuracy_estimate"] : nlohmann::json(), true};
+  ++S.frames_rendered;
   return out;
 }
 

@@ -50,6 +50,9 @@ struct FrameRequest {
   bool surface = false;        // rank 0 also gets the particle surface (t, normal per pixel)
   std::string dump_layers;     // write this frame's brick images and order into this directory
   bool probe = false;          // a probe frame of render.sample_spacing: auto (not counted)
+  // How many frames the job renders with these settings; 0: not known (the service, in situ).
+  // 1: a still image, for which render.sample_spacing: auto does not probe (auto_spacing.h).
+  int job_frames = 0;
 };
 
 struct FrameResult {  // on rank 0; other ranks get empty images and null stats
@@ -135,6 +138,9 @@ class RenderSession {
   // render.sample_spacing: auto: the step for `sc` (probing when its inputs changed); rank 0's
   // `info` gets the choice and estimates for --stats. Collective.
   double autoSpacing(const Scene& sc, const FrameRequest& request, nlohmann::json& info);
+  // render.sample_spacing: auto for a still image (auto_spacing.h, stillSpacings): the frame itself
+  // at each step until its estimate meets the target. Collective.
+  FrameResult renderStill(const FrameRequest& request, const Scene& sc);
   std::unique_ptr<State> s_;
 };
 

@@ -31,7 +31,9 @@ std::vector<sortlast::SceneKey> sortlast::renderKeys() {
      "difference to the next finer step stays within 52 dB (session/auto_spacing.h). Probed again "
      "when the transfer function, the renderer's settings, the time step, the image size or a "
      "camera the frame sets change (not an orbit's frame); `--stats` gives the choice and each "
-     "step's estimate.",
+     "step's estimate. A still image (`sortlast render` of one frame, with `render.estimate` on "
+     "or auto) does not probe: the frame is drawn at 0.5, checked by its own estimate, and "
+     "again at 0.25 and 0.125 only where that misses the target (`by: still image`).",
      Real{member<&Scene::render, &RenderSection::sample_spacing>, {{"in [0.01, 100]", "must be {allowed} voxels"}}},
      AutoValue{member<&Scene::render, &RenderSection::sample_spacing_auto>}},
     {"render.block_cells", "64",

@@ -18,8 +18,10 @@ for t in "${tests[@]}"; do
   files+=("$HERE/$t")
   case $t in
   test_render.py)
-    # A small default scene, frame 0, PNG (with --stats) and EXR.
-    small=(--set image.width=96 --set image.height=64 --set "volume.dims=[32,32,32]")
+    # A small default scene, frame 0, PNG (with --stats) and EXR. The step pinned, as in
+    # test_render.py: a batch job of one frame takes a still image's step, a session's frame the
+    # probes' (session/auto_spacing.h).
+    small=(--set image.width=96 --set image.height=64 --set "volume.dims=[32,32,32]" --set render.sample_spacing=1)
     run_np "$NP" render -q "${small[@]}" -o ref_default.png --stats ref_default.json || fail "render"
     run_np "$NP" render -q "${small[@]}" -o ref_default.exr || fail "render exr"
     ;;

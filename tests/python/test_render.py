@@ -7,7 +7,9 @@ import numpy as np
 
 import sortlast
 
-SMALL = {"image.width": 96, "image.height": 64, "volume.dims": [32, 32, 32]}
+# The step pinned (run.sh's references too): `sortlast render` of one frame takes a still image's
+# step, a session's frames the probes' (session/auto_spacing.h).
+SMALL = {"image.width": 96, "image.height": 64, "volume.dims": [32, 32, 32], "render.sample_spacing": 1}
 KEYS = {"camera.position": [200, 120, 300], "transfer.preset": "sharp"}
 
 
@@ -58,7 +60,7 @@ def test_session_frames_and_stats(comm, rank, work):
 
 
 def test_dict_scene(comm, rank, work):
-    scene = {"image": {"width": 96, "height": 64}, "volume": {"dims": [32, 32, 32]}}
+    scene = {"image": {"width": 96, "height": 64}, "volume": {"dims": [32, 32, 32]}, "render": {"sample_spacing": 1}}
     img = sortlast.render(scene, comm=comm)
     if rank == 0:
         img.save(work / "dict.png")

@@ -74,7 +74,9 @@ frame() {
 json() { python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); print(eval(sys.argv[2]))' "$1" "$2"; }
 
 # render_like OUT.png NP [render arguments...]: the batch renderer's frame of the same settings.
-render_like() { local out=$1 np=$2; shift 2; run_np "$np" render -q -o "$out" "$@"; }
+# render.estimate=off: the service's default (serve_job.cpp); with it on, a batch job of one frame
+# would take a still image's step (session/auto_spacing.h) where the service probes.
+render_like() { local out=$1 np=$2; shift 2; run_np "$np" render -q -o "$out" --set render.estimate=off "$@"; }
 
 same() { "$SORTLAST" compare "$1" "$2" --max-diff 1 >"$WORK/compare.txt" 2>&1 || { cat "$WORK/compare.txt"; return 1; }; }
 
