@@ -94,10 +94,15 @@ const viewerState = () => page.evaluate(() => {
 
 // `--set` arguments for sortlast render that reproduce a frame: every key of the request
 // (values as JSON, which YAML reads), the camera and image size from the frame's stats.
-function renderArgs(request, camera) {
+function renderArgs(request, camera, stats) {
   const keys = { ...request };
   delete keys.format;
   delete keys.quality;
+  // render.sample_spacing: auto is a policy, not a step: the service probes for the frames a
+  // session will serve, a batch job of one frame takes a still image's step checked by its own
+  // estimate (session/auto_spacing.h), so the same frame is the step the service chose.
+  if (keys['render.sample_spacing'] === 'auto' && stats && Number.isFinite(stats.sample_spacing))
+    keys['render.sample_spacing'] = stats.sample_spacing;
   if (camera) {
     for (const k of ['position', 'look_at', 'up', 'fov']) if (camera[k] !== undefined) keys[`camera.${k}`] = camera[k];
     if (camera.width) keys['image.width'] = camera.width;
@@ -123,7 +128,7 @@ function writeFrameFiles(prefix, st) {
   fs.writeFileSync(path.join(outDir, `${prefix}camera.json`), JSON.stringify(st.lastCamera, null, 2) + '\n');
   fs.writeFileSync(path.join(outDir, `${prefix}request.json`), JSON.stringify(st.lastRequest, null, 2) + '\n');
   fs.writeFileSync(path.join(outDir, `${prefix}stats.json`), JSON.stringify(st.lastStats, null, 2) + '\n');
-  const args = renderArgs(st.lastRequest, st.lastCamera);
+  const args = renderArgs(st.lastRequest, st.lastCamera, st.lastStats);
   fs.writeFileSync(path.join(outDir, `${prefix}render_args.txt`), args.join('\n') + '\n');
   return args;
 }
