@@ -179,6 +179,27 @@ TEST(ProjectionPixels, RadixKMatchesOneCombine) {
 constexpr WireFormat kBounded[] = {WireFormat::ValueMaxBounded, WireFormat::ValueMinBounded};
 
 // A random bounded pixel (v, packed layer rgb, 0, flags): absent, a value, a layer, or both.
+// Six pixels p (back to front) combined one by one into `left`, and the same order grouped as a
+// tree, (p0 p1) (p2 p3 p4) (p5), each group back to front, then the groups back to front: an
+// associative operator gives the same result bit for bit.
+void expectGroupingFree(WireFormat f, const float (&p)[6][4], float* left) {
+  for (auto& q : p) combineProjected(f, q, left);
+  float a[4] = {0, 0, 0, 0}, b[4] = {0, 0, 0, 0}, c[4] = {0, 0, 0, 0};
+  combineProjected(f, p[0], a), combineProjected(f, p[1], a);
+  combineProjected(f, p[2], b), combineProjected(f, p[3], b), combineProjected(f, p[4], b);
+  combineProjected(f, p[5], c);
+  float all[4] = {0, 0, 0, 0};
+  combineProjected(f, a, all), combineProjected(f, b, all), combineProjected(f, c, all);
+  for (int k = 0; k < 4; ++k) EXPECT_EQ(all[k], left[k]);
+}
+
+// The index of the frontmost of the six pixels that carries an opaque layer, -1 if none does.
+int frontmostLayer(WireFormat f, const float (&p)[6][4]) {
+  for (int i = 5; i >= 0; --i)
+    if (boundedHasLayer(f, p[i])) return i;
+  return -1;
+}
+
 void randomBoundedPixel(std::mt19937& rng, float* p) {
   std::uniform_real_distribution<float> u(-3.0f, 5.0f);
   for (int c = 0; c < 4; ++c) p[c] = 0.0f;
@@ -219,20 +240,9 @@ TEST(ProjectionPixels, BoundedOperatorKeepsTheVisibilityOrder) {
       float p[6][4];  // back to front
       for (auto& q : p) randomBoundedPixel(rng, q);
       float left[4] = {0, 0, 0, 0};
-      for (auto& q : p) combineProjected(f, q, left);
-      // The same order grouped as a tree: (p0 p1) (p2 p3 p4) (p5), each group back to front,
-      // then the groups back to front.
-      float a[4] = {0, 0, 0, 0}, b[4] = {0, 0, 0, 0}, c[4] = {0, 0, 0, 0};
-      combineProjected(f, p[0], a), combineProjected(f, p[1], a);
-      combineProjected(f, p[2], b), combineProjected(f, p[3], b), combineProjected(f, p[4], b);
-      combineProjected(f, p[5], c);
-      float all[4] = {0, 0, 0, 0};
-      combineProjected(f, a, all), combineProjected(f, b, all), combineProjected(f, c, all);
-      for (int k = 0; k < 4; ++k) EXPECT_EQ(all[k], left[k]);
+      expectGroupingFree(f, p, left);
       // The frontmost layer hides what lies behind it: the result's value comes from in front of it.
-      int front_layer = -1;
-      for (int i = 5; i >= 0 && front_layer < 0; --i)
-        if (boundedHasLayer(f, p[i])) front_layer = i;
+      const int front_layer = frontmostLayer(f, p);
       if (front_layer >= 0) {
         EXPECT_EQ(left[1], p[front_layer][1]);
         float v[4] = {0, 0, 0, 0};
@@ -393,18 +403,9 @@ TEST(ProjectionPixels, BoundedSumsOperatorKeepsTheVisibilityOrder) {
       float p[6][4];  // back to front
       for (auto& q : p) randomBoundedSumPixel(f, rng, q);
       float left[4] = {0, 0, 0, 0};
-      for (auto& q : p) combineProjected(f, q, left);
-      float a[4] = {0, 0, 0, 0}, b[4] = {0, 0, 0, 0}, c[4] = {0, 0, 0, 0};
-      combineProjected(f, p[0], a), combineProjected(f, p[1], a);
-      combineProjected(f, p[2], b), combineProjected(f, p[3], b), combineProjected(f, p[4], b);
-      combineProjected(f, p[5], c);
-      float all[4] = {0, 0, 0, 0};
-      combineProjected(f, a, all), combineProjected(f, b, all), combineProjected(f, c, all);
-      for (int k = 0; k < 4; ++k) EXPECT_EQ(all[k], left[k]);
+      expectGroupingFree(f, p, left);
       // Only what lies in front of the frontmost layer adds up, and that layer is the pixel's.
-      int front_layer = -1;
-      for (int i = 5; i >= 0 && front_layer < 0; --i)
-        if (boundedHasLayer(f, p[i])) front_layer = i;
+      const int front_layer = frontmostLayer(f, p);
       SumsOf want;
       want.layer = front_layer >= 0 ? boundedLayer(f, p[front_layer]) : 0u;
       want.flags = front_layer >= 0 ? 2 : 0;
