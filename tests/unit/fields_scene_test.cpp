@@ -199,14 +199,15 @@ TEST(FieldsScene, ErrorsNameTheEntryAndKey) {
 
 TEST(FieldsScene, ModesItCannotMixAreRefusedByName) {
   const std::string two = "volumes: [{procedural: sphere}, {procedural: blobs, dims: [8, 8, 8]}]\n";
-  for (const auto& [set, key] : std::vector<std::pair<std::string, std::string>>{
+  // (`c` by name, not a structured binding: clang 14 cannot capture a binding in a lambda.)
+  for (const auto& c : std::vector<std::pair<std::string, std::string>>{
            {"render.method=slicing", "render.method"},
            {"adaptive.tolerance=1", "adaptive.tolerance"},
            {"render.adaptive_step=true", "render.adaptive_step"},
            {"render.shading=true", "render.shading"},
            {"particles.procedural=layers", "particles"}}) {
-    const std::string e = inputErrorOf([&] { parse(two, {set}); });
-    EXPECT_NE(e.find("'volumes' and '" + key), std::string::npos) << set << ": " << e;
+    const std::string e = inputErrorOf([&] { parse(two, {c.first}); });
+    EXPECT_NE(e.find("'volumes' and '" + c.second), std::string::npos) << c.first << ": " << e;
   }
   const std::string e = inputErrorOf([&] {
     parse("volumes: [{procedural: sphere}, {procedural: blobs, transfer: {preintegrated: true}}]\n");
