@@ -97,6 +97,9 @@ EmptyBlocks::EmptyBlocks(const BrickField& field, const TransferFunction& tf, do
 namespace {
 
 constexpr double kStopTransmit = 1e-4;
+// The cell march's error per voxel (the smallest spacing) of the ray's length: a ray through 100
+// visible voxels is within 100 kCellTolerance of the exact integral (and of the fine steps).
+constexpr double kCellTolerance = 1e-5;
 
 // The transfer function along a ray: the piece a value falls in is walked to from the previous
 // sample's (the values change little from step to step) instead of searched, and the linear
@@ -107,6 +110,7 @@ class TfCursor {
   explicit TfCursor(const TransferFunction& tf)
       : tf_(tf), p_(tf.points()), linear_(tf.scale().kind == ValueScaleKind::kLinear),
         lo_(tf.rangeLo()), hi_(tf.rangeHi()) {}
+  bool linear() const { return linear_; }
   // (r, g, b, opacity) at raw value v.
   std::array<double, 4> at(double v) {
     const double x = linear_ ? std::clamp((v - lo_) / (hi_ - lo_), 0.0, 1.0) : tf_.normalise(v);
@@ -138,6 +142,13 @@ class FieldCursor {
  public:
   FieldCursor(const BrickField& field, const glm::dvec3& o, const glm::dvec3& d)
       : field_(field), o_(o), d_(d), du_(d / field.grid.spacing) {}
+
+  // Builds the cubic of the cell holding the ray's point at t; false where BrickField::at would
+  // clamp there (then at() answers per sample).
+  bool enterAt(double t) { return enter(t, field_.grid.indexOfWorld(o_ + t * d_)); }
+  double exitT() const { return t_hi_; }  // where the ray leaves the cell entered last
+  double refT() const { return t_ref_; }  // the cubic is in s = t - refT()
+  const double* cubic() const { return k_; }
 
   // The value at ray parameter t.
   double at(double t) {
@@ -203,12 +214,132 @@ class FieldCursor {
   double k_[4] = {0, 0, 0, 0};
 };
 
+// The longest midpoint step that keeps one step's error within `tol` on one cell's crossing, the
+// field there v(s) = k0 + k1 s + k2 s^2 + k3 s^3 for s in [sa, sb] (a cubic: FieldCursor); 0 where
+// nothing on the crossing has opacity (or a sample is missing: every sample is then NaN) and the
+// crossing contributes exactly nothing. Linear scale only (x = (v - lo) / (hi - lo), clamped).
+//
+// The bound. From the cubic: the crossing's value range, V1 >= |v'| and V2 >= |v''| on it. On
+// each piece of the function (between its points) opacity a and colour c are linear in x (slopes
+// ka, kc), so tau = -log(1 - a) / L has tau' = ka / ((1 - a) L) and tau'' = ka^2 / ((1 - a)^2 L),
+// both largest where a is: over the pieces the crossing's values reach, T0 >= tau, T1 >= |tau'|,
+// T2 >= |tau''|, C0 >= c, C1 >= |kc| (derivatives in x), and with x' = v' / (hi - lo) the
+// integrands tau and c tau along the ray have |f'| <= F1 and |f''| <= F2 (chain rule).
+// - No point of the function (nor the range's clamp, nor the opacity cap) inside the crossing's
+//   value range: tau and c tau are smooth on the crossing, and a midpoint step of length h,
+//   composited exactly for its midpoint's tau and c (1 - exp(-tau h)), is off from the exact
+//   integral by h^3 (F2 / 24 + (F1(c tau) T0 + C0 T0 F1(tau)) / 12) to leading order, in optical
+//   depth and emission (the first: the midpoint rule's h^3 f'' / 24; the second: the emission's
+//   transmittance inside the step); a factor 2 covers what follows, and h <= 0.5 / T0 keeps it
+//   small.
+// - Otherwise (a kink): Lipschitz, |f(s) - f(mid)| <= F1 |s - mid|, so off by at most
+//   h^2 (F1(tau) + F1(c tau)) / 4 + h^3 C0 T0 F1(tau) / 2.
+// An error d in a step's optical depth or emission moves the pixel by at most d (what lies behind
+// is at most 1), as the blocks' first-order rule (EmptyBlocks) counts it.
+double cellStep(const TransferFunction& tf, const double* k, double sa, double sb, double tol) {
+  // tol: per unit length (a step of h may be off by tol h), so a ray's steps add up to tol times
+  // the length it integrates, whatever their number.
+  auto v = [&](double s) { return ((k[3] * s + k[2]) * s + k[1]) * s + k[0]; };
+  auto dv = [&](double s) { return (3.0 * k[3] * s + 2.0 * k[2]) * s + k[1]; };
+  double vlo = std::min(v(sa), v(sb)), vhi = std::max(v(sa), v(sb));
+  double v1 = std::max(std::abs(dv(sa)), std::abs(dv(sb)));
+  const double v2 = std::max(std::abs(6.0 * k[3] * sa + 2.0 * k[2]), std::abs(6.0 * k[3] * sb + 2.0 * k[2]));
+  // v' = 3 k3 s^2 + 2 k2 s + k1: its roots (v's extremes) and its vertex (|v'|'s) inside [sa, sb].
+  const double qa = 3.0 * k[3], qb = 2.0 * k[2], qc = k[1];
+  auto take = [&](double s) {
+    if (s > sa && s < sb) vlo = std::min(vlo, v(s)), vhi = std::max(vhi, v(s));
+  };
+  if (qa != 0.0) {
+    const double disc = qb * qb - 4.0 * qa * qc;
+    if (disc >= 0.0) {
+      const double r = std::sqrt(disc);
+      take((-qb - r) / (2.0 * qa));
+      take((-qb + r) / (2.0 * qa));
+    }
+    const double vert = -qb / (2.0 * qa);
+    if (vert > sa && vert < sb) v1 = std::max(v1, std::abs(dv(vert)));
+  } else if (qb != 0.0) {
+    take(-qc / qb);
+  }
+  if (!std::isfinite(vlo + vhi + v1 + v2)) return 0.0;  // a missing corner: every sample NaN
+  const double lo = tf.rangeLo(), hi = tf.rangeHi();
+  bool kink = (vlo < lo && vhi > lo) || (vlo < hi && vhi > hi);
+  const double xl = tf.normalise(vlo), xh = tf.normalise(vhi);
+  const std::vector<TfPoint>& p = tf.points();
+  const double cap = TransferFunction::kMaxOpacity, unit = tf.unitLength();
+  double t0 = 0.0, t1 = 0.0, t2 = 0.0, c0 = 0.0, c1 = 0.0;
+  // The pieces the range reaches, the constant ends beyond the first and last points included.
+  auto piece = [&](double u0, double u1, double ka, const double kc[3]) {
+    const std::array<double, 4> e0 = tf.atNormalised(u0), e1 = tf.atNormalised(u1);
+    double amax = std::max(e0[3], e1[3]);
+    if (amax >= cap) kink = true, amax = cap;
+    if (!(amax > 0.0)) return;  // no opacity: tau = 0, nothing emitted
+    t0 = std::max(t0, -std::log1p(-amax) / unit);
+    t1 = std::max(t1, std::abs(ka) / ((1.0 - amax) * unit));
+    t2 = std::max(t2, ka * ka / ((1.0 - amax) * (1.0 - amax) * unit));
+    for (int c = 0; c < 3; ++c) {
+      c0 = std::max({c0, std::abs(e0[c]), std::abs(e1[c])});
+      c1 = std::max(c1, std::abs(kc[c]));
+    }
+  };
+  const double zero[3] = {0, 0, 0};
+  if (xl < p.front().value) piece(xl, std::min(xh, p.front().value), 0.0, zero);
+  if (xh > p.back().value) piece(std::max(xl, p.back().value), xh, 0.0, zero);
+  for (size_t i = 0; i + 1 < p.size(); ++i) {
+    if (p[i].value > xl && p[i].value < xh) kink = true;
+    const double u0 = std::max(xl, p[i].value), u1 = std::min(xh, p[i + 1].value);
+    if (!(p[i + 1].value > p[i].value) || u0 > u1) continue;
+    const double w = p[i + 1].value - p[i].value;
+    const double kc[3] = {(p[i + 1].r - p[i].r) / w, (p[i + 1].g - p[i].g) / w, (p[i + 1].b - p[i].b) / w};
+    piece(u0, u1, (p[i + 1].a - p[i].a) / w, kc);
+  }
+  if (p.back().value > xl && p.back().value < xh) kink = true;
+  if (!(t0 > 0.0)) return 0.0;
+  const double x1 = v1 / (hi - lo), x2 = v2 / (hi - lo);
+  const double f1 = t1 * x1, f1c = (c1 * t0 + c0 * t1) * x1;
+  if (!kink) {
+    const double f2 = t2 * x1 * x1 + t1 * x2;
+    const double f2c = (2.0 * c1 * t1 + c0 * t2) * x1 * x1 + (c1 * t0 + c0 * t1) * x2;
+    const double b = 2.0 * ((f2 + f2c) / 24.0 + (f1c * t0 + c0 * t0 * f1) / 12.0);
+    return std::min(std::sqrt(tol / b), 0.5 / t0);
+  }
+  const double a2 = (f1 + f1c) / 4.0, a3 = c0 * t0 * f1 / 2.0;
+  return std::min(tol / (2.0 * a2), std::sqrt(tol / (2.0 * a3)));
+}
+
 // The midpoint rule along one ray through one brick: each step [ta, ta + h] composited into `out`.
 class Marcher {
  public:
   Marcher(const BrickField& field, const TransferFunction& tf, const Shading& shading, double flat,
           const glm::dvec3& o, const glm::dvec3& d)
       : field_(field), tf_(tf), tfc_(tf), shading_(shading), flat_(flat), o_(o), d_(d), cursor_(field, o, d) {}
+
+  // Whether cells() can march this ray (unshaded, the function's linear scale).
+  bool cellwise() const { return !shading_.enabled && tfc_.linear(); }
+
+  // [ta, tb] cell by cell: in each cell crossed, equal steps of the longest length cellStep
+  // allows for `tol`, at least `h_min` (the fine step, or the block's multiple of it), none where
+  // cellStep finds nothing to integrate. Where the field clamps (the grid's or the held samples'
+  // edge), steps of h_min to tb.
+  void cells(SegmentIntegral& out, double ta, double tb, double step, double h_min, double tol) {
+    double t = ta;
+    while (t < tb && out.transmit > kStopTransmit) {
+      const double probe = t + std::min(0.25 * step, 0.5 * (tb - t));
+      if (!cursor_.enterAt(probe)) {
+        const long long n = std::max(1LL, (long long)std::ceil((tb - t) / h_min));
+        steps(out, t, n, (tb - t) / double(n));
+        return;
+      }
+      double te = std::min(cursor_.exitT(), tb);
+      if (te <= probe) te = std::min(tb, probe + 0.25 * step);  // rounding at a face
+      const double h = cellStep(tf_, cursor_.cubic(), t - cursor_.refT(), te - cursor_.refT(), tol);
+      if (h > 0.0) {
+        const long long n = std::max(1LL, (long long)std::ceil((te - t) / std::max(h, h_min)));
+        steps(out, t, n, (te - t) / double(n));
+      }
+      t = te;
+    }
+  }
 
   // n equal steps of h from ta (stopping once the transmittance is below kStopTransmit).
   void steps(SegmentIntegral& out, double ta, long long n, double h) {
@@ -268,7 +399,9 @@ SegmentIntegral integrateSegment(const BrickField& field, const TransferFunction
     double ta, tb;
     if (!intersectRayBox(o, d, box, ta, tb) || tb <= probe) tb = probe + 0.25 * step;  // rounding at a face
     tb = std::min(tb, t1);
-    if (!blocks->empty[bi]) {
+    if (!blocks->empty[bi] && march.cellwise()) {
+      march.cells(out, t, tb, step, blocks->multiple[bi] * step, kCellTolerance / field.grid.minSpacing());
+    } else if (!blocks->empty[bi]) {
       const double len = tb - t, big = blocks->multiple[bi] * step;
       const long long n = std::max(1LL, (long long)std::ceil(len / big));
       march.steps(out, t, n, len / double(n));

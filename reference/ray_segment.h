@@ -62,7 +62,16 @@ struct SegmentIntegral {
 // then moves no channel by more than 0.03/255). `flat`: flatGradient() of the transfer
 // function's range. `empty` (built for the same field, function and step): steps in empty blocks
 // are jumped, which changes nothing but the time, and each block's steps are its `multiple` of
-// `step` (cut at the block's faces), within EmptyBlocks::kTolerance of the fine steps.
+// `step` (cut at the block's faces), within EmptyBlocks::kTolerance of the fine steps. Unshaded,
+// under a linear scale, the blocks' steps are cut at the cells' faces too: in each cell crossed,
+// equal steps as long as a bound on their error allows (the integrand's first and second
+// derivatives from the cell's cubic and the function's pieces: ray_segment.cpp, cellStep), at
+// most 1e-5 per voxel of the ray's length, never finer than the block's; none where no value on
+// the crossing has opacity. Measured at 512² with 4,096 sampled rays (results/accuracy/
+// estimate_cost.md): a half to a fifth of the block march's samples, and as close to a march 16
+// times finer as the block march was (head CT 1.9e-4 against 2.0e-4 at worst, engine 1.8e-4
+// against 1.1e-3, neghip's sharp function 5.3e-2 against 5.6e-2, where the reference's own step
+// is that far off).
 SegmentIntegral integrateSegment(const BrickField& field, const TransferFunction& tf,
                                  const Shading& shading, double flat, const glm::dvec3& o,
                                  const glm::dvec3& d, double t0, double t1, double step,
