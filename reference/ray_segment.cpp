@@ -73,6 +73,7 @@ EmptyBlocks::EmptyBlocks(const BrickField& field, const TransferFunction& tf, do
   count = (cells + kCells - 1) / kCells;
   empty.assign(size_t(count.x) * count.y * count.z, 0);
   multiple.assign(empty.size(), 1);
+  kinked.assign(empty.size(), 1);
   // Every frame's estimate builds these (a fifth of the engine's estimate, 256^3, perf): slabs of
   // blocks in threads, each block written by one.
   std::atomic<int> next_slab{0};
@@ -94,6 +95,12 @@ EmptyBlocks::EmptyBlocks(const BrickField& field, const TransferFunction& tf, do
           const double lo = lo_f, hi = hi_f;
           const size_t b = size_t(bx) + size_t(count.x) * (size_t(by) + size_t(count.y) * size_t(bz));
           empty[b] = !nan && lo <= hi && tf.maxOpacity(lo, hi) <= 0.0;
+          if (!nan && lo <= hi) {
+            const double xl = tf.normalise(lo), xh = tf.normalise(hi);
+            bool k = (lo < tf.rangeLo() && hi > tf.rangeLo()) || (lo < tf.rangeHi() && hi > tf.rangeHi());
+            for (const TfPoint& p : tf.points()) k = k || (p.value > xl && p.value < xh);
+            kinked[b] = k;
+          }
           if (nan || shading || !(step > 0.0) || !(lo <= hi)) continue;
           const double osc = oscillation(tf, lo, hi);
           int m = 1;
@@ -413,7 +420,7 @@ SegmentIntegral integrateSegment(const BrickField& field, const TransferFunction
     double ta, tb;
     if (!intersectRayBox(o, d, box, ta, tb) || tb <= probe) tb = probe + 0.25 * step;  // rounding at a face
     tb = std::min(tb, t1);
-    if (!blocks->empty[bi] && march.cellwise()) {
+    if (!blocks->empty[bi] && march.cellwise() && !blocks->kinked[bi]) {
       march.cells(out, t, tb, step, blocks->multiple[bi] * step, kCellTolerance / field.grid.minSpacing());
     } else if (!blocks->empty[bi]) {
       const double len = tb - t, big = blocks->multiple[bi] * step;

@@ -102,9 +102,9 @@ TEST(FrameEstimate, BrickSegmentsComposeTheWholeRaysIntegral) {
     // far below an 8-bit step; the early stop at transmittance 1e-4 adds at most 1e-4.
     EXPECT_LT(worst, 2e-4) << "shaded " << shaded;
     // Blocks: empty ones jumped, steps cut at block faces and coarser where the function varies
-    // little over a block's values (EmptyBlocks::kTolerance); unshaded, cut at cell faces too and
-    // as long as cellStep's bound allows: within 1e-4 of the plain march (measured 1.0e-5
-    // unshaded (4.5e-6 with the block march alone), 3.5e-5 shaded), a fortieth of an 8-bit step.
+    // little over a block's values (EmptyBlocks::kTolerance); unshaded, blocks without a kink
+    // marched cell by cell as long as cellStep's bound allows: within 1e-4 of the plain march
+    // (measured 4.5e-6 unshaded, 3.5e-5 shaded), a fortieth of an 8-bit step.
     EXPECT_LT(worst_jump, 1e-4) << "the block march strays from the plain one";
   }
 }
@@ -159,11 +159,11 @@ TEST(FrameEstimate, CellCubicsAndPieceWalksAreTheReferencesArithmetic) {
   EXPECT_LT(worst, 1e-12);
 }
 
-// The cell march (steps per cell crossed, as long as cellStep's bound allows, none where nothing
-// is visible) against a march 32 times finer, for the presets: no farther from it than the plain
-// march at the reference's step is (the sharp preset's narrow band is where the 1/16-voxel step
-// itself is off by 5e-3 and the partition matters: the cells measured 7.7e-3 there against the
-// plain 4.7e-3, so twice the plain march's error; elsewhere within 1e-5 of it).
+// The block march with its cell march in blocks without a kink (steps per cell crossed, as long
+// as cellStep's bound allows, none where nothing is visible) against a march 32 times finer, for
+// the presets: no farther from it than the plain march at the reference's step is, within 1e-5
+// (the sharp preset's narrow band is where the 1/16-voxel step itself is off by 5e-3 and where
+// the steps are cut matters: allowed twice the plain march's error there).
 TEST(FrameEstimate, CellMarchIsAsCloseToAFinerMarchAsThePlainOne) {
   const WholeVolume v = blobVolume();
   const Camera cam = smallCamera();
