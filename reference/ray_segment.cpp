@@ -158,7 +158,8 @@ class TfCursor {
 // coefficients found once per cell the ray crosses and evaluated by Horner's rule (the ray's
 // samples in one cell: up to 16 a voxel at the reference's step). Where BrickField::at would clamp
 // (outside the grid or the held samples), it is BrickField::at. Equal to it within rounding: the
-// same eight corners, the products expanded (about 1e-13 of the values, FieldCursor test).
+// same eight corners, the products expanded (within 1e-12 in the test
+// FrameEstimate.CellCubicsAndPieceWalksAreTheReferencesArithmetic).
 class FieldCursor {
  public:
   FieldCursor(const BrickField& field, const glm::dvec3& o, const glm::dvec3& d)
