@@ -51,6 +51,13 @@ EstimateSample chooseEstimatePixels(const ImageRGBA8& frame, const glm::dvec3& b
   s.tile_pixels.assign(size_t(tiles), 0.0);
   s.tile_samples.assign(size_t(tiles), 0);
   std::vector<double> contrast(size_t(tiles), 0.0);
+  // Each pixel's luminance once (the rectangle and the row and column past it), not three times.
+  const int lw = std::min(frame.width, rect.x + rect.w + 1) - rect.x,
+            lh = std::min(frame.height, rect.y + rect.h + 1) - rect.y;
+  std::vector<double> lum(size_t(lw) * size_t(lh));
+  for (int y = 0; y < lh; ++y)
+    for (int x = 0; x < lw; ++x) lum[size_t(y) * lw + x] = luminance(frame, background, rect.x + x, rect.y + y);
+  auto lum_at = [&](int x, int y) { return lum[size_t(y - rect.y) * lw + size_t(x - rect.x)]; };
   for (int t = 0; t < tiles; ++t) {
     const int x0 = rect.x + (t % tx) * side, y0 = rect.y + (t / tx) * side;
     const int x1 = std::min(rect.x + rect.w, x0 + side), y1 = std::min(rect.y + rect.h, y0 + side);
@@ -58,9 +65,9 @@ EstimateSample chooseEstimatePixels(const ImageRGBA8& frame, const glm::dvec3& b
     double g = 0.0;
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {
-        const double l = luminance(frame, background, x, y);
-        if (x + 1 < frame.width) g += std::abs(luminance(frame, background, x + 1, y) - l);
-        if (y + 1 < frame.height) g += std::abs(luminance(frame, background, x, y + 1) - l);
+        const double l = lum_at(x, y);
+        if (x + 1 < frame.width) g += std::abs(lum_at(x + 1, y) - l);
+        if (y + 1 < frame.height) g += std::abs(lum_at(x, y + 1) - l);
       }
     contrast[size_t(t)] = g / s.tile_pixels[size_t(t)];
   }
