@@ -10,6 +10,7 @@
 
 #include "common/box.h"
 #include "common/enum_names.h"
+#include "common/pixel_threads.h"
 
 namespace sortlast {
 
@@ -337,8 +338,9 @@ nlohmann::json estimateFrame(const EstimateVolume& mine, const Camera& cam, cons
     sample = chooseEstimatePixels(*f8, background, screenRectOf(cam, volume_box), budget);
   }
   broadcastSample(sample, comm);
-  const int threads = int(std::max(1u, std::thread::hardware_concurrency()));
-  const std::vector<double> exact = exactSampledPixels(sample, cam, mine, background, threads, comm);
+  // This rank's share of the node's cores (common/pixel_threads.h), not all of them: 4 ranks on
+  // 2 cores started 8 integrating threads.
+  const std::vector<double> exact = exactSampledPixels(sample, cam, mine, background, pixelThreads(), comm);
   if (rank != 0) return nullptr;
   nlohmann::json j = compareWithExact(sample, exact, frame, float_frame, background).json();
   j["seconds"] = MPI_Wtime() - t0;

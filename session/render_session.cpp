@@ -718,8 +718,7 @@ double RenderSession::autoSpacing(const Scene& sc, const FrameRequest& request, 
                                             std::min(sc.render.estimate_pixels, w * h / 2));
             }
             broadcastSample(sample, S.comm);
-            exact = exactSampledPixels(sample, cam, mine, sc.image.background,
-                                       int(std::max(1u, std::thread::hardware_concurrency())), S.comm);
+            exact = exactSampledPixels(sample, cam, mine, sc.image.background, pixelThreads(), S.comm);
             integrated = true;
           }
           int pass = 0;
@@ -979,8 +978,7 @@ FrameResult RenderSession::renderStill(const FrameRequest& request, const Scene&
                                       sc.render.estimate_pixels);
       broadcastSample(sample, S.comm);
       const EstimateVolume mine = estimateVolumeOf(sc, S.layout, *S.current, S.dataRange());
-      exact = exactSampledPixels(sample, cam, mine, sc.image.background,
-                                 int(std::max(1u, std::thread::hardware_concurrency())), S.comm);
+      exact = exactSampledPixels(sample, cam, mine, sc.image.background, pixelThreads(), S.comm);
     }
     int pass = 0;
     if (S.rank == 0) {
