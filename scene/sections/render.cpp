@@ -123,7 +123,8 @@ std::vector<sortlast::SceneKey> sortlast::renderKeys() {
      "Ray casting: a ray stops once its opacity reaches this; 1: never early. It "
      "stops only inside a brick (bricks behind still render), and changes a pixel by at most "
      "1 - threshold (0.999: 0.26/255, within the accuracy goal's 4/255 with room for the step's "
-     "error; 0.99's 2.55/255 cost the head CT 5.8 dB at 0.5 voxel, results/accuracy/causes.md).",
+     "error; 0.99's 2.55/255 cost the head CT 5.8 dB against it at 0.5 voxel, "
+     "results/accuracy/causes.md).",
      Real{member<&Scene::render, &RenderSection::ert_threshold>,
           {{"in (0, 1]", "must be {allowed} (1: no early termination)"}}}},
     {"render.shading", "false",
