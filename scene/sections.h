@@ -57,7 +57,7 @@ struct RenderSection {
   int block_cells = 64;     // empty-space skipping granularity (slicing)
   int ray_block_cells = 8;  // the ray caster's skipping and step blocks
   RenderMethod method = RenderMethod::kRaycast;
-  double ert_threshold = 0.99;            // ray casting: early ray termination opacity
+  double ert_threshold = 0.999;           // ray casting: early ray termination opacity
   Shading shading;                        // gradient shading of the volume (render.shading*)
   bool adaptive_step = false;             // ray casting: a block takes every m-th lattice sample
   double adaptive_step_tolerance = 0.02;  // the step rule's bound (render/volume/step_rule.h)

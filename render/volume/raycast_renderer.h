@@ -48,7 +48,7 @@
 namespace sortlast {
 
 struct RaycastSettings {
-  double ert_threshold = 0.99;  // stop a ray at this opacity, in (0, 1]; 1: never stop early
+  double ert_threshold = 0.999;  // stop a ray at this opacity, in (0, 1]; 1: never stop early
   // Adaptive bricks: a block at level L takes every 2^L-th lattice sample (true), or every one.
   bool own_resolution_steps = true;
   // Plain bricks: a block takes every m-th lattice sample (render/volume/step_rule.h), m <= 8, the
