@@ -20,6 +20,16 @@ export OMPI_MCA_ess_singleton_isolated=1
 # when a job has more ranks than cores): 2-rank jobs spun ~15 % of their CPU in opal_progress
 # (perf), taken from the test running beside them.
 export OMPI_MCA_mpi_yield_when_idle=1
+# Page faults, not rendering, are most of a test process's CPU on the test machines (a VM where a
+# fault costs ~20 us: a 160x128 render takes ~10,000 of them, ~40 % of its CPU; perf, 2026-12-06):
+# - PMIx's shared-memory key-value store makes mpirun create and memset two segments at every
+#   launch (40 % of an MPI hello world's faults); its hash store does without them.
+# - glibc's malloc asks for transparent huge pages on its heap (the machine's THP mode is
+#   `madvise`): one fault per 2 MiB instead of per 4 KiB page of fresh heap.
+# Seven tests on 2 cores (golden_set, fields, projection, ...): 183 -> 140 s of CPU, 110 -> 87 s.
+# Launch costs only: the images, the ranks' messages and what the tests check do not change.
+export PMIX_MCA_gds=hash
+export GLIBC_TUNABLES=${GLIBC_TUNABLES:+$GLIBC_TUNABLES:}glibc.malloc.hugetlb=1
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
 # The helpers run Debian's python3 (scripts/install-deps installs it), found first on PATH: a
