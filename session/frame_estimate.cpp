@@ -214,36 +214,41 @@ AccuracyEstimate compareWithExact(const EstimateSample& sample, const std::vecto
     over[t] += worst > kOverTolerance ? 1.0 : 0.0;
     e.largest_seen = std::max(e.largest_seen, worst);
   }
-  // Stratified means and variances over the whole frame (pixels outside the tiles: exact).
+  // Stratified means over the whole frame (pixels outside the tiles: exact).
   const double total = double(sample.width) * sample.height;
+  double tiles_area = 0.0;
+  for (size_t t = 0; t < tiles; ++t) tiles_area += sample.tile_pixels[t];
   double mse = 0.0, var_mse = 0.0, share = 0.0, var_share = 0.0;
   for (size_t t = 0; t < tiles; ++t) {
     const double n = sample.tile_samples[t], big_n = sample.tile_pixels[t];
     if (n <= 0) continue;
-    const double wgt = big_n / total;
-    const double mean = se_sum[t] / n;
-    mse += wgt * mean;
-    share += wgt * over[t] / n;
-    const double fpc = 1.0 - n / big_n;
-    if (n > 1) {
-      const double s2 = std::max(0.0, (se_sq[t] - n * mean * mean) / (n - 1));
-      var_mse += wgt * wgt * fpc * s2 / n;
-    }
+    mse += big_n / total * se_sum[t] / n;
+    share += big_n / total * over[t] / n;
   }
-  // The share's variance: each tile's from its share shrunk toward the tiles' share by one
-  // pseudo-sample, (over + share) / (n + 1). A tile's 2-5 samples mostly see no pixel over 4/255
-  // where the frame has a few, and p (1 - p) = 0 there made the bound too narrow. Simulated on
-  // whole frames against their references (bench/accuracy/estimate-coverage, 200 draws a view,
-  // 6 views each of neghip, engine and bucky at 256²): the truth fell inside the plain bound in
-  // 0.93-0.94 of the draws on neghip and engine (0.87 in the worst view), inside this one in
-  // 0.98-0.99 (0.945), the bound 18-57 % wider.
-  double tiles_area = 0.0;
-  for (size_t t = 0; t < tiles; ++t) tiles_area += sample.tile_pixels[t];
+  // Their variances, each tile's shrunk toward the frame's by one pseudo-sample. A tile's 2-5
+  // samples mostly see none of the few pixels far off (a rim, a band) where the frame has them,
+  // and a variance of 0 there made the bounds too narrow. The share: (over + share) / (n + 1) for
+  // p (1 - p). The MSE: ((n - 1) s2 + s2_frame) / n, s2_frame the squared error's variance over
+  // the tiles. Redrawn on whole frames against their references (bench/accuracy/
+  // estimate-coverage, 200 draws a view, 6-8 views each; results/accuracy/estimate_coverage.md):
+  // the share's truth inside the plain bound in 0.93-0.94 of the draws on neghip and engine (0.87
+  // in the worst view), inside the shrunk one in 0.98-0.99 (0.945), 18-57 % wider.
   const double tiles_share = tiles_area > 0 ? share * total / tiles_area : 0.0;
+  const double tiles_mse = tiles_area > 0 ? mse * total / tiles_area : 0.0;
+  double s2_frame = 0.0;  // sum over the tiles of N_t / area x their samples' mean (se - tiles_mse)^2
+  for (size_t t = 0; t < tiles; ++t) {
+    const double n = sample.tile_samples[t];
+    if (n <= 0) continue;
+    const double mean_sq = (se_sq[t] - 2.0 * tiles_mse * se_sum[t]) / n + tiles_mse * tiles_mse;
+    s2_frame += sample.tile_pixels[t] / tiles_area * std::max(0.0, mean_sq);
+  }
   for (size_t t = 0; t < tiles; ++t) {
     const double n = sample.tile_samples[t], big_n = sample.tile_pixels[t];
     if (n <= 1) continue;
     const double wgt = big_n / total, fpc = 1.0 - n / big_n;
+    const double mean = se_sum[t] / n;
+    const double s2 = std::max(0.0, (se_sq[t] - n * mean * mean) / (n - 1));
+    var_mse += wgt * wgt * fpc * ((n - 1) * s2 + s2_frame) / n / n;
     const double p = (over[t] + tiles_share) / (n + 1.0);
     var_share += wgt * wgt * fpc * (p * (1 - p) * n / (n - 1)) / n;
   }
@@ -255,9 +260,7 @@ AccuracyEstimate compareWithExact(const EstimateSample& sample, const std::vecto
   // The rule of three's floor for the share's upper bound: with no pixel over seen among n
   // samples, a share up to 3 / n of the sampled area is still 95 % plausible.
   // Times the share of the tiles' pixels left unsampled (all sampled: the share is known).
-  double sampled_area = 0.0;
-  for (size_t t = 0; t < tiles; ++t) sampled_area += sample.tile_pixels[t];
-  e.rule_of_three = e.sampled > 0 ? 3.0 / e.sampled * std::max(0.0, 1.0 - e.sampled / sampled_area) * sampled_area / total
+  e.rule_of_three = e.sampled > 0 ? 3.0 / e.sampled * std::max(0.0, 1.0 - e.sampled / tiles_area) * tiles_area / total
                                   : 1.0;
   return e;
 }
