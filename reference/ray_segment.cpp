@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <thread>
 
 #include "common/box.h"
+#include "common/pixel_threads.h"
 #include "common/trilinear.h"
 #include "transfer/value_scale.h"
 
@@ -75,7 +75,7 @@ EmptyBlocks::EmptyBlocks(const BrickField& field, const TransferFunction& tf, do
   multiple.assign(empty.size(), 1);
   kinked.assign(empty.size(), 1);
   // Every frame's estimate builds these (a fifth of the engine's estimate, 256^3, perf): slabs of
-  // blocks in threads, each block written by one.
+  // blocks in parts, each block written by one.
   std::atomic<int> next_slab{0};
   auto slabs = [&] {
     for (int bz; (bz = next_slab.fetch_add(1)) < count.z;)
@@ -108,11 +108,9 @@ EmptyBlocks::EmptyBlocks(const BrickField& field, const TransferFunction& tf, do
           multiple[b] = uint8_t(m);
         }
   };
-  std::vector<std::thread> pool;
-  const int workers = std::min(count.z, int(std::max(1u, std::thread::hardware_concurrency())));
-  for (int w = 1; w < workers; ++w) pool.emplace_back(slabs);
-  slabs();
-  for (std::thread& t : pool) t.join();
+  // On the rank's pixel pool (common/pixel_threads.h: its share of the node's cores), not a
+  // thread per core on every rank: 4 ranks on 2 cores ran 8 threads here.
+  parallelParts(std::min(count.z, pixelThreads()), [&](int) { slabs(); });
 }
 
 namespace {

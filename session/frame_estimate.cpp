@@ -6,7 +6,6 @@
 #include <limits>
 #include <numeric>
 #include <random>
-#include <thread>
 
 #include "common/box.h"
 #include "common/enum_names.h"
@@ -124,7 +123,7 @@ std::vector<double> exactSampledPixels(const EstimateSample& sample, const Camer
   const int n = int(sample.pixel.size());
   const double flat = flatGradient(mine.tf.rangeLo(), mine.tf.rangeHi(), mine.bricks.empty() ? glm::dvec3(1.0)
                                                                                               : mine.bricks[0].grid.spacing);
-  // This rank's segments, per sampled pixel, in threads over the pixels.
+  // This rank's segments, per sampled pixel, in parts over the pixels.
   const int workers = std::max(1, threads);
   std::vector<std::vector<double>> parts(static_cast<size_t>(workers));
   std::atomic<int> next{0};
@@ -147,10 +146,7 @@ std::vector<double> exactSampledPixels(const EstimateSample& sample, const Camer
         }
       }
   };
-  std::vector<std::thread> pool;
-  for (int w = 1; w < workers; ++w) pool.emplace_back(work, w);
-  work(0);
-  for (auto& t : pool) t.join();
+  parallelParts(workers, work);  // the rank's pixel pool (its share of the node's cores)
   std::vector<double> records;
   for (auto& p : parts) records.insert(records.end(), p.begin(), p.end());
   // To rank 0.
