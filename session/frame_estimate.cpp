@@ -300,7 +300,7 @@ std::string estimateUnavailable(const Scene& sc, bool adaptive, bool in_situ, co
 }
 
 EstimateVolume estimateVolumeOf(const Scene& sc, const SessionLayout& layout, const StepData& d,
-                                std::pair<double, double> range) {
+                                std::pair<double, double> range, EmptyBlocksCache* cache, long long data_id) {
   EstimateVolume v;
   for (size_t i = 0; i < layout.mine.size() && i < d.samples.size(); ++i) {
     const Brick& b = layout.volume_bricks[size_t(layout.mine[i])];
@@ -314,7 +314,25 @@ EstimateVolume estimateVolumeOf(const Scene& sc, const SessionLayout& layout, co
   v.step = sc.reference.step * layout.grid.minSpacing();
   // After the step and the shading: the blocks' step multiples depend on both (built before
   // them, every block's multiple was 1 and the estimate marched the fine step everywhere).
-  for (const BrickField& f : v.bricks) v.empty.emplace_back(f, v.tf, v.step, v.shading.enabled);
+  auto build = [&](std::vector<EmptyBlocks>& out) {
+    out.clear();
+    for (const BrickField& f : v.bricks) out.emplace_back(f, v.tf, v.step, v.shading.enabled);
+  };
+  if (!cache || data_id < 0) {
+    build(v.empty);
+    return v;
+  }
+  // What EmptyBlocks reads besides the samples (the function's range, scale, unit length and
+  // points; the step; shading), and which samples.
+  std::vector<double> key{v.tf.rangeLo(), v.tf.rangeHi(), v.tf.unitLength(), double(v.tf.scale().kind),
+                          v.tf.scale().linear_width, v.step, double(v.shading.enabled), double(v.bricks.size())};
+  for (const TfPoint& p : v.tf.points()) key.insert(key.end(), {p.value, p.r, p.g, p.b, p.a});
+  if (cache->data != data_id || cache->key != key) {
+    build(cache->empty);
+    cache->data = data_id;
+    cache->key = std::move(key);
+  }
+  v.empty = cache->empty;
   return v;
 }
 

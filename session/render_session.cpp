@@ -188,6 +188,8 @@ struct RenderSession::State {
   SessionLayout layout;
   std::unique_ptr<StepCache> cache;
   StepData* current = nullptr;  // the step on the GPU (owned by the cache)
+  long long current_id = 0;      // a new number each time `current` is set (EmptyBlocksCache::data)
+  EmptyBlocksCache estimate_blocks;
   std::unique_ptr<BrickRenderer> renderer;
   GpuKey gpu;
   std::vector<int> handles;
@@ -593,6 +595,7 @@ void RenderSession::State::bringGpuTo(const Scene& scene) {
   PhaseScope phase("loading time step " + std::to_string(scene.time.step));
   StepData& d = cache->get(scene, layout, adaptive, comm);
   current = &d;
+  ++current_id;
   collectively(comm, [&] {
     if (d.dropped && want.step == gpu.step)
       throw std::logic_error("a batch session cannot change its volume renderer or h");
@@ -697,7 +700,7 @@ double RenderSession::autoSpacing(const Scene& sc, const FrameRequest& request, 
       // any orbit: an orbit probes once); the finer step wins. The second view starts at the
       // first's choice. (So a request that moves the camera probes again: the viewer asks for
       // `auto` on its full frames only.)
-      const EstimateVolume mine = estimateVolumeOf(sc, S.layout, *S.current, S.dataRange());
+      const EstimateVolume mine = estimateVolumeOf(sc, S.layout, *S.current, S.dataRange(), &S.estimate_blocks, S.current_id);
       std::vector<EstimatedStep> tried;
       const std::vector<double>& steps = estimatedSpacings();
       size_t first = 0;  // the coarsest step still to try
@@ -977,7 +980,7 @@ FrameResult RenderSession::renderStill(const FrameRequest& request, const Scene&
         sample = chooseEstimatePixels(out.image, sc.image.background, screenRectOf(cam, S.layout.grid.worldBox()),
                                       sc.render.estimate_pixels);
       broadcastSample(sample, S.comm);
-      const EstimateVolume mine = estimateVolumeOf(sc, S.layout, *S.current, S.dataRange());
+      const EstimateVolume mine = estimateVolumeOf(sc, S.layout, *S.current, S.dataRange(), &S.estimate_blocks, S.current_id);
       exact = exactSampledPixels(sample, cam, mine, sc.image.background, pixelThreads(), S.comm);
     }
     int pass = 0;
@@ -1035,7 +1038,7 @@ nlohmann::json RenderSession::State::estimateAccuracy(const Scene& sc, const Cam
     return j;
   }
   const double t0 = MPI_Wtime();
-  const EstimateVolume mine = estimateVolumeOf(sc, layout, *current, dataRange());
+  const EstimateVolume mine = estimateVolumeOf(sc, layout, *current, dataRange(), &estimate_blocks, current_id);
   const double t_volume = MPI_Wtime() - t0;
   nlohmann::json j = estimateFrame(mine, cam, layout.grid.worldBox(), sc.image.background,
                                    rank == 0 ? &out.image : nullptr, nullptr, sc.render.estimate_pixels, comm);

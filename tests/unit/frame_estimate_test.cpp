@@ -16,7 +16,10 @@
 #include "common/brick.h"
 #include "reference/ray_segment.h"
 #include "reference/reference.h"
+#include "scene/scene.h"
 #include "session/frame_estimate.h"
+#include "session/session_layout.h"
+#include "session/step_data.h"
 
 namespace sortlast {
 namespace {
@@ -344,6 +347,54 @@ TEST(FrameEstimate, PixelsOutsideTheRectangleCountAsExact) {
   const AccuracyEstimate e = compareWithExact(s, exact, &frame, nullptr, glm::dvec3(0.0));
   EXPECT_NEAR(e.mse, 400.0 * 64 / 1024, 1e-9);
   EXPECT_NEAR(e.over4_share, 64.0 / 1024, 1e-12);
+}
+
+// The block maps an estimate keeps for the next (EmptyBlocksCache, one per session): reused while
+// the samples, the transfer function, the reference's step and shading stay; built anew, and equal
+// to a fresh build, when any of them changes.
+TEST(FrameEstimate, BlockMapsAreKeptOnlyWhileWhatTheyReadStays) {
+  const std::vector<std::string> base{"volume.procedural=sphere", "volume.dims=[20,20,20]", "bricks.per_axis=2"};
+  auto sceneWith = [&](const std::string& extra) {
+    std::vector<std::string> o = base;
+    if (!extra.empty()) o.push_back(extra);
+    return loadScene("", o);
+  };
+  const Scene s = sceneWith("");
+  const SessionLayout layout = makeLayout(s, noBox(), 0, 1);
+  StepData d;
+  for (int id : layout.mine) {
+    const IndexBox& b = layout.volume_bricks[size_t(id)].stored;
+    std::vector<float>& v = d.samples.emplace_back();
+    for (int z = b.lo.z; z <= b.hi.z; ++z)
+      for (int y = b.lo.y; y <= b.hi.y; ++y)
+        for (int x = b.lo.x; x <= b.hi.x; ++x) v.push_back(float(std::hypot(x - 9.5, y - 9.5, z - 9.5) / 14.0));
+  }
+  ASSERT_GT(d.samples.size(), 1u);
+  const std::pair<double, double> range{0.0, 1.0};
+  EmptyBlocksCache cache;
+  const EstimateVolume first = estimateVolumeOf(s, layout, d, range, &cache, 1);
+  ASSERT_EQ(first.empty.size(), d.samples.size());
+  // A mark in the kept maps shows whether the next call took them or built its own.
+  auto marked = [&](const EstimateVolume& v) { return v.empty[0].multiple[0] == 99; };
+  auto mark = [&] { cache.empty[0].multiple[0] = 99; };
+  mark();
+  EXPECT_TRUE(marked(estimateVolumeOf(s, layout, d, range, &cache, 1)));  // nothing changed
+  EXPECT_TRUE(marked(estimateVolumeOf(sceneWith("render.sample_spacing=2"), layout, d, range, &cache, 1)));
+  for (const std::string& change : {std::string("transfer.preset=sharp"), std::string("reference.step=0.25"),
+                                    std::string("render.shading=true")}) {
+    mark();
+    const Scene changed = sceneWith(change);
+    const EstimateVolume v = estimateVolumeOf(changed, layout, d, range, &cache, 1);
+    EXPECT_FALSE(marked(v)) << change;
+    const EstimateVolume fresh = estimateVolumeOf(changed, layout, d, range);
+    for (size_t b = 0; b < v.empty.size(); ++b) {
+      EXPECT_EQ(v.empty[b].empty, fresh.empty[b].empty) << change;
+      EXPECT_EQ(v.empty[b].multiple, fresh.empty[b].multiple) << change;
+    }
+    estimateVolumeOf(s, layout, d, range, &cache, 1);  // back to the first settings
+  }
+  mark();
+  EXPECT_FALSE(marked(estimateVolumeOf(s, layout, d, range, &cache, 2)));  // other samples
 }
 
 }  // namespace
