@@ -324,9 +324,8 @@ EstimateVolume estimateVolumeOf(const Scene& sc, const SessionLayout& layout, co
   }
   // What EmptyBlocks reads besides the samples (the function's range, scale, unit length and
   // points; the step; shading), and which samples.
-  std::vector<double> key{v.tf.rangeLo(), v.tf.rangeHi(), v.tf.unitLength(), double(v.tf.scale().kind),
-                          v.tf.scale().linear_width, v.step, double(v.shading.enabled), double(v.bricks.size())};
-  for (const TfPoint& p : v.tf.points()) key.insert(key.end(), {p.value, p.r, p.g, p.b, p.a});
+  std::vector<double> key{v.step, double(v.shading.enabled), double(v.bricks.size())};
+  v.tf.appendKey(key);
   if (cache->data != data_id || cache->key != key) {
     build(cache->empty);
     cache->data = data_id;

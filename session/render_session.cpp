@@ -629,15 +629,10 @@ std::vector<double> RenderSession::State::spacingKey(const Scene& sc, std::pair<
                           sc.adaptive.tolerance, double(!sc.render.raycast()),
                           double(sc.transfer.table_size), sc.image.background.x, sc.image.background.y, sc.image.background.z};
   const TransferFunction tf = sc.transfer.build(lo, hi, layout.grid.minSpacing());
-  key.insert(key.end(), {tf.rangeLo(), tf.rangeHi(), tf.unitLength(), double(tf.scale().kind),
-                         tf.scale().linear_width});
-  for (const TfPoint& p : tf.points()) key.insert(key.end(), {p.value, p.r, p.g, p.b, p.a});
+  tf.appendKey(key);
   // Several fields: each one's transfer function as drawn (a request may change or hide one).
   if (sc.hasFields() && current)
-    for (const TransferFunction& f : fieldTransfers(sc.fields, current->fields)) {
-      key.insert(key.end(), {f.rangeLo(), f.rangeHi(), f.unitLength(), double(f.scale().kind), f.scale().linear_width});
-      for (const TfPoint& p : f.points()) key.insert(key.end(), {p.value, p.r, p.g, p.b, p.a});
-    }
+    for (const TransferFunction& f : fieldTransfers(sc.fields, current->fields)) f.appendKey(key);
   // The blend mode, the projection and the clip region change what the probes see.
   key.insert(key.end(), {double(sc.render.blend), double(sc.render.mip_exact), double(sc.camera.projection),
                          sc.camera.parallel_scale});

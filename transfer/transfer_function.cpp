@@ -107,6 +107,11 @@ std::vector<float> TransferFunction::bakeTable(int n) const {
   return t;
 }
 
+void TransferFunction::appendKey(std::vector<double>& key) const {
+  key.insert(key.end(), {lo_, hi_, unit_, double(scale_.kind), scale_.linear_width});
+  for (const TfPoint& p : pts_) key.insert(key.end(), {p.value, p.r, p.g, p.b, p.a});
+}
+
 bool TransferFunction::tableSpanVisible(int n, double vmin, double vmax) const {
   // A value on an entry reads that entry alone, so a block of the volume's lowest value under a
   // ramp is empty (a pad of one entry either side, the rule before, kept 63 % of the engine's

@@ -61,6 +61,9 @@ class TransferFunction {
   double unitLength() const { return unit_; }
   const ValueScale& scale() const { return scale_; }
   const std::vector<TfPoint>& points() const { return pts_; }
+  // Everything the function's values depend on (range, unit length, scale, each point), appended
+  // to `key`: for caches of what was computed from it (a probe's step, the estimate's block maps).
+  void appendKey(std::vector<double>& key) const;
 
   // Largest extinction any value can have: opacity is capped just below 1 so tau stays finite.
   static constexpr double kMaxOpacity = 0.999999;
