@@ -6,17 +6,13 @@
 #include <set>
 
 #include "common/error.h"
+#include "scene/scene_reader.h"
 
 namespace sortlast {
 
 namespace {
 
-std::string entryName(size_t i) { return "glow.emitters[" + std::to_string(i) + "]"; }
-
-std::string lineOf(const YAML::Node& n) {
-  auto m = n.Mark();
-  return m.line >= 0 ? " (line " + std::to_string(m.line + 1) + ")" : "";
-}
+std::string emitterName(size_t i) { return "glow.emitters[" + std::to_string(i) + "]"; }
 
 double number(const YAML::Node& e, const std::string& key, const std::string& name,
               double fallback) {
@@ -25,10 +21,10 @@ double number(const YAML::Node& e, const std::string& key, const std::string& na
   try {
     v = e[key].as<double>();
   } catch (const YAML::Exception&) {
-    throw InputError("scene key '" + name + "." + key + "': expected a number" + lineOf(e[key]));
+    throw InputError("scene key '" + name + "." + key + "': expected a number" + where(e[key]));
   }
   if (!std::isfinite(v))
-    throw InputError("scene key '" + name + "." + key + "': must be finite" + lineOf(e[key]));
+    throw InputError("scene key '" + name + "." + key + "': must be finite" + where(e[key]));
   return v;
 }
 
@@ -44,15 +40,15 @@ glm::dvec3 vec3(const YAML::Node& e, const std::string& key, const std::string& 
   }
   if (v.size() != 3)
     throw InputError("scene key '" + name + "." + key + "': expected a list of 3 numbers" +
-                     lineOf(e[key]));
+                     where(e[key]));
   for (double x : v) {
     if (!std::isfinite(x))
       throw InputError("scene key '" + name + "." + key + "': values must be finite" +
-                       lineOf(e[key]));
+                       where(e[key]));
     // Float math on the GPU squares distances (common/box.h's limit).
     if (std::abs(x) > kMaxCoordinate)
       throw InputError("scene key '" + name + "." + key + "': values must be within +-1e18" +
-                       lineOf(e[key]));
+                       where(e[key]));
   }
   return {v[0], v[1], v[2]};
 }
@@ -66,30 +62,30 @@ std::vector<GlowEmitterSpec> parseGlowEmitters(const YAML::Node& list, int frame
     throw InputError(
         "scene key 'glow.emitters': expected a list of emitters ({center, direction, a, b, "
         "color})" +
-        lineOf(list));
+        where(list));
   static const std::set<std::string> known = {"center",   "direction", "a",      "b",     "color",
                                               "velocity", "turn",      "a_rate", "b_rate"};
   for (size_t i = 0; i < list.size(); ++i) {
     const YAML::Node e = list[i];
-    const std::string name = entryName(i);
+    const std::string name = emitterName(i);
     if (!e.IsMap())
       throw InputError("scene key '" + name + "': expected a map {center, direction, a, b, color}" +
-                       lineOf(e));
+                       where(e));
     for (auto it = e.begin(); it != e.end(); ++it) {
       const std::string k = it->first.as<std::string>();
       if (!known.count(k))
         throw InputError(
-            "unknown scene key '" + name + "." + k + "'" + lineOf(it->first) +
+            "unknown scene key '" + name + "." + k + "'" + where(it->first) +
             " (an emitter has center, direction, a, b, color, velocity, turn, a_rate, b_rate)");
     }
-    if (!e["center"]) throw InputError("scene key '" + name + ".center': required" + lineOf(e));
+    if (!e["center"]) throw InputError("scene key '" + name + ".center': required" + where(e));
     GlowEmitterSpec s;
     s.at0.centre = vec3(e, "center", name, {});
     glm::dvec3 d = vec3(e, "direction", name, {1, 0, 0});
     if (!(glm::length(d) >= kMinLength))
       throw InputError("scene key '" + name +
                        ".direction': must not be zero (length at least 1e-12)" +
-                       lineOf(e["direction"]));
+                       where(e["direction"]));
     s.at0.direction = d;  // as given: normalised per frame (emittersAt), after the turn
     s.at0.a = number(e, "a", name, 1.0);
     s.at0.b = number(e, "b", name, 1.0);
@@ -115,7 +111,7 @@ void checkGlowRates(const std::vector<GlowEmitterSpec>& emitters, int frames) {
   const int last = std::max(0, frames - 1);
   for (size_t i = 0; i < emitters.size(); ++i) {
     const GlowEmitterSpec& s = emitters[i];
-    const std::string name = entryName(i);
+    const std::string name = emitterName(i);
     // The last frame is where a linear rate goes furthest.
     if (s.at0.a + last * s.a_rate < 0.0 || s.at0.b + last * s.b_rate < 0.0)
       throw InputError("scene keys '" + name +

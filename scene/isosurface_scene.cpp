@@ -13,7 +13,7 @@ namespace sortlast {
 
 namespace {
 
-std::string entryName(size_t i) { return "render.isovalues[" + std::to_string(i) + "]"; }
+std::string isovalueName(size_t i) { return "render.isovalues[" + std::to_string(i) + "]"; }
 
 double number(const YAML::Node& n, const std::string& name) {
   double v;
@@ -41,7 +41,7 @@ std::vector<Isovalue> parseIsovalues(const YAML::Node& list) {
   static const std::set<std::string> known = {"value", "color", "opacity"};
   for (size_t i = 0; i < list.size(); ++i) {
     const YAML::Node e = list[i];
-    const std::string name = entryName(i);
+    const std::string name = isovalueName(i);
     if (!e.IsMap())
       throw InputError("scene key '" + name + "': expected a map {value, color: [r, g, b], opacity}" + where(e));
     for (auto it = e.begin(); it != e.end(); ++it) {
@@ -126,7 +126,7 @@ std::vector<std::string> isovalueRangeWarnings(const std::vector<Isovalue>& isov
   std::vector<std::string> out;
   for (size_t i = 0; i < isovalues.size(); ++i)
     if (isovalues[i].value < lo || isovalues[i].value > hi)
-      out.push_back("warning: " + entryName(i) + ".value " + numText(isovalues[i].value) +
+      out.push_back("warning: " + isovalueName(i) + ".value " + numText(isovalues[i].value) +
                     " is outside the data's range [" + numText(lo) + ", " + numText(hi) +
                     "]: that surface does not appear");
   return out;

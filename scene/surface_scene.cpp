@@ -7,6 +7,7 @@
 #include <set>
 
 #include "common/error.h"
+#include "scene/scene_reader.h"
 #include "subdiv/subdiv_input.h"
 
 namespace sortlast {
@@ -15,13 +16,8 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-std::string lineOf(const YAML::Node& n) {
-  auto m = n.Mark();
-  return m.line >= 0 ? " (line " + std::to_string(m.line + 1) + ")" : "";
-}
-
 [[noreturn]] void fail(const std::string& key, const std::string& what, const YAML::Node& n) {
-  throw InputError("scene key '" + key + "': " + what + lineOf(n));
+  throw InputError("scene key '" + key + "': " + what + where(n));
 }
 
 std::vector<double> numbers(const YAML::Node& n, const std::string& key) {
@@ -115,7 +111,7 @@ std::vector<SurfaceSpec> parseSurfaces(const YAML::Node& list, const std::filesy
     if (!e.IsMap()) fail(name, "expected a map {file | procedural, color, transform, ...}", e);
     for (auto it = e.begin(); it != e.end(); ++it)
       if (!known.count(it->first.as<std::string>()))
-        throw InputError("unknown scene key '" + name + "." + it->first.as<std::string>() + "'" + lineOf(it->first) +
+        throw InputError("unknown scene key '" + name + "." + it->first.as<std::string>() + "'" + where(it->first) +
                          " (a surface has file, procedural, color, transform, level, shading, stripes, "
                          "stripe_width, stripe_direction, newton_steps)");
     auto text = [&](const char* k) {

@@ -15,7 +15,7 @@ using Row = Eigen::RowVectorXd;
 
 // The local control net as quads of labels, and the Catmull-Clark rules on it as weight rows over
 // the 2N + 8 labels. The rules are only asked for where the net holds the whole neighbourhood.
-struct LocalNet {
+struct LabelNet {
   int size;
   std::vector<std::array<int, 4>> faces;
 
@@ -79,7 +79,7 @@ int ValenceBasis::label(int n, int i, int j) {
 ValenceBasis::ValenceBasis(int n) : valence(n), size(2 * n + 8) {
   if (n < 3) throw std::invalid_argument("ValenceBasis: valence below 3");
   auto L = [n](int i, int j) { return label(n, i, j); };
-  LocalNet net{size, {}};
+  LabelNet net{size, {}};
   for (int i = 1; i <= n; ++i) net.faces.push_back({0, 2 * i - 1, 2 * i, i == n ? 1 : 2 * i + 1});
   const std::array<int, 4> c1{L(1, -1), L(2, -1), L(2, 0), L(1, 0)}, c2{L(1, 0), L(2, 0), L(2, 1), L(1, 1)},
       c3{L(1, 1), L(2, 1), L(2, 2), L(1, 2)}, c4{L(0, 1), L(1, 1), L(1, 2), L(0, 2)},

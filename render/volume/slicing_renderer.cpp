@@ -15,13 +15,15 @@
 namespace sortlast {
 
 namespace {
-enum SlicingVariant : unsigned {
-  kPreintegrated = 1,  // PREINTEGRATED: transfer.preintegrated
-  kShading = 2,        // SHADING: render.shading
-  kFloatFilter = 4,     // FLOAT_FILTER: the volume filtered in float (volume_shading.h floatFilter)
+// (A struct, not an enum, so that the names stay apart from the ray caster's variant bits when
+// both files are compiled as one unity source: CMAKE_UNITY_BUILD.)
+struct SlicingVariant {
+  static constexpr unsigned kPreintegrated = 1;  // PREINTEGRATED: transfer.preintegrated
+  static constexpr unsigned kShading = 2;        // SHADING: render.shading
+  static constexpr unsigned kFloatFilter = 4;    // FLOAT_FILTER: the volume filtered in float (volume_shading.h floatFilter)
   // PROJECTION = 1 mip, 2 minip, 3 average, 4 additive (bits 3-5; render/volume/slicing.frag.glsl)
-  kProjectionShift = 3,
-  kProjectionMask = 7u << kProjectionShift,
+  static constexpr unsigned kProjectionShift = 3;
+  static constexpr unsigned kProjectionMask = 7u << kProjectionShift;
 };
 
 // The PROJECTION define of a blend mode (0: emission-absorption), the ray caster's numbering.
@@ -51,13 +53,13 @@ void finishExtremum(std::vector<float>& px, bool negated) {
 
 // A variant's sources: render/volume/slicing.frag.glsl describes the chunks.
 ProgramSources slicingSources(unsigned v) {
-  const bool preint = v & kPreintegrated, shading = v & kShading;
-  const unsigned projection = (v & kProjectionMask) >> kProjectionShift;
+  const bool preint = v & SlicingVariant::kPreintegrated, shading = v & SlicingVariant::kShading;
+  const unsigned projection = (v & SlicingVariant::kProjectionMask) >> SlicingVariant::kProjectionShift;
   ShaderSource fragment;
   if (projection) fragment.define("PROJECTION", std::to_string(projection));
   fragment.defineIf(preint, "PREINTEGRATED")
       .defineIf(shading, "SHADING")
-      .defineIf(v & kFloatFilter, "FLOAT_FILTER")
+      .defineIf(v & SlicingVariant::kFloatFilter, "FLOAT_FILTER")
       .add(glsl::volume_filter)
       .add(glsl::value_scale)
       .addIf(shading, glsl::volume_shading)
@@ -78,7 +80,7 @@ SlicingRenderer::SlicingRenderer(const GlContext& ctx, int width, int height, in
       table_(gl_),
       settings_(settings),
       programs_(gl_, slicingSources) {
-  programs_.get(float_filter_ ? kFloatFilter : 0);  // the plain program now: a driver that cannot build it fails here
+  programs_.get(float_filter_ ? SlicingVariant::kFloatFilter : 0);  // the plain program now: a driver that cannot build it fails here
   gl_.GenVertexArrays(1, &vao_);
   gl_.BindVertexArray(vao_);
   gl_.GenBuffers(1, &vbo_);
@@ -173,8 +175,8 @@ RenderedBrick SlicingRenderer::render(int handle, const Camera& cam, double spac
       gl_.BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // premultiplied "over", back to front
     }
     const GlProgram& program =
-        programs_.get((preint ? kPreintegrated : 0) | (shading_.enabled ? kShading : 0) |
-                      (float_filter_ ? kFloatFilter : 0) | (projection << kProjectionShift));
+        programs_.get((preint ? SlicingVariant::kPreintegrated : 0) | (shading_.enabled ? SlicingVariant::kShading : 0) |
+                      (float_filter_ ? SlicingVariant::kFloatFilter : 0) | (projection << SlicingVariant::kProjectionShift));
     gl_.UseProgram(program);
     glm::mat4 vp = cam.viewProjection(near_plane, far_plane);
     program.set("u_view_proj", vp);

@@ -14,7 +14,7 @@
 namespace sortlast {
 namespace {
 
-std::vector<glm::vec3> cloud(int n) {  // deterministic, in [-2, 2]^3
+std::vector<glm::vec3> sliceCloud(int n) {  // deterministic, in [-2, 2]^3
   std::vector<glm::vec3> p;
   uint32_t s = 777;
   auto next = [&] {
@@ -34,7 +34,7 @@ double gap(const glm::vec3& p, glm::ivec3 v, double edge) {
 
 TEST(MetaballSlices, SlotsAndListsMatchBruteForce) {
   const double h = 0.5, spacing = 0.125, step = h / 8;
-  std::vector<glm::vec3> all = cloud(300);
+  std::vector<glm::vec3> all = sliceCloud(300);
   const Box3 clip{{-1.0, -0.5, -1.2}, {0.7, 1.1, 0.3}};
   SliceLattice L = buildSliceLattice(all, clip, h, spacing, step);
   ASSERT_GT(L.slots(), 0u);
@@ -78,7 +78,7 @@ TEST(MetaballSlices, VoxelsAreGlobal) {
   // Two bricks sharing the face x = 0: a voxel both hold has the same global index and, given the
   // same particles near it, the same list.
   const double h = 0.5, spacing = 0.1, step = h / 8;
-  std::vector<glm::vec3> all = cloud(200);
+  std::vector<glm::vec3> all = sliceCloud(200);
   SliceLattice a = buildSliceLattice(all, Box3{{-2, -2, -2}, {0, 2, 2}}, h, spacing, step);
   SliceLattice b = buildSliceLattice(all, Box3{{0, -2, -2}, {2, 2, 2}}, h, spacing, step);
   int shared = 0;
@@ -100,7 +100,7 @@ TEST(MetaballSlices, NoParticlesNoVoxels) {
 }
 
 TEST(MetaballSlices, TooManySamplesThrows) {
-  EXPECT_THROW(buildSliceLattice(cloud(50), Box3{{-2, -2, -2}, {2, 2, 2}}, 0.5, 0.01, 0.05, 1000),
+  EXPECT_THROW(buildSliceLattice(sliceCloud(50), Box3{{-2, -2, -2}, {2, 2, 2}}, 0.5, 0.01, 0.05, 1000),
                std::length_error);
 }
 

@@ -13,7 +13,7 @@
 namespace sortlast {
 namespace {
 
-std::vector<SurfaceSpec> parse(const std::string& yaml) { return parseSurfaces(YAML::Load(yaml), "."); }
+std::vector<SurfaceSpec> parseSurfaceList(const std::string& yaml) { return parseSurfaces(YAML::Load(yaml), "."); }
 
 // Outward normals: at the limit point of every control face's centre the normal points away from
 // the surface's centre (pole5 is star-shaped about it).
@@ -31,7 +31,7 @@ double worstOutwardness(const PolyMesh& mesh) {
 }
 
 TEST(SurfaceScene, TransformsAndMirroring) {
-  auto s = parse("[{procedural: pole5, transform: {scale: 2, rotate: [0, 90, 0], translate: [10, 0, 0]}},"
+  auto s = parseSurfaceList("[{procedural: pole5, transform: {scale: 2, rotate: [0, 90, 0], translate: [10, 0, 0]}},"
                  " {procedural: pole5, transform: {scale: [-1, 1, 1]}},"
                  " {procedural: cube, transform: [[1, 0, 0, 5], [0, 2, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]}]");
   ASSERT_EQ(s.size(), 3u);
@@ -51,7 +51,7 @@ TEST(SurfaceScene, TransformsAndMirroring) {
 TEST(SurfaceScene, BadEntriesNameTheKey) {
   auto message = [](const std::string& yaml) {
     try {
-      parse(yaml);
+      parseSurfaceList(yaml);
     } catch (const InputError& e) {
       return std::string(e.what());
     }
@@ -72,7 +72,7 @@ TEST(SurfaceScene, BadEntriesNameTheKey) {
 // face edges): every hit is the exact evaluation at its own (face, u, v), so its error is its
 // distance from the ray. Measured 8e-14 of the size.
 TEST(SurfaceReference, LimitPointsLieOnTheirRays) {
-  auto s = parse("[{procedural: pole5}]");
+  auto s = parseSurfaceList("[{procedural: pole5}]");
   SurfaceReference ref(s);
   Camera cam;
   cam.look_at = glm::dvec3(0.0);
