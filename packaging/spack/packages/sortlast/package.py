@@ -98,6 +98,9 @@ class Sortlast(CMakePackage):
             for variant, option in SORTLAST_OPTIONS.items()
         ]
         args.append(self.define("BUILD_TESTING", self.run_tests))
+        # Each target's sources compiled eight to a file: half the build's time from scratch,
+        # the same program (README).
+        args.append(self.define("CMAKE_UNITY_BUILD", True))
         if self.spec.satisfies("+python"):
             args.append(self.define("Python3_EXECUTABLE", self.spec["python"].command.path))
         return args
