@@ -10,6 +10,7 @@
 #include "common/box.h"
 #include "common/enum_names.h"
 #include "common/pixel_threads.h"
+#include "io/image.h"
 
 namespace sortlast {
 
@@ -345,10 +346,8 @@ nlohmann::json estimateFrame(const EstimateVolume& mine, const Camera& cam, cons
   if (rank == 0) {
     ImageRGBA8 from_float;
     const ImageRGBA8* f8 = frame;
-    if (float_frame) {  // the contrast only: rounded as a written frame would be
-      from_float = ImageRGBA8(float_frame->width, float_frame->height);
-      for (size_t i = 0; i < from_float.px.size(); ++i)
-        from_float.px[i] = uint8_t(std::lround(std::clamp(float_frame->px[i], 0.0f, 1.0f) * 255.0f));
+    if (float_frame) {  // the contrast only: rounded as a written frame is (io/image.h)
+      from_float = toRGBA8(*float_frame);
       f8 = &from_float;
     }
     sample = chooseEstimatePixels(*f8, background, screenRectOf(cam, volume_box), budget);

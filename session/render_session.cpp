@@ -41,6 +41,7 @@
 #include "session/session_layout.h"
 #include "session/step_data.h"
 #include "session/volume_loading.h"
+#include "io/image.h"
 #include "io/volume_source.h"
 #include "session/surface_gather.h"
 
@@ -709,10 +710,7 @@ double RenderSession::autoSpacing(const Scene& sc, const FrameRequest& request, 
           const Camera cam = probe.scene.frameCameras(S.layout.bounds)[0];
           if (!integrated) {
             if (S.rank == 0) {
-              ImageRGBA8 f8(probe.image_f.width, probe.image_f.height);
-              for (size_t k = 0; k < f8.px.size(); ++k)
-                f8.px[k] = uint8_t(std::lround(std::clamp(probe.image_f.px[k], 0.0f, 1.0f) * 255.0f));
-              sample = chooseEstimatePixels(f8, sc.image.background, screenRectOf(cam, S.layout.grid.worldBox()),
+              sample = chooseEstimatePixels(toRGBA8(probe.image_f), sc.image.background, screenRectOf(cam, S.layout.grid.worldBox()),
                                             std::min(sc.render.estimate_pixels, w * h / 2));
             }
             broadcastSample(sample, S.comm);
