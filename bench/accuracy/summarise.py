@@ -59,7 +59,8 @@ md = ["# Accuracy against speed\n",
       "tolerance T %). Issue 13's tags: `_pre` "
       "pre-integrated transfer function, `_astep` adaptive step length, `_shade` gradient shading "
       "(compared with a shaded reference). Old front: the settings without those tags. "
-      f"The defaults are `{AUTO}` (ray casting, ERT 0.99, pre-integration and the sample spacing "
+      f"The defaults are `{AUTO}` (ray casting, the default ERT threshold (0.99 in rows measured "
+      "before 2026-12-07, 0.999 since), pre-integration and the sample spacing "
       f"`auto`: issue 30); before issue 30 they were `{DEFAULT_PLAIN}` (pre-integration `auto` is off "
       f"on smooth transfer functions), on neghip `{DEFAULTS['neghip']}`.\n",
       "\n| data set | the defaults (step chosen) | before issue 30 (0.5 voxel) | fastest >= 45 dB, old | "
