@@ -9,8 +9,9 @@
 // to one rounding). Rays are the camera's (Camera::pixelRay: from the eye, or parallel from the
 // eye plane), run over `box` (the session's: every field's box, fieldsGrid) from t >= 0, cut to
 // `clip` (clip.planes, clip.box: common/clip.h clipSpan) in steps of `step` world units, each
-// composited with its midpoint value; a field outside its own box adds nothing, a missing sample
-// (NaN) nothing.
+// composited as the one-field reference's (cut where a field's values cross a kink of its
+// function, each field's optical depth by Simpson's rule); a field outside its own box adds
+// nothing, a missing sample (NaN) nothing.
 #include <vector>
 
 #include "common/camera.h"

@@ -7,6 +7,7 @@
 #include "common/box.h"
 #include "common/pixel_threads.h"
 #include "common/trilinear.h"
+#include "reference/step_cuts.h"
 #include "transfer/value_scale.h"
 
 namespace sortlast {
@@ -361,27 +362,57 @@ class Marcher {
     }
   }
 
-  // n equal steps of h from ta (stopping once the transmittance is below kStopTransmit).
+  // n equal steps of h from ta (stopping once the transmittance is below kStopTransmit), with
+  // the reference's rule (reference/reference.cpp): a step whose end values straddle a kink of
+  // the function (TransferFunction::kinkValues) is cut where the values, linear between the
+  // ends, meet it; each part composited with its middle's colour and its optical depth by
+  // Simpson's rule over its ends and middle.
   void steps(SegmentIntegral& out, double ta, long long n, double h) {
-    // a = 1 - exp(-tau h) with tau = -log(1 - opacity) / unit_length, as
-    // TransferFunction::extinction, in one pow per step.
-    const double e = h / tf_.unitLength();
+    const std::vector<double>& kinks = tf_.kinkValues();
+    double va = cursor_.at(ta), xa = extinctionOf(va);
     for (long long i = 0; i < n && out.transmit > kStopTransmit; ++i) {
-      const double tm = ta + (double(i) + 0.5) * h;
-      const double v = cursor_.at(tm);
-      if (std::isnan(v)) continue;  // the stencil touches a missing sample: transparent
-      const std::array<double, 4> f = tfc_.at(v);
-      if (f[3] <= 0.0) continue;
-      const double a = 1.0 - std::pow(1.0 - std::min(f[3], TransferFunction::kMaxOpacity), e);
-      std::array<double, 3> c{f[0], f[1], f[2]};
-      if (shading_.enabled)
-        c = shadeSample(c, field_.gradient(field_.grid.indexOfWorld(o_ + tm * d_)), d_, shading_, flat_);
-      for (int k = 0; k < 3; ++k) out.rgb[k] += out.transmit * a * c[k];
-      out.transmit *= 1.0 - a;
+      const double sa = ta + double(i) * h, sb = ta + double(i + 1) * h;
+      const double vb = cursor_.at(sb), xb = extinctionOf(vb);
+      std::pair<double, double> cuts[kMaxStepCuts];
+      const int m = stepCuts(kinks, sa, sb, va, vb, cuts);
+      if (m == 0) {
+        part(out, sa, sb, xa, xb);
+      } else {
+        double pa = sa, ea = xa;
+        for (int j = 0; j <= m && out.transmit > kStopTransmit; ++j) {
+          const double pb = j < m ? cuts[j].first : sb, eb = j < m ? extinctionOf(cuts[j].second) : xb;
+          if (pb > pa) part(out, pa, pb, ea, eb);
+          pa = pb, ea = eb;
+        }
+      }
+      va = vb, xa = xb;
     }
   }
 
  private:
+  // tau (per world unit) at raw value v; NaN where v is (a missing sample).
+  double extinctionOf(double v) {
+    return std::isnan(v) ? v : tf_.extinctionOfOpacity(tfc_.at(v)[3]);
+  }
+
+  // One step over [pa, pb] (the extinctions xa, xb at its ends: Simpson's rule with its middle's;
+  // the middle's alone where an end is missing) composited into `out`.
+  void part(SegmentIntegral& out, double pa, double pb, double xa, double xb) {
+    const double tm = 0.5 * (pa + pb);
+    const double v = cursor_.at(tm);
+    if (std::isnan(v)) return;  // the stencil touches a missing sample: transparent
+    const std::array<double, 4> f = tfc_.at(v);
+    const double xm = tf_.extinctionOfOpacity(f[3]);
+    const double tau = std::isnan(xa) || std::isnan(xb) ? xm : (xa + 4.0 * xm + xb) / 6.0;
+    if (!(tau > 0.0)) return;
+    const double a = 1.0 - std::exp(-tau * (pb - pa));
+    std::array<double, 3> c{f[0], f[1], f[2]};
+    if (shading_.enabled)
+      c = shadeSample(c, field_.gradient(field_.grid.indexOfWorld(o_ + tm * d_)), d_, shading_, flat_);
+    for (int k = 0; k < 3; ++k) out.rgb[k] += out.transmit * a * c[k];
+    out.transmit *= 1.0 - a;
+  }
+
   const BrickField& field_;
   const TransferFunction& tf_;
   TfCursor tfc_;

@@ -3,7 +3,8 @@
 // holding only its bricks computes for the frame's accuracy estimate (session/frame_estimate.h).
 // The same model and arithmetic as renderReference (reference/reference.h): the trilinear field of
 // the original samples, the transfer function's colour and extinction in double, each step
-// composited exactly with its midpoint value (T *= exp(-tau h)), gradient shading by central
+// composited exactly (T *= exp(-tau h)) with its middle's colour and Simpson's optical depth, cut
+// where its end values straddle a kink of the transfer function, gradient shading by central
 // differences one voxel either side. A ray's segments in the bricks it crosses, composited front
 // to back (by where each starts along the ray), give the whole ray's integral: the bricks are
 // convex and meet face to face, and each holds one ghost layer of samples beyond its faces, so

@@ -9,6 +9,7 @@
 
 #include "common/clip.h"
 #include "common/error.h"
+#include "reference/step_cuts.h"
 
 namespace sortlast {
 
@@ -66,19 +67,56 @@ ImageF integrate(const WholeVolume& vol, const TransferFunction& tf, const Camer
           addGlow(0.0, std::min(t0, t_stop), 1.0);  // in front of the volume
           long long n = t1 > t0 ? std::max(1LL, (long long)std::ceil((t1 - t0) / step)) : 0;
           double h = n > 0 ? (t1 - t0) / double(n) : 0.0;
-          long long i = 0;
-          for (; i < n && transmit > 1e-15; ++i) {
-            const glm::dvec3 u = vol.grid.indexOfWorld(o + (t0 + (i + 0.5) * h) * d);
+          // One step over [ta, tb] (its length len): the colour of its middle (index point u),
+          // its optical depth by Simpson's rule from the extinctions xa, xb at its ends and its
+          // middle's (the midpoint's alone where an end is missing).
+          auto stepOver = [&](double ta, double tb, double len, const glm::dvec3& u, double xa, double xb) {
             double v = vol.at(u);  // NaN where the stencil touches a missing sample: transparent
-            double a = std::isnan(v) ? 0.0 : 1.0 - std::exp(-tf.extinction(v) * h);
+            double a = 0.0;
+            std::array<double, 4> f{0, 0, 0, 0};
+            if (!std::isnan(v)) {
+              f = tf.at(v);
+              const double xm = tf.extinctionOfOpacity(f[3]);
+              const double tau = std::isnan(xa) || std::isnan(xb) ? xm : (xa + 4.0 * xm + xb) / 6.0;
+              a = 1.0 - std::exp(-tau * len);
+            }
             // The step's glow: its exact integral times the transmittance at the step's middle
             // (the midpoint rule in transmittance, exact in the emitters' field).
-            addGlow(t0 + i * h, t0 + (i + 1) * h, transmit * std::sqrt(std::max(0.0, 1.0 - a)));
-            if (a <= 0.0) continue;
-            auto c = tf.colour(v);
+            addGlow(ta, tb, transmit * std::sqrt(std::max(0.0, 1.0 - a)));
+            if (a <= 0.0) return;
+            std::array<double, 3> c{f[0], f[1], f[2]};
             if (shading.enabled) c = shadeSample(c, vol.gradient(u), d, shading, flat);
             for (int k = 0; k < 3; ++k) rgb[k] += transmit * a * c[k];
             transmit *= 1.0 - a;
+          };
+          auto indexAt = [&](double t) { return vol.grid.indexOfWorld(o + t * d); };
+          auto extinctionOf = [&](double v) { return std::isnan(v) ? v : tf.extinction(v); };
+          // A step whose end values straddle a kink of the transfer function (kinkValues) is cut
+          // where the values, linear between the ends, meet it, and each part is a step of its
+          // own: Simpson's rule is fourth order on a smooth part, first order across a kink.
+          // Both measured on neghip's sharp function (512², reference.step 1/16 against 1/256):
+          // midpoint steps 56.6 dB, 0.149 % of pixels over 4/255, max 15/255; cut at the kinks
+          // 57.1 dB, 0.061 %, 7; cut and Simpson 60.0 dB, none over 4/255, max 4
+          // (results/accuracy/reference_convergence.md).
+          const std::vector<double>& kinks = tf.kinkValues();
+          double va = n > 0 ? vol.at(indexAt(t0)) : 0.0, xa = extinctionOf(va);
+          long long i = 0;
+          for (; i < n && transmit > 1e-15; ++i) {
+            const double ta = t0 + i * h, tb = t0 + (i + 1) * h;
+            const double vb = vol.at(indexAt(tb)), xb = extinctionOf(vb);
+            std::pair<double, double> cuts[kMaxStepCuts];
+            const int m = stepCuts(kinks, ta, tb, va, vb, cuts);
+            if (m == 0) {
+              stepOver(ta, tb, h, indexAt(t0 + (i + 0.5) * h), xa, xb);
+            } else {
+              double sa = ta, ea = xa;
+              for (int j = 0; j <= m && transmit > 1e-15; ++j) {
+                const double sb = j < m ? cuts[j].first : tb, eb = j < m ? tf.extinction(cuts[j].second) : xb;
+                if (sb > sa) stepOver(sa, sb, sb - sa, indexAt(0.5 * (sa + sb)), ea, eb);
+                sa = sb, ea = eb;
+              }
+            }
+            va = vb, xa = xb;
           }
           t_after = i < n ? HUGE_VAL : std::max(t1, t0);  // stopped early: nothing behind counts
         }

@@ -32,6 +32,26 @@ TransferFunction::TransferFunction(std::vector<TfPoint> points, double range_lo,
     throw InputError("transfer.linear_width: must be > 0");
   slo_ = scale_.apply(lo_);
   shi_ = scale_.apply(hi_);
+  // Kinks: the places in [0, 1] where a channel's slope changes (the slope is 0 outside [0, 1],
+  // where values clamp), as raw values. Collinear points are no kink.
+  auto slopeAt = [&](double x, bool right) {  // the slope of each channel just right/left of x
+    std::array<double, 4> k{0, 0, 0, 0};
+    if ((right && x >= 1.0) || (!right && x <= 0.0)) return k;
+    const double e = 1e-9, a = right ? x : x - e, b = right ? x + e : x;
+    const std::array<double, 4> fa = evalNormalised(a), fb = evalNormalised(b);
+    for (int c = 0; c < 4; ++c) k[c] = (fb[c] - fa[c]) / e;
+    return k;
+  };
+  std::vector<double> places{0.0, 1.0};
+  for (const TfPoint& p : pts_) places.push_back(p.value);
+  std::sort(places.begin(), places.end());
+  places.erase(std::unique(places.begin(), places.end()), places.end());
+  for (double x : places) {
+    const std::array<double, 4> l = slopeAt(x, false), r = slopeAt(x, true);
+    bool kink = false;
+    for (int c = 0; c < 4; ++c) kink = kink || std::abs(l[c] - r[c]) > 1e-6 * (1.0 + std::abs(l[c]) + std::abs(r[c]));
+    if (kink) kinks_.push_back(denormalise(x));
+  }
 }
 
 std::vector<TfPoint> TransferFunction::preset(const std::string& name) {
@@ -80,8 +100,10 @@ std::array<double, 3> TransferFunction::colour(double v) const {
 
 double TransferFunction::opacity(double v) const { return evalNormalised(normalise(v))[3]; }
 
-double TransferFunction::extinction(double v) const {
-  return -std::log1p(-std::min(opacity(v), kMaxOpacity)) / unit_;
+double TransferFunction::extinction(double v) const { return extinctionOfOpacity(opacity(v)); }
+
+double TransferFunction::extinctionOfOpacity(double a) const {
+  return -std::log1p(-std::min(a, kMaxOpacity)) / unit_;
 }
 
 double TransferFunction::maxOpacity(double lo, double hi) const {

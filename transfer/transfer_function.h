@@ -37,6 +37,10 @@ class TransferFunction {
   std::array<double, 3> colour(double v) const;   // of the raw data value
   double opacity(double v) const;                 // per unit_length, of the raw data value
   double extinction(double v) const;              // tau, per world unit
+  // (r, g, b, opacity) of the raw data value: colour() and opacity() in one lookup.
+  std::array<double, 4> at(double v) const { return evalNormalised(normalise(v)); }
+  // tau, per world unit, of an opacity per unit_length (capped at kMaxOpacity).
+  double extinctionOfOpacity(double a) const;
 
   // Largest opacity over raw data values in [lo, hi]: zero means a brick whose samples all lie in
   // [lo, hi] is invisible.
@@ -61,6 +65,10 @@ class TransferFunction {
   double unitLength() const { return unit_; }
   const ValueScale& scale() const { return scale_; }
   const std::vector<TfPoint>& points() const { return pts_; }
+  // The raw data values where colour or opacity has a kink (each point's value and the range's
+  // ends, where the clamp begins), increasing: a step of an integrator whose values cross one
+  // holds a kink of its integrand, which the midpoint rule treats to first order only.
+  const std::vector<double>& kinkValues() const { return kinks_; }
   // Everything the function's values depend on (range, unit length, scale, each point), appended
   // to `key`: for caches of what was computed from it (a probe's step, the estimate's block maps).
   void appendKey(std::vector<double>& key) const;
@@ -75,6 +83,7 @@ class TransferFunction {
   double lo_ = 0.0, hi_ = 1.0, unit_ = 1.0;
   ValueScale scale_;
   double slo_ = 0.0, shi_ = 1.0;  // the range's ends in the scale's domain
+  std::vector<double> kinks_;
 };
 
 }  // namespace sortlast

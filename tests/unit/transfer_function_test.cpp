@@ -167,6 +167,31 @@ TEST(TransferFunction, TableSpanAgreesWithFilteredLookups) {
   }
 }
 
+// The raw values where the function's slope changes (the reference cuts its steps there): interior
+// points where a channel bends, the range's ends where a channel slopes into the clamp, a jump
+// (two points at one value); not a collinear point, nor an end where every channel is flat.
+TEST(TransferFunction, KinkValuesAreWhereASlopeChanges) {
+  // Over [10, 20]: 0 -> 0.25 -> 0.5 collinear in every channel; a bend at 0.75; flat from 0.75 to 1
+  // in every channel, so the top of the range is no kink; the bottom is (the channels slope there).
+  const TransferFunction tf({{0.0, 0.0, 0.0, 0.0, 0.0}, {0.25, 0.25, 0.25, 0.25, 0.25},
+                             {0.5, 0.5, 0.5, 0.5, 0.5}, {0.75, 0.5, 0.5, 0.5, 0.9}, {1.0, 0.5, 0.5, 0.5, 0.9}},
+                            10.0, 20.0, 1.0);
+  const std::vector<double> want = {10.0, 15.0, 17.5};
+  ASSERT_EQ(tf.kinkValues().size(), want.size());
+  for (size_t i = 0; i < want.size(); ++i) EXPECT_NEAR(tf.kinkValues()[i], want[i], 1e-12);
+  // A jump at 0.4, inside points that are otherwise flat: one kink, there.
+  const TransferFunction jump({{0.0, 0, 0, 0, 0}, {0.4, 0, 0, 0, 0}, {0.4, 1, 1, 1, 0.5}, {1.0, 1, 1, 1, 0.5}},
+                              0.0, 1.0, 1.0);
+  ASSERT_EQ(jump.kinkValues().size(), 1u);
+  EXPECT_NEAR(jump.kinkValues()[0], 0.4, 1e-12);
+  // Under a log scale the points are raw values through the scale's inverse.
+  const TransferFunction lg({{0.0, 0, 0, 0, 0}, {0.5, 1, 1, 1, 0.5}, {1.0, 1, 1, 1, 0.5}}, 1.0, 100.0, 1.0,
+                            ValueScale{ValueScaleKind::kLog});
+  ASSERT_EQ(lg.kinkValues().size(), 2u);
+  EXPECT_NEAR(lg.kinkValues()[0], 1.0, 1e-9);
+  EXPECT_NEAR(lg.kinkValues()[1], 10.0, 1e-9);
+}
+
 TEST(TransferFunction, InvalidPointsThrow) {
   EXPECT_THROW(TransferFunction({}, 0.0, 1.0, 1.0), InputError);
   EXPECT_THROW(TransferFunction({{0.5, 0, 0, 0, 1.5}}, 0.0, 1.0, 1.0), InputError);
