@@ -41,14 +41,18 @@ ImageF renderFieldsReference(const std::vector<FieldInput>& fields, const Box3& 
           const size_t nf = fields.size();
           auto valueAt = [&](size_t f, double t) {
             const glm::dvec3 p = o + t * d;
-            return ends[f].contains(p) ? fields[f].vol.at(fields[f].vol.grid.indexOfWorld(p)) : NAN;
+            if (!ends[f].contains(p)) return double(NAN);
+            return fields[f].vol.at(fields[f].vol.grid.indexOfWorld(p));
           };
-          auto tauOf = [&](size_t f, double v) { return std::isnan(v) ? v : fields[f].tf.extinction(v); };
+          auto tauOf = [&](size_t f, double v) {
+            return std::isnan(v) ? v : fields[f].tf.extinction(v);
+          };
           std::vector<double> va(nf), vb(nf), xa(nf), xb(nf), ea(nf), eb(nf);
           std::vector<std::pair<double, std::pair<size_t, double>>> cuts;  // (where, (field, value))
           for (size_t f = 0; f < nf; ++f) va[f] = valueAt(f, t0), xa[f] = tauOf(f, va[f]);
           // One part [pa, pb] with the fields' end extinctions ea, eb.
-          auto part = [&](double pa, double pb, const std::vector<double>& ends_a, const std::vector<double>& ends_b) {
+          auto part = [&](double pa, double pb, const std::vector<double>& ends_a,
+                          const std::vector<double>& ends_b) {
             const glm::dvec3 p = o + (0.5 * (pa + pb)) * d;
             double tau = 0.0, emitted[3] = {0, 0, 0};
             for (size_t f = 0; f < nf; ++f) {
@@ -56,8 +60,8 @@ ImageF renderFieldsReference(const std::vector<FieldInput>& fields, const Box3& 
               const double v = fields[f].vol.at(fields[f].vol.grid.indexOfWorld(p));
               if (std::isnan(v)) continue;
               const double xm = fields[f].tf.extinction(v);
-              const double tau_f =
-                  std::isnan(ends_a[f]) || std::isnan(ends_b[f]) ? xm : (ends_a[f] + 4.0 * xm + ends_b[f]) / 6.0;
+              const bool ends_known = !std::isnan(ends_a[f]) && !std::isnan(ends_b[f]);
+              const double tau_f = ends_known ? (ends_a[f] + 4.0 * xm + ends_b[f]) / 6.0 : xm;
               if (!(tau_f > 0.0)) continue;
               const auto c = fields[f].tf.colour(v);
               tau += tau_f;

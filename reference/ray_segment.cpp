@@ -74,7 +74,6 @@ EmptyBlocks::EmptyBlocks(const BrickField& field, const TransferFunction& tf, do
   count = (cells + kCells - 1) / kCells;
   empty.assign(size_t(count.x) * count.y * count.z, 0);
   multiple.assign(empty.size(), 1);
-  kinked.assign(empty.size(), 1);
   // Every frame's estimate builds these (a fifth of the engine's estimate, 256^3, perf): slabs of
   // blocks in parts, each block written by one.
   std::atomic<int> next_slab{0};
@@ -96,12 +95,6 @@ EmptyBlocks::EmptyBlocks(const BrickField& field, const TransferFunction& tf, do
           const double lo = lo_f, hi = hi_f;
           const size_t b = size_t(bx) + size_t(count.x) * (size_t(by) + size_t(count.y) * size_t(bz));
           empty[b] = !nan && lo <= hi && tf.maxOpacity(lo, hi) <= 0.0;
-          if (!nan && lo <= hi) {
-            const double xl = tf.normalise(lo), xh = tf.normalise(hi);
-            bool k = (lo < tf.rangeLo() && hi > tf.rangeLo()) || (lo < tf.rangeHi() && hi > tf.rangeHi());
-            for (const TfPoint& p : tf.points()) k = k || (p.value > xl && p.value < xh);
-            kinked[b] = k;
-          }
           if (nan || shading || !(step > 0.0) || !(lo <= hi)) continue;
           const double osc = oscillation(tf, lo, hi);
           int m = 1;
@@ -246,15 +239,16 @@ class FieldCursor {
 // both largest where a is: over the pieces the crossing's values reach, T0 >= tau, T1 >= |tau'|,
 // T2 >= |tau''|, C0 >= c, C1 >= |kc| (derivatives in x), and with x' = v' / (hi - lo) the
 // integrands tau and c tau along the ray have |f'| <= F1 and |f''| <= F2 (chain rule).
-// - No point of the function (nor the range's clamp, nor the opacity cap) inside the crossing's
-//   value range: tau and c tau are smooth on the crossing, and a midpoint step of length h,
-//   composited exactly for its midpoint's tau and c (1 - exp(-tau h)), is off from the exact
+// - The opacity cap not reached on the crossing: tau and c tau are smooth on each part of the
+//   crossing between the function's kinks (Marcher::steps cuts its steps there), and a midpoint
+//   step of length h, composited exactly for its midpoint's tau and c (1 - exp(-tau h)) -- or
+//   with Simpson's optical depth, closer still -- is off from the exact
 //   integral by h^3 (F2 / 24 + (F1(c tau) T0 + C0 T0 F1(tau)) / 12) to leading order, in optical
 //   depth and emission (the first: the midpoint rule's h^3 f'' / 24; the second: the emission's
 //   transmittance inside the step); a factor 2 covers what follows, and h <= 0.5 / T0 keeps it
 //   small.
-// - Otherwise (a kink): Lipschitz, |f(s) - f(mid)| <= F1 |s - mid|, so off by at most
-//   h^2 (F1(tau) + F1(c tau)) / 4 + h^3 C0 T0 F1(tau) / 2.
+// - Otherwise (the cap: a kink no step is cut at): Lipschitz, |f(s) - f(mid)| <= F1 |s - mid|,
+//   so off by at most h^2 (F1(tau) + F1(c tau)) / 4 + h^3 C0 T0 F1(tau) / 2.
 // An error d in a step's optical depth or emission moves the pixel by at most d (what lies behind
 // is at most 1), as the blocks' first-order rule (EmptyBlocks) counts it.
 double cellStep(const TransferFunction& tf, const double* k, double sa, double sb, double tol) {
@@ -284,7 +278,7 @@ double cellStep(const TransferFunction& tf, const double* k, double sa, double s
   }
   if (!std::isfinite(vlo + vhi + v1 + v2)) return 0.0;  // a missing corner: every sample NaN
   const double lo = tf.rangeLo(), hi = tf.rangeHi();
-  bool kink = (vlo < lo && vhi > lo) || (vlo < hi && vhi > hi);
+  bool kink = false;  // the opacity cap inside the crossing (the function's own kinks: below)
   const double xl = tf.normalise(vlo), xh = tf.normalise(vhi);
   const std::vector<TfPoint>& p = tf.points();
   const double cap = TransferFunction::kMaxOpacity, unit = tf.unitLength();
@@ -307,14 +301,12 @@ double cellStep(const TransferFunction& tf, const double* k, double sa, double s
   if (xl < p.front().value) piece(xl, std::min(xh, p.front().value), 0.0, zero);
   if (xh > p.back().value) piece(std::max(xl, p.back().value), xh, 0.0, zero);
   for (size_t i = 0; i + 1 < p.size(); ++i) {
-    if (p[i].value > xl && p[i].value < xh) kink = true;
     const double u0 = std::max(xl, p[i].value), u1 = std::min(xh, p[i + 1].value);
     if (!(p[i + 1].value > p[i].value) || u0 > u1) continue;
     const double w = p[i + 1].value - p[i].value;
     const double kc[3] = {(p[i + 1].r - p[i].r) / w, (p[i + 1].g - p[i].g) / w, (p[i + 1].b - p[i].b) / w};
     piece(u0, u1, (p[i + 1].a - p[i].a) / w, kc);
   }
-  if (p.back().value > xl && p.back().value < xh) kink = true;
   if (!(t0 > 0.0)) return 0.0;
   const double x1 = v1 / (hi - lo), x2 = v2 / (hi - lo);
   const double f1 = t1 * x1, f1c = (c1 * t0 + c0 * t1) * x1;
@@ -392,7 +384,9 @@ class Marcher {
  private:
   // tau (per world unit) at raw value v; NaN where v is (a missing sample).
   double extinctionOf(double v) {
-    return std::isnan(v) ? v : tf_.extinctionOfOpacity(tfc_.at(v)[3]);
+    if (std::isnan(v)) return v;
+    const double a = tfc_.at(v)[3];
+    return a > 0.0 ? tf_.extinctionOfOpacity(a) : 0.0;  // the same 0 without the log
   }
 
   // One step over [pa, pb] (the extinctions xa, xb at its ends: Simpson's rule with its middle's;
@@ -402,7 +396,8 @@ class Marcher {
     const double v = cursor_.at(tm);
     if (std::isnan(v)) return;  // the stencil touches a missing sample: transparent
     const std::array<double, 4> f = tfc_.at(v);
-    const double xm = tf_.extinctionOfOpacity(f[3]);
+    if (!(f[3] > 0.0) && !(xa > 0.0) && !(xb > 0.0)) return;  // nothing here to integrate
+    const double xm = f[3] > 0.0 ? tf_.extinctionOfOpacity(f[3]) : 0.0;
     const double tau = std::isnan(xa) || std::isnan(xb) ? xm : (xa + 4.0 * xm + xb) / 6.0;
     if (!(tau > 0.0)) return;
     const double a = 1.0 - std::exp(-tau * (pb - pa));
@@ -450,7 +445,7 @@ SegmentIntegral integrateSegment(const BrickField& field, const TransferFunction
     double ta, tb;
     if (!intersectRayBox(o, d, box, ta, tb) || tb <= probe) tb = probe + 0.25 * step;  // rounding at a face
     tb = std::min(tb, t1);
-    if (!blocks->empty[bi] && march.cellwise() && !blocks->kinked[bi]) {
+    if (!blocks->empty[bi] && march.cellwise()) {
       march.cells(out, t, tb, step, blocks->multiple[bi] * step, kCellTolerance / field.grid.minSpacing());
     } else if (!blocks->empty[bi]) {
       const double len = tb - t, big = blocks->multiple[bi] * step;

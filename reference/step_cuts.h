@@ -18,7 +18,8 @@ inline int stepCuts(const std::vector<double>& kinks, double ta, double tb, doub
                     std::pair<double, double> (&cuts)[kMaxStepCuts]) {
   const double vlo = std::min(va, vb), vhi = std::max(va, vb);
   int m = 0;
-  for (auto k = std::upper_bound(kinks.begin(), kinks.end(), vlo); k != kinks.end() && *k < vhi && m < kMaxStepCuts; ++k)
+  auto k = std::upper_bound(kinks.begin(), kinks.end(), vlo);
+  for (; k != kinks.end() && *k < vhi && m < kMaxStepCuts; ++k)
     cuts[m++] = {ta + (tb - ta) * ((*k - va) / (vb - va)), *k};
   std::sort(cuts, cuts + m);
   return m;

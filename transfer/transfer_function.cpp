@@ -102,9 +102,6 @@ double TransferFunction::opacity(double v) const { return evalNormalised(normali
 
 double TransferFunction::extinction(double v) const { return extinctionOfOpacity(opacity(v)); }
 
-double TransferFunction::extinctionOfOpacity(double a) const {
-  return -std::log1p(-std::min(a, kMaxOpacity)) / unit_;
-}
 
 double TransferFunction::maxOpacity(double lo, double hi) const {
   return maxOpacityNormalised(normalise(lo), normalise(hi));

@@ -10,7 +10,9 @@
 // slice-spacing correction; as ds -> 0 this is the emission-absorption model with extinction
 // tau(v) = -ln(1 - a(v)) / unit_length and emitted colour c(v) * tau(v). Both the GL renderer and
 // the reference integrator use that one model.
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -39,8 +41,9 @@ class TransferFunction {
   double extinction(double v) const;              // tau, per world unit
   // (r, g, b, opacity) of the raw data value: colour() and opacity() in one lookup.
   std::array<double, 4> at(double v) const { return evalNormalised(normalise(v)); }
-  // tau, per world unit, of an opacity per unit_length (capped at kMaxOpacity).
-  double extinctionOfOpacity(double a) const;
+  // tau, per world unit, of an opacity per unit_length (capped at kMaxOpacity). Inline: the
+  // references and the frame's estimate call it two or three times a step.
+  double extinctionOfOpacity(double a) const { return -std::log1p(-std::min(a, kMaxOpacity)) / unit_; }
 
   // Largest opacity over raw data values in [lo, hi]: zero means a brick whose samples all lie in
   // [lo, hi] is invisible.

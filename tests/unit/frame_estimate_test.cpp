@@ -264,11 +264,12 @@ TEST(FrameEstimate, ReferenceStepsAreCutAtTheFunctionsKinks) {
               cut, midpoint, segments);
 }
 
-// The block march with its cell march in blocks without a kink (steps per cell crossed, as long
-// as cellStep's bound allows, none where nothing is visible) against a march 32 times finer, for
-// the presets: no farther from it than the plain march at the reference's step is, within 1e-5
-// (the sharp preset's narrow band is where the 1/16-voxel step itself is off by 5e-3 and where
-// the steps are cut matters: allowed twice the plain march's error there).
+// The block march with its cell march (steps per cell crossed, as long as cellStep's bound allows,
+// none where nothing is visible; every step cut at the function's kinks) against a march 32 times
+// finer, for the presets: no farther from it than the plain march at the reference's step is,
+// within 1e-5 (measured: default 7.7e-5 against 7.8e-5, ramp 8.9e-5 against 1.1e-4, sharp 1.3e-3
+// against 1.3e-3; before the cuts the sharp preset's blocks with a kink kept the fine steps, and
+// marched by cells would have been allowed twice the plain march's error).
 TEST(FrameEstimate, CellMarchIsAsCloseToAFinerMarchAsThePlainOne) {
   const WholeVolume v = blobVolume();
   const Camera cam = smallCamera();
@@ -297,10 +298,8 @@ TEST(FrameEstimate, CellMarchIsAsCloseToAFinerMarchAsThePlainOne) {
           cells = std::max(cells, std::abs(c.transmit - fine.transmit));
         }
     }
-    if (std::string(name) == "sharp")
-      EXPECT_LT(cells, 2.0 * plain) << name;
-    else
-      EXPECT_LT(cells, plain + 1e-5) << name;
+    std::printf("%s: the cell march %.3g, the plain march %.3g from a march 32 times finer\n", name, cells, plain);
+    EXPECT_LT(cells, plain + 1e-5) << name;
   }
 }
 
