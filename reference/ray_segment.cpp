@@ -111,7 +111,7 @@ namespace {
 
 constexpr double kStopTransmit = 1e-4;
 // The cell march's error per voxel (the smallest spacing) of the ray's length: a ray through 100
-// visible voxels is within 100 kCellTolerance of the exact integral (and of the fine steps).
+// visible voxels is within about 100 kCellTolerance of the exact integral (Marcher::refine).
 constexpr double kCellTolerance = 1e-5;
 
 // The transfer function along a ray: the piece a value falls in is walked to from the previous
@@ -123,7 +123,6 @@ class TfCursor {
   explicit TfCursor(const TransferFunction& tf)
       : tf_(tf), p_(tf.points()), linear_(tf.scale().kind == ValueScaleKind::kLinear),
         lo_(tf.rangeLo()), hi_(tf.rangeHi()) {}
-  bool linear() const { return linear_; }
   // (r, g, b, opacity) at raw value v.
   std::array<double, 4> at(double v) {
     const double x = linear_ ? std::clamp((v - lo_) / (hi_ - lo_), 0.0, 1.0) : tf_.normalise(v);
@@ -228,112 +227,62 @@ class FieldCursor {
   double k_[4] = {0, 0, 0, 0};
 };
 
-// The longest midpoint step that keeps one step's error within `tol` on one cell's crossing, the
-// field there v(s) = k0 + k1 s + k2 s^2 + k3 s^3 for s in [sa, sb] (a cubic: FieldCursor); 0 where
-// nothing on the crossing has opacity (or a sample is missing: every sample is then NaN) and the
-// crossing contributes exactly nothing. Linear scale only (x = (v - lo) / (hi - lo), clamped).
-//
-// The bound. From the cubic: the crossing's value range, V1 >= |v'| and V2 >= |v''| on it. On
-// each piece of the function (between its points) opacity a and colour c are linear in x (slopes
-// ka, kc), so tau = -log(1 - a) / L has tau' = ka / ((1 - a) L) and tau'' = ka^2 / ((1 - a)^2 L),
-// both largest where a is: over the pieces the crossing's values reach, T0 >= tau, T1 >= |tau'|,
-// T2 >= |tau''|, C0 >= c, C1 >= |kc| (derivatives in x), and with x' = v' / (hi - lo) the
-// integrands tau and c tau along the ray have |f'| <= F1 and |f''| <= F2 (chain rule).
-// - The opacity cap not reached on the crossing: tau and c tau are smooth on each part of the
-//   crossing between the function's kinks (Marcher::steps cuts its steps there), and a midpoint
-//   step of length h, composited exactly for its midpoint's tau and c (1 - exp(-tau h)) -- or
-//   with Simpson's optical depth, closer still -- is off from the exact
-//   integral by h^3 (F2 / 24 + (F1(c tau) T0 + C0 T0 F1(tau)) / 12) to leading order, in optical
-//   depth and emission (the first: the midpoint rule's h^3 f'' / 24; the second: the emission's
-//   transmittance inside the step); a factor 2 covers what follows, and h <= 0.5 / T0 keeps it
-//   small.
-// - Otherwise (the cap: a kink no step is cut at): Lipschitz, |f(s) - f(mid)| <= F1 |s - mid|,
-//   so off by at most h^2 (F1(tau) + F1(c tau)) / 4 + h^3 C0 T0 F1(tau) / 2.
-// An error d in a step's optical depth or emission moves the pixel by at most d (what lies behind
-// is at most 1), as the blocks' first-order rule (EmptyBlocks) counts it.
-double cellStep(const TransferFunction& tf, const double* k, double sa, double sb, double tol) {
-  // tol: per unit length (a step of h may be off by tol h), so a ray's steps add up to tol times
-  // the length it integrates, whatever their number.
-  auto v = [&](double s) { return ((k[3] * s + k[2]) * s + k[1]) * s + k[0]; };
-  auto dv = [&](double s) { return (3.0 * k[3] * s + 2.0 * k[2]) * s + k[1]; };
-  double vlo = std::min(v(sa), v(sb)), vhi = std::max(v(sa), v(sb));
-  double v1 = std::max(std::abs(dv(sa)), std::abs(dv(sb)));
-  const double v2 = std::max(std::abs(6.0 * k[3] * sa + 2.0 * k[2]), std::abs(6.0 * k[3] * sb + 2.0 * k[2]));
-  // v' = 3 k3 s^2 + 2 k2 s + k1: its roots (v's extremes) and its vertex (|v'|'s) inside [sa, sb].
-  const double qa = 3.0 * k[3], qb = 2.0 * k[2], qc = k[1];
+// Where one cell crossing's field v(s) = k0 + k1 s + k2 s^2 + k3 s^3, s in (sa, sb) (FieldCursor's
+// cubic), turns: the roots of v' inside, in order (none, one or two).
+struct Turns {
+  double at[2];
+  int count = 0;
+};
+
+double cubicAt(const double* k, double s) { return ((k[3] * s + k[2]) * s + k[1]) * s + k[0]; }
+
+Turns turnsOf(const double* k, double sa, double sb) {
+  Turns c;
+  const double qa = 3.0 * k[3], qb = 2.0 * k[2], qc = k[1];  // v' = qa s^2 + qb s + qc
   auto take = [&](double s) {
-    if (s > sa && s < sb) vlo = std::min(vlo, v(s)), vhi = std::max(vhi, v(s));
+    if (s > sa && s < sb) c.at[c.count++] = s;
   };
   if (qa != 0.0) {
     const double disc = qb * qb - 4.0 * qa * qc;
-    if (disc >= 0.0) {
+    if (disc > 0.0) {
       const double r = std::sqrt(disc);
-      take((-qb - r) / (2.0 * qa));
-      take((-qb + r) / (2.0 * qa));
+      const double r1 = (-qb - r) / (2.0 * qa), r2 = (-qb + r) / (2.0 * qa);
+      take(std::min(r1, r2));
+      take(std::max(r1, r2));
     }
-    const double vert = -qb / (2.0 * qa);
-    if (vert > sa && vert < sb) v1 = std::max(v1, std::abs(dv(vert)));
   } else if (qb != 0.0) {
     take(-qc / qb);
   }
-  if (!std::isfinite(vlo + vhi + v1 + v2)) return 0.0;  // a missing corner: every sample NaN
-  const double lo = tf.rangeLo(), hi = tf.rangeHi();
-  bool kink = false;  // the opacity cap inside the crossing (the function's own kinks: below)
-  const double xl = tf.normalise(vlo), xh = tf.normalise(vhi);
-  const std::vector<TfPoint>& p = tf.points();
-  const double cap = TransferFunction::kMaxOpacity, unit = tf.unitLength();
-  double t0 = 0.0, t1 = 0.0, t2 = 0.0, c0 = 0.0, c1 = 0.0;
-  // The pieces the range reaches, the constant ends beyond the first and last points included.
-  auto piece = [&](double u0, double u1, double ka, const double kc[3]) {
-    const std::array<double, 4> e0 = tf.atNormalised(u0), e1 = tf.atNormalised(u1);
-    double amax = std::max(e0[3], e1[3]);
-    if (amax >= cap) kink = true, amax = cap;
-    if (!(amax > 0.0)) return;  // no opacity: tau = 0, nothing emitted
-    t0 = std::max(t0, -std::log1p(-amax) / unit);
-    t1 = std::max(t1, std::abs(ka) / ((1.0 - amax) * unit));
-    t2 = std::max(t2, ka * ka / ((1.0 - amax) * (1.0 - amax) * unit));
-    for (int c = 0; c < 3; ++c) {
-      c0 = std::max({c0, std::abs(e0[c]), std::abs(e1[c])});
-      c1 = std::max(c1, std::abs(kc[c]));
-    }
-  };
-  const double zero[3] = {0, 0, 0};
-  if (xl < p.front().value) piece(xl, std::min(xh, p.front().value), 0.0, zero);
-  if (xh > p.back().value) piece(std::max(xl, p.back().value), xh, 0.0, zero);
-  for (size_t i = 0; i + 1 < p.size(); ++i) {
-    const double u0 = std::max(xl, p[i].value), u1 = std::min(xh, p[i + 1].value);
-    if (!(p[i + 1].value > p[i].value) || u0 > u1) continue;
-    const double w = p[i + 1].value - p[i].value;
-    const double kc[3] = {(p[i + 1].r - p[i].r) / w, (p[i + 1].g - p[i].g) / w, (p[i + 1].b - p[i].b) / w};
-    piece(u0, u1, (p[i + 1].a - p[i].a) / w, kc);
-  }
-  if (!(t0 > 0.0)) return 0.0;
-  const double x1 = v1 / (hi - lo), x2 = v2 / (hi - lo);
-  const double f1 = t1 * x1, f1c = (c1 * t0 + c0 * t1) * x1;
-  if (!kink) {
-    const double f2 = t2 * x1 * x1 + t1 * x2;
-    const double f2c = (2.0 * c1 * t1 + c0 * t2) * x1 * x1 + (c1 * t0 + c0 * t1) * x2;
-    const double b = 2.0 * ((f2 + f2c) / 24.0 + (f1c * t0 + c0 * t0 * f1) / 12.0);
-    return std::min(std::sqrt(tol / b), 0.5 / t0);
-  }
-  const double a2 = (f1 + f1c) / 4.0, a3 = c0 * t0 * f1 / 2.0;
-  return std::min(tol / (2.0 * a2), std::sqrt(tol / (2.0 * a3)));
+  return c;
 }
 
-// The midpoint rule along one ray through one brick: each step [ta, ta + h] composited into `out`.
+// Where the cubic, monotone on [sa, sb] with va = v(sa) and vb = v(sb) on either side of `value`,
+// meets it: Newton's steps kept inside the bracket, bisection where one leaves it.
+double cubicRoot(const double* k, double sa, double sb, double va, double value) {
+  double lo = sa, hi = sb;
+  const bool rising = va < value;  // v(lo) < value < v(hi) when rising
+  double s = 0.5 * (sa + sb);
+  for (int i = 0; i < 60 && hi - lo > 1e-14 * (1.0 + std::abs(sa) + std::abs(sb)); ++i) {
+    const double f = cubicAt(k, s) - value;
+    if ((f < 0.0) == rising) lo = s; else hi = s;
+    if (f == 0.0) return s;
+    const double df = (3.0 * k[3] * s + 2.0 * k[2]) * s + k[1];
+    const double next = df != 0.0 ? s - f / df : 0.5 * (lo + hi);
+    s = next > lo && next < hi ? next : 0.5 * (lo + hi);
+  }
+  return s;
+}
+
+// The reference's integral along one ray through one brick, composited into `out`: in equal steps
+// with the reference's rule (steps()), or cell by cell to a tolerance (cells()).
 class Marcher {
  public:
   Marcher(const BrickField& field, const TransferFunction& tf, const Shading& shading, double flat,
           const glm::dvec3& o, const glm::dvec3& d)
       : field_(field), tf_(tf), tfc_(tf), shading_(shading), flat_(flat), o_(o), d_(d), cursor_(field, o, d) {}
 
-  // Whether cells() can march this ray (unshaded, the function's linear scale).
-  bool cellwise() const { return !shading_.enabled && tfc_.linear(); }
-
-  // [ta, tb] cell by cell: in each cell crossed, equal steps of the longest length cellStep
-  // allows for `tol`, at least `h_min` (the fine step, or the block's multiple of it), none where
-  // cellStep finds nothing to integrate. Where the field clamps (the grid's or the held samples'
-  // edge), steps of h_min to tb.
+  // [ta, tb] cell by cell: each cell's crossing integrated to `tol` (crossing()). Where the
+  // field clamps (the grid's or the held samples' edge), steps of h_min to tb.
   void cells(SegmentIntegral& out, double ta, double tb, double step, double h_min, double tol) {
     double t = ta;
     while (t < tb && out.transmit > kStopTransmit) {
@@ -345,11 +294,8 @@ class Marcher {
       }
       double te = std::min(cursor_.exitT(), tb);
       if (te <= probe) te = std::min(tb, probe + 0.25 * step);  // rounding at a face
-      const double h = cellStep(tf_, cursor_.cubic(), t - cursor_.refT(), te - cursor_.refT(), tol);
-      if (h > 0.0) {
-        const long long n = std::max(1LL, (long long)std::ceil((te - t) / std::max(h, h_min)));
-        steps(out, t, n, (te - t) / double(n));
-      }
+      std::copy(cursor_.cubic(), cursor_.cubic() + 4, k_);
+      crossing(out, t, te, tol);
       t = te;
     }
   }
@@ -382,6 +328,121 @@ class Marcher {
   }
 
  private:
+  // One cell's crossing [ta, tb] (the field the cubic k_ in s = t - refT): cut where the field
+  // turns and where it meets a kink of opacity, so that on each piece the value is a monotone
+  // cubic and opacity linear in its scaled value (transfer/value_scale.h: smooth and monotone in
+  // the value between the kinks) -- extinction smooth along the ray -- and each piece integrated
+  // by adaptive Simpson (refine), skipped where neither end has opacity (then nothing inside
+  // has). Colour's own kinks (a colour map's many points) are left to refine's halving: cut at
+  // each of viridis's points, hydrogen_log's estimate took 3.3x as long for the same figures.
+  // Nothing where a corner is missing (every sample there NaN: the reference's steps are
+  // transparent there too).
+  void crossing(SegmentIntegral& out, double ta, double tb, double tol) {
+    const double ref = cursor_.refT(), sa = ta - ref, sb = tb - ref;
+    if (!std::isfinite(k_[0] + k_[1] + k_[2] + k_[3])) return;
+    const Turns c = turnsOf(k_, sa, sb);
+    // The piece ends in ray order: on a rising part the kinks it meets in increasing order, on a
+    // falling one in decreasing order.
+    const std::vector<double>& kinks = tf_.opacityKinkValues();
+    cuts_.clear();
+    cuts_.push_back(sa);
+    for (int i = 0; i <= c.count; ++i) {
+      const double p = i == 0 ? sa : c.at[i - 1], q = i == c.count ? sb : c.at[i];
+      const double vp = cubicAt(k_, p), vq = cubicAt(k_, q);
+      const auto first = std::upper_bound(kinks.begin(), kinks.end(), std::min(vp, vq));
+      auto last = first;
+      while (last != kinks.end() && *last < std::max(vp, vq)) ++last;
+      if (vp < vq)
+        for (auto kv = first; kv != last; ++kv) cuts_.push_back(cubicRoot(k_, p, q, vp, *kv));
+      else
+        for (auto kv = last; kv != first; --kv) cuts_.push_back(cubicRoot(k_, p, q, vp, *(kv - 1)));
+      cuts_.push_back(q);
+    }
+    // Each piece's start is the previous piece's end; the first piece's start, the previous
+    // crossing's last end where this crossing starts there (the field is continuous across a
+    // cell's face: the same value within rounding).
+    Point a = last_t_ == ta ? Point{sa, {last_.c[0], last_.c[1], last_.c[2]}, last_.tau} : point(sa);
+    for (size_t i = 0; i + 1 < cuts_.size() && out.transmit > kStopTransmit; ++i) {
+      if (!(cuts_[i + 1] > cuts_[i])) continue;
+      const Point b = point(cuts_[i + 1]);
+      // Opacity is linear in the scaled value on a piece, and that monotone: none at both
+      // ends, none inside.
+      if (a.tau > 0.0 || b.tau > 0.0) {
+        const Point m = point(0.5 * (cuts_[i] + cuts_[i + 1]));
+        refine(out, a, m, b, simpson(a, m, b), tol, 0);
+      }
+      a = b;
+    }
+    last_ = a, last_t_ = a.s == sb ? tb : -HUGE_VAL;
+  }
+
+  // The integrand at s (the current cell's cubic): colour and extinction.
+  struct Point {
+    double s, c[3], tau;
+  };
+  // Shaded, the colour as the reference's (transfer/shading.h): the central-difference gradient's
+  // taps lie one voxel either side, in the neighbouring cells at the same place within them, so
+  // it too is smooth inside a crossing (where a tap clamps at the grid's edge, it clamps for the
+  // whole crossing); the model's own kinks (the two-sided cosine, the flat-gradient blend, the
+  // clamp) are left to refine's halving.
+  Point point(double s) {
+    const std::array<double, 4> f = tfc_.at(cubicAt(k_, s));
+    Point p{s, {f[0], f[1], f[2]}, f[3] > 0.0 ? tf_.extinctionOfOpacity(f[3]) : 0.0};
+    if (shading_.enabled && p.tau > 0.0) {  // where tau is 0 the colour weighs nothing
+      const glm::dvec3 u = field_.grid.indexOfWorld(o_ + (s + cursor_.refT()) * d_);
+      const std::array<double, 3> c = shadeSample({f[0], f[1], f[2]}, field_.gradient(u), d_, shading_, flat_);
+      p.c[0] = c[0], p.c[1] = c[1], p.c[2] = c[2];
+    }
+    return p;
+  }
+
+  // Simpson's rule for one piece [a.s, b.s] (m its middle): its optical depth over the three
+  // points, the depth to the middle from the parabola through them, and its emission
+  // int c tau T ds with T the transmittance from a.s. The emission's weights (tau T at the three
+  // points) are scaled to sum to the piece's opacity 1 - T(b), so that a constant colour c gives
+  // exactly c (1 - T(b)) -- as the reference's steps do -- and the colour is still weighed by
+  // Simpson's rule (fourth order: the scale is 1 + O(h^4)).
+  static SegmentIntegral simpson(const Point& a, const Point& m, const Point& b) {
+    SegmentIntegral r;
+    if (!(a.tau > 0.0) && !(m.tau > 0.0) && !(b.tau > 0.0)) return r;
+    const double h = b.s - a.s;
+    const double depth = h / 6.0 * (a.tau + 4.0 * m.tau + b.tau);
+    const double to_mid = std::max(0.0, h / 24.0 * (5.0 * a.tau + 8.0 * m.tau - b.tau));
+    r.transmit = std::exp(-depth);
+    const double wa = a.tau, wm = 4.0 * m.tau * std::exp(-to_mid), wb = b.tau * r.transmit;
+    const double w = wa + wm + wb;
+    if (!(w > 0.0)) return r;
+    const double scale = (1.0 - r.transmit) / w;
+    for (int k = 0; k < 3; ++k) r.rgb[k] = scale * (wa * a.c[k] + wm * m.c[k] + wb * b.c[k]);
+    return r;
+  }
+
+  // Adaptive Simpson: the piece's rule against its two halves'; the halves' result kept where
+  // the two agree within tol h (h the piece's length) divided by the transmittance in front of
+  // the piece (an error there moves the pixel by that much less), else each half refined again.
+  // Not 15 tol h (Richardson's factor for a smooth integrand, which assumes the halves are 16
+  // times closer to the integral than the whole): shaded, where the lighting has kinks inside a
+  // piece, that was 1.2e-4 from a march 32 times finer in the unit test (the plain march 6e-6);
+  // with tol h, 1.2e-5, for 1.2-1.6x the shaded estimate's time and the same unshaded.
+  void refine(SegmentIntegral& out, const Point& a, const Point& m, const Point& b,
+              const SegmentIntegral& whole, double tol, int depth) {
+    const Point q1 = point(0.5 * (a.s + m.s)), q3 = point(0.5 * (m.s + b.s));
+    const SegmentIntegral left = simpson(a, q1, m), right = simpson(m, q3, b);
+    SegmentIntegral both = left;
+    for (int k = 0; k < 3; ++k) both.rgb[k] += left.transmit * right.rgb[k];
+    both.transmit *= right.transmit;
+    double err = std::abs(both.transmit - whole.transmit);
+    for (int k = 0; k < 3; ++k) err = std::max(err, std::abs(both.rgb[k] - whole.rgb[k]));
+    if (depth >= kMaxRefine || err * out.transmit <= tol * (b.s - a.s)) {
+      for (int k = 0; k < 3; ++k) out.rgb[k] += out.transmit * both.rgb[k];
+      out.transmit *= both.transmit;
+      return;
+    }
+    refine(out, a, q1, m, left, tol, depth + 1);
+    if (out.transmit > kStopTransmit) refine(out, m, q3, b, right, tol, depth + 1);
+  }
+  static constexpr int kMaxRefine = 12;  // halves down to 1/8192 of a piece
+
   // tau (per world unit) at raw value v; NaN where v is (a missing sample).
   double extinctionOf(double v) {
     if (std::isnan(v)) return v;
@@ -415,6 +476,10 @@ class Marcher {
   double flat_;
   glm::dvec3 o_, d_;
   FieldCursor cursor_;
+  double k_[4] = {0, 0, 0, 0};  // the cubic of the cell crossing()'s works on (s = t - cursor_.refT())
+  std::vector<double> cuts_;    // crossing()'s piece ends
+  Point last_{};                // the last crossing's end (at ray parameter last_t_)
+  double last_t_ = -HUGE_VAL;
 };
 
 }  // namespace
@@ -445,13 +510,8 @@ SegmentIntegral integrateSegment(const BrickField& field, const TransferFunction
     double ta, tb;
     if (!intersectRayBox(o, d, box, ta, tb) || tb <= probe) tb = probe + 0.25 * step;  // rounding at a face
     tb = std::min(tb, t1);
-    if (!blocks->empty[bi] && march.cellwise()) {
+    if (!blocks->empty[bi])
       march.cells(out, t, tb, step, blocks->multiple[bi] * step, kCellTolerance / field.grid.minSpacing());
-    } else if (!blocks->empty[bi]) {
-      const double len = tb - t, big = blocks->multiple[bi] * step;
-      const long long n = std::max(1LL, (long long)std::ceil(len / big));
-      march.steps(out, t, n, len / double(n));
-    }
     t = tb;
   }
   return out;

@@ -48,9 +48,19 @@ TransferFunction::TransferFunction(std::vector<TfPoint> points, double range_lo,
   places.erase(std::unique(places.begin(), places.end()), places.end());
   for (double x : places) {
     const std::array<double, 4> l = slopeAt(x, false), r = slopeAt(x, true);
-    bool kink = false;
-    for (int c = 0; c < 4; ++c) kink = kink || std::abs(l[c] - r[c]) > 1e-6 * (1.0 + std::abs(l[c]) + std::abs(r[c]));
-    if (kink) kinks_.push_back(denormalise(x));
+    auto bends = [&](int c) { return std::abs(l[c] - r[c]) > 1e-6 * (1.0 + std::abs(l[c]) + std::abs(r[c])); };
+    if (bends(0) || bends(1) || bends(2) || bends(3)) kinks_.push_back(denormalise(x));
+    if (bends(3)) opacity_kinks_.push_back(denormalise(x));
+  }
+  // symlog's own kinks: its s(v) changes slope at +-w (linear inside, logarithmic beyond), so
+  // every channel that is not flat there does too as a function of the raw value.
+  if (scale_.kind == ValueScaleKind::kSymlog) {
+    for (std::vector<double>* k : {&kinks_, &opacity_kinks_}) {
+      for (double w : {-scale_.linear_width, scale_.linear_width})
+        if (w > lo_ && w < hi_) k->push_back(w);
+      std::sort(k->begin(), k->end());
+      k->erase(std::unique(k->begin(), k->end()), k->end());
+    }
   }
 }
 

@@ -69,9 +69,12 @@ class TransferFunction {
   const ValueScale& scale() const { return scale_; }
   const std::vector<TfPoint>& points() const { return pts_; }
   // The raw data values where colour or opacity has a kink (each point's value and the range's
-  // ends, where the clamp begins), increasing: a step of an integrator whose values cross one
-  // holds a kink of its integrand, which the midpoint rule treats to first order only.
+  // ends, where the clamp begins; under symlog also +-linear_width inside the range, where the
+  // scale changes slope), increasing: a step of an integrator whose values cross one holds a
+  // kink of its integrand, which the midpoint rule treats to first order only.
   const std::vector<double>& kinkValues() const { return kinks_; }
+  // Those of them where opacity has its kink (a colour map's points are kinks of colour only).
+  const std::vector<double>& opacityKinkValues() const { return opacity_kinks_; }
   // Everything the function's values depend on (range, unit length, scale, each point), appended
   // to `key`: for caches of what was computed from it (a probe's step, the estimate's block maps).
   void appendKey(std::vector<double>& key) const;
@@ -87,6 +90,7 @@ class TransferFunction {
   ValueScale scale_;
   double slo_ = 0.0, shi_ = 1.0;  // the range's ends in the scale's domain
   std::vector<double> kinks_;
+  std::vector<double> opacity_kinks_;
 };
 
 }  // namespace sortlast

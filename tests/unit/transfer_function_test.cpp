@@ -190,6 +190,19 @@ TEST(TransferFunction, KinkValuesAreWhereASlopeChanges) {
   ASSERT_EQ(lg.kinkValues().size(), 2u);
   EXPECT_NEAR(lg.kinkValues()[0], 1.0, 1e-9);
   EXPECT_NEAR(lg.kinkValues()[1], 10.0, 1e-9);
+  // A colour bend where opacity runs straight on (a colour map's point): a kink, not opacity's.
+  const TransferFunction cm({{0.0, 0, 0, 0, 0}, {0.5, 1, 0, 0, 0.25}, {1.0, 1, 1, 0, 0.5}}, 0.0, 1.0, 1.0);
+  ASSERT_EQ(cm.kinkValues().size(), 3u);  // 0, 0.5 (colour) and 1 (the clamp)
+  ASSERT_EQ(cm.opacityKinkValues().size(), 2u);
+  EXPECT_NEAR(cm.opacityKinkValues()[0], 0.0, 1e-12);
+  EXPECT_NEAR(cm.opacityKinkValues()[1], 1.0, 1e-12);
+  // symlog bends at +-linear_width inside the range, with every channel that is not flat there.
+  const TransferFunction sl({{0.0, 0, 0, 0, 0}, {1.0, 1, 1, 1, 1}}, -100.0, 100.0, 1.0,
+                            ValueScale{ValueScaleKind::kSymlog, 2.0});
+  const std::vector<double> sl_want = {-100.0, -2.0, 2.0, 100.0};
+  ASSERT_EQ(sl.kinkValues().size(), sl_want.size());
+  ASSERT_EQ(sl.opacityKinkValues().size(), sl_want.size());
+  for (size_t i = 0; i < sl_want.size(); ++i) EXPECT_NEAR(sl.kinkValues()[i], sl_want[i], 1e-9);
 }
 
 TEST(TransferFunction, InvalidPointsThrow) {
