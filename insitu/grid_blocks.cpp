@@ -286,6 +286,26 @@ void SimulationSamples::upload(const GlApi& gl, const IndexBox& stored) const {
   }
 }
 
+std::vector<float> SimulationSamples::read(const IndexBox& stored) const {
+  std::vector<float> out(size_t(stored.count()), std::numeric_limits<float>::quiet_NaN());
+  const glm::ivec3 n = stored.size();
+  auto at = [&](const glm::ivec3& g) -> float& {
+    return out[size_t(g.x - stored.lo.x) + size_t(n.x) * (size_t(g.y - stored.lo.y) + size_t(n.y) * size_t(g.z - stored.lo.z))];
+  };
+  const IndexBox own = intersect(stored, owned_);
+  if (!emptyBox(own)) forOwned(block_, owned_, own, [&](const glm::ivec3& g, float v) { at(g) = v; });
+  for (const Piece& p : shell_) {
+    const IndexBox cut = intersect(stored, p.box);
+    if (emptyBox(cut)) continue;
+    const glm::ivec3 m = p.box.size();
+    for (int z = cut.lo.z; z <= cut.hi.z; ++z)
+      for (int y = cut.lo.y; y <= cut.hi.y; ++y)
+        for (int x = cut.lo.x; x <= cut.hi.x; ++x)
+          at({x, y, z}) = p.values[size_t(x - p.box.lo.x) + size_t(m.x) * (size_t(y - p.box.lo.y) + size_t(m.y) * size_t(z - p.box.lo.z))];
+  }
+  return out;
+}
+
 double SimulationSamples::bytesHeld() const {
   double bytes = double(chunk_bytes_);
   for (const Piece& p : shell_) bytes += double(p.values.size()) * sizeof(float);

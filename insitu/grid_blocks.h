@@ -40,6 +40,10 @@ class SimulationSamples : public BrickSamples {
   SimulationSamples(const GridBlock& mine, const GridLayout& layout, MPI_Comm comm);
   std::pair<float, float> range(const IndexBox& box) const override;
   void upload(const GlApi& gl, const IndexBox& stored) const override;
+  // The samples of `stored` (this rank's brick's stored box) as float, x fastest: what upload()
+  // sends, for the frame's accuracy estimate (session/frame_estimate.h), which reads the field on
+  // the CPU. A copy: the brick's size in host memory while the estimate runs.
+  std::vector<float> read(const IndexBox& stored) const;
   // Bytes this object holds beyond the simulation's arrays (the shell; the upload's chunk buffer).
   double bytesHeld() const;
 

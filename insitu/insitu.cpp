@@ -5,7 +5,9 @@
 // image the firing renders want.
 #include "sortlast/insitu.h"
 
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -240,8 +242,39 @@ void InSitu::Impl::prepareStep(const std::vector<size_t>& firing) {
       }
     }
   };
+  if (has_grid)
+    ext.samples_of = [this, layout](int id) {
+      if (!samples) throw InputError("the simulation's data of step " + std::to_string(step) + " is no longer published");
+      return samples->read(layout.volume_bricks[size_t(id)].stored);
+    };
   session->setExternalStep(std::move(ext));
 }
+
+namespace {
+
+// The frame's accuracy estimate (its --stats' accuracy_estimate) into the report (rank 0).
+void takeAccuracy(const nlohmann::json& stats, ExecuteReport& report) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  report.estimated_psnr_db = report.psnr_db_lo = report.psnr_db_hi = report.over4_share = report.over4_share_hi = nan;
+  report.accuracy_why.clear();
+  const auto e = stats.find("accuracy_estimate");
+  if (e == stats.end() || !e->is_object()) {
+    report.accuracy_why = "render.estimate: off";
+    return;
+  }
+  if (!e->value("available", false)) {
+    report.accuracy_why = e->value("why", std::string("no estimate"));
+    return;
+  }
+  auto db = [](const nlohmann::json& v) { return v.is_string() ? HUGE_VAL : v.get<double>(); };  // "inf"
+  report.estimated_psnr_db = db(e->at("estimated_psnr_db"));
+  report.psnr_db_lo = db(e->at("psnr_db_95")[0]);
+  report.psnr_db_hi = db(e->at("psnr_db_95")[1]);
+  report.over4_share = e->at("over4_share").get<double>();
+  report.over4_share_hi = e->at("over4_share_95")[1].get<double>();
+}
+
+}  // namespace
 
 void InSitu::Impl::renderAction(const RenderAction& ra, size_t index, ExecuteReport& report) {
   FrameRequest base;
@@ -283,7 +316,10 @@ void InSitu::Impl::renderAction(const RenderAction& ra, size_t index, ExecuteRep
       createParentDirectories(file);
       writeImage(file, result.image, result.scene.image.background);
     });
-    if (rank == 0) report.images.push_back(file);
+    if (rank == 0) {
+      report.images.push_back(file);
+      takeAccuracy(result.stats, report);
+    }
   }
   if (CinemaIndex* db = cinema[index].get())
     collectively(comm, [&] {
@@ -376,12 +412,14 @@ ExecuteReport InSitu::execute() {
   } catch (const JobFailed& e) {
     report.error = "step " + std::to_string(I.step) + ": " + e.message;
     report.images.clear();
+    takeAccuracy(nlohmann::json{{"accuracy_estimate", {{"available", false}, {"why", "the step's images were skipped"}}}}, report);
     if (I.actions.abort_on_error) throw InSituError("sortlast in situ: " + report.error);
     if (I.rank == 0) std::fprintf(stderr, "sortlast in situ: %s; its images are skipped\n", report.error.c_str());
   }
   if (!I.actions.serve.empty()) I.answerLiveView();
   report.seconds = MPI_Wtime() - t0;
-  double bytes = (I.samples ? I.samples->bytesHeld() : 0.0) + double(I.particles.size()) * sizeof(glm::vec3);
+  double bytes = (I.samples ? I.samples->bytesHeld() : 0.0) + double(I.particles.size()) * sizeof(glm::vec3) +
+                 I.session->estimateBytesHeld();
   report.memory_added_mib = bytes / (1024.0 * 1024.0);
   report.texture_mib = I.texture_bytes / (1024.0 * 1024.0);
   const GlDeviceInfo& gl = I.session->deviceInfo();

@@ -3,6 +3,7 @@
 // it into a return code and a message.
 #include "sortlast/insitu_c.h"
 
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <new>
@@ -192,6 +193,21 @@ int sortlast_insitu_last_report(const sortlast_insitu* vis, sortlast_insitu_repo
   copy(report->host, sizeof report->host, vis->last.host);
   report->device = vis->last.device;
   return 0;
+}
+
+int sortlast_insitu_last_accuracy(const sortlast_insitu* vis, double* psnr_db, double* psnr_db_lo,
+                                  double* psnr_db_hi, double* over4_share, double* over4_share_hi) {
+  if (vis == nullptr) return fail("sortlast_insitu_last_accuracy: the session is NULL");
+  const sortlast::ExecuteReport& r = vis->last;
+  auto put = [](double* to, double v) {
+    if (to) *to = v;
+  };
+  put(psnr_db, r.estimated_psnr_db);
+  put(psnr_db_lo, r.psnr_db_lo);
+  put(psnr_db_hi, r.psnr_db_hi);
+  put(over4_share, r.over4_share);
+  put(over4_share_hi, r.over4_share_hi);
+  return std::isnan(r.estimated_psnr_db) ? 0 : 1;
 }
 
 void sortlast_insitu_close(sortlast_insitu* vis) {

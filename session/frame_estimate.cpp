@@ -312,7 +312,7 @@ std::string estimateUnavailable(const Scene& sc, bool adaptive, bool in_situ, co
   if (!sc.surfaces.empty()) return "surfaces in the frame";
   if (sc.glow.enabled()) return "glow in the frame";
   if (adaptive) return "adaptive sampling (adaptive.tolerance above 0)";
-  if (in_situ) return "in situ (the simulation's arrays)";
+  if (in_situ) return "in situ without the simulation's samples";
   if (!d || d->dropped) return "the samples are no longer held";
   return "";
 }

@@ -215,6 +215,11 @@ struct RenderSession::State {
   // In situ: the step's bricks come from the caller.
   bool external = false;
   std::optional<ExternalStep> ext;
+  // In situ: the step's samples as the accuracy estimate reads them (ExternalStep::samples_of),
+  // copied on the step's first estimate; ext_id numbers the steps (the block maps' cache).
+  StepData ext_samples;
+  bool ext_samples_read = false;
+  long long ext_id = 0;
   // setAutoRange: what transfer.range: auto stands for instead of the current step's range.
   std::optional<std::pair<double, double>> auto_range;
 
@@ -223,6 +228,19 @@ struct RenderSession::State {
     if (ext) return {ext->data_min, ext->data_max};
     return current ? std::make_pair(current->data_min, current->data_max) : std::make_pair(0.0, 1.0);
   }
+  // What the accuracy estimate reads: the step on the GPU, or in situ the simulation's samples
+  // (null where it cannot read them).
+  const StepData* estimateSource() const {
+    if (!external) return current;
+    return ext && ext->has_volume && ext->samples_of ? &ext_samples : nullptr;
+  }
+  // Why this scene's frames get no estimate ("" where they can: frame_estimate.h).
+  std::string estimateWhyNot(const Scene& sc) const {
+    return estimateUnavailable(sc, adaptive, external && !estimateSource(), estimateSource());
+  }
+  // The estimate's samples, copied from the simulation on a step's first call in situ. Collective.
+  const StepData& estimateSamples();
+  long long estimateDataId() const { return external ? ext_id : current_id; }
   VisibilityOrder orderFor(const glm::dvec3& eye) const {
     if (ext && ext->order) return ext->order(eye);
     return visibilityOrder(layout.assignment, layout.planes, eye);
@@ -376,6 +394,29 @@ void RenderSession::setExternalStep(ExternalStep step) {
   S.layout = step.layout;
   S.ext = std::move(step);
   S.gpu = GpuKey{};  // upload on the next render
+  S.ext_samples = StepData{};
+  S.ext_samples_read = false;
+  ++S.ext_id;
+}
+
+double RenderSession::estimateBytesHeld() const {
+  double bytes = 0.0;
+  for (const auto& b : s_->ext_samples.samples) bytes += double(b.size()) * sizeof(float);
+  return bytes;
+}
+
+const StepData& RenderSession::State::estimateSamples() {
+  if (!external) return *current;
+  collectively(comm, [&] {
+    if (ext_samples_read) return;
+    ext_samples = StepData{};
+    ext_samples.step = ext->step;
+    ext_samples.has_volume = true;
+    ext_samples.data_min = ext->data_min, ext_samples.data_max = ext->data_max;
+    for (int id : layout.mine) ext_samples.samples.push_back(ext->samples_of(id));
+    ext_samples_read = true;
+  });
+  return ext_samples;
 }
 
 RenderSession::~RenderSession() = default;
@@ -674,7 +715,7 @@ FrameRequest RenderSession::State::probeRequest(const FrameRequest& request, dou
 
 double RenderSession::autoSpacing(const Scene& sc, const FrameRequest& request, nlohmann::json& info) {
   State& S = *s_;
-  const bool exact = estimateUnavailable(sc, S.adaptive, S.external, S.current).empty();
+  const bool exact = S.estimateWhyNot(sc).empty();
   const auto [w, h] = exact ? estimateProbeSize(sc.camera.width, sc.camera.height)
                             : probeSize(sc.camera.width, sc.camera.height);
   std::vector<double> key = S.spacingKey(sc, {w, h});
@@ -696,7 +737,7 @@ double RenderSession::autoSpacing(const Scene& sc, const FrameRequest& request, 
       // any orbit: an orbit probes once); the finer step wins. The second view starts at the
       // first's choice. (So a request that moves the camera probes again: the viewer asks for
       // `auto` on its full frames only.)
-      const EstimateVolume mine = estimateVolumeOf(sc, S.layout, *S.current, S.dataRange(), &S.estimate_blocks, S.current_id);
+      const EstimateVolume mine = estimateVolumeOf(sc, S.layout, S.estimateSamples(), S.dataRange(), &S.estimate_blocks, S.estimateDataId());
       std::vector<EstimatedStep> tried;
       const std::vector<double>& steps = estimatedSpacings();
       size_t first = 0;  // the coarsest step still to try
@@ -902,7 +943,7 @@ FrameResult RenderSession::render(const FrameRequest& request) {
   nlohmann::json spacing_info;
   double probe_s = 0.0;
   if (sc.render.sample_spacing_auto && sc.hasVolume() && !request.probe && request.job_frames == 1 &&
-      sc.render.estimate != EstimateMode::kOff && estimateUnavailable(sc, S.adaptive, S.external, S.current).empty())
+      sc.render.estimate != EstimateMode::kOff && S.estimateWhyNot(sc).empty())
     return renderStill(request, sc);
   if (sc.render.sample_spacing_auto && sc.hasVolume() && !request.probe) {
     const double t0 = MPI_Wtime();
@@ -973,7 +1014,7 @@ FrameResult RenderSession::renderStill(const FrameRequest& request, const Scene&
         sample = chooseEstimatePixels(out.image, sc.image.background, screenRectOf(cam, S.layout.grid.worldBox()),
                                       sc.render.estimate_pixels);
       broadcastSample(sample, S.comm);
-      const EstimateVolume mine = estimateVolumeOf(sc, S.layout, *S.current, S.dataRange(), &S.estimate_blocks, S.current_id);
+      const EstimateVolume mine = estimateVolumeOf(sc, S.layout, S.estimateSamples(), S.dataRange(), &S.estimate_blocks, S.estimateDataId());
       exact = exactSampledPixels(sample, cam, mine, sc.image.background, pixelThreads(), S.comm);
     }
     int pass = 0;
@@ -1011,7 +1052,7 @@ FrameResult RenderSession::renderStill(const FrameRequest& request, const Scene&
   }
   // What a later frame with these settings would reuse (render.estimate: auto).
   std::vector<double> key = S.spacingKey(out.scene, {cam.width, cam.height});
-  key.insert(key.end(), {out.scene.render.sample_spacing, double(sc.render.estimate_pixels)});
+  key.insert(key.end(), {out.scene.render.sample_spacing, double(sc.render.estimate_pixels), double(S.external ? S.ext_id : 0)});
   S.estimate = {std::move(key), S.rank == 0 ? out.stats["accuracy_estimate"] : nlohmann::json(), true};
   ++S.frames_rendered;
   return out;
@@ -1021,17 +1062,18 @@ FrameResult RenderSession::renderStill(const FrameRequest& request, const Scene&
 // than the camera, changed since the last estimate; the same decision on every rank.
 nlohmann::json RenderSession::State::estimateAccuracy(const Scene& sc, const Camera& cam, const FrameResult& out,
                                                      int frame) {
-  const std::string why = estimateUnavailable(sc, adaptive, external, current);
+  const std::string why = estimateWhyNot(sc);
   if (!why.empty()) return rank == 0 ? nlohmann::json{{"available", false}, {"why", why}} : nlohmann::json();
   std::vector<double> key = spacingKey(sc, {cam.width, cam.height});
-  key.insert(key.end(), {sc.render.sample_spacing, double(sc.render.estimate_pixels)});
+  // In situ every step is new data (time.step stays).
+  key.insert(key.end(), {sc.render.sample_spacing, double(sc.render.estimate_pixels), double(external ? ext_id : 0)});
   if (sc.render.estimate == EstimateMode::kAuto && estimate.valid && key == estimate.key) {
     nlohmann::json j = estimate.last;
     if (rank == 0) j["fresh"] = false;
     return j;
   }
   const double t0 = MPI_Wtime();
-  const EstimateVolume mine = estimateVolumeOf(sc, layout, *current, dataRange(), &estimate_blocks, current_id);
+  const EstimateVolume mine = estimateVolumeOf(sc, layout, estimateSamples(), dataRange(), &estimate_blocks, estimateDataId());
   const double t_volume = MPI_Wtime() - t0;
   nlohmann::json j = estimateFrame(mine, cam, layout.grid.worldBox(), sc.image.background,
                                    rank == 0 ? &out.image : nullptr, nullptr, sc.render.estimate_pixels, comm);

@@ -79,6 +79,9 @@ struct ExternalStep {
   std::function<void(BrickRenderer& renderer, const Scene& scene, std::vector<int>& handles,
                      double& particles_held)>
       add_bricks;
+  // The stored samples (ghosts included, x fastest) of brick `id` of layout.mine, for the frame's
+  // accuracy estimate; unset: the frames get none (session/frame_estimate.h says why).
+  std::function<std::vector<float>(int id)> samples_of;
 };
 
 class RenderSession {
@@ -88,6 +91,9 @@ class RenderSession {
   static std::unique_ptr<RenderSession> external(SessionOptions options, MPI_Comm comm);
   // Collective. The next frames draw this step (uploaded on the next render).
   void setExternalStep(ExternalStep step);
+  // In situ: the bytes of the step's samples copied for the accuracy estimate on this rank (0 until
+  // a frame of the step is estimated).
+  double estimateBytesHeld() const;
 
   // Collective. Throws JobFailed (after the failing rank printed why) on any rank's error.
   RenderSession(SessionOptions options, MPI_Comm comm);

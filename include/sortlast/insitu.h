@@ -17,6 +17,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -85,6 +86,15 @@ struct ExecuteReport {
   // hardware EGL device (-1: software) and the host.
   std::string gl_vendor, gl_renderer, host;
   int device = -1;
+  // The last image written, its accuracy as estimated while it rendered (render.estimate,
+  // docs/volumes.md; rank 0): the estimated PSNR against the exact model and its 95 % bounds
+  // (infinity: no difference seen), the share of pixels more than 4/255 off and its 95 % upper
+  // bound. NaN where that image has no estimate; accuracy_why then says why (particles in the
+  // frame, render.estimate: off, ...).
+  double estimated_psnr_db = std::numeric_limits<double>::quiet_NaN();
+  double psnr_db_lo = std::numeric_limits<double>::quiet_NaN(), psnr_db_hi = std::numeric_limits<double>::quiet_NaN();
+  double over4_share = std::numeric_limits<double>::quiet_NaN(), over4_share_hi = std::numeric_limits<double>::quiet_NaN();
+  std::string accuracy_why;
 };
 
 class InSitu {

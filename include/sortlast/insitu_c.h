@@ -120,6 +120,15 @@ typedef struct sortlast_insitu_report {
 /* Fills *report with what the last execute did (all zero before the first). */
 int sortlast_insitu_last_report(const sortlast_insitu* vis, sortlast_insitu_report* report);
 
+/* The accuracy of the last image the last execute wrote, estimated while it rendered
+ * (render.estimate, docs/volumes.md; on the first rank of the communicator): the estimated PSNR
+ * against the exact model in dB and its 95 % bounds (HUGE_VAL: no difference seen), the share of
+ * pixels more than 4/255 off and its 95 % upper bound. Returns 1 where that image has an estimate,
+ * 0 where not (the values are then NaN: particles in the frame, render.estimate: off, another
+ * rank, ...), -1 on a NULL session. Any output pointer may be NULL. */
+int sortlast_insitu_last_accuracy(const sortlast_insitu* vis, double* psnr_db, double* psnr_db_lo,
+                                  double* psnr_db_hi, double* over4_share, double* over4_share_hi);
+
 /* Collective. Ends the session and frees it; NULL is ignored. */
 void sortlast_insitu_close(sortlast_insitu* vis);
 

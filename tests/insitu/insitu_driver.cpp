@@ -171,8 +171,11 @@ int main(int argc, char** argv) {
       vis.publish(step, 0.1 * step, data);
       sortlast::ExecuteReport r = vis.execute();
       if (rank == 0)
-        std::printf("step %d rendered %d images %zu error '%s' vis_s %.3f mem_mib %.3f texture_mib %.3f\n", step,
-                    int(r.rendered), r.images.size(), r.error.c_str(), r.seconds, r.memory_added_mib, r.texture_mib);
+        std::printf("step %d rendered %d images %zu error '%s' vis_s %.3f mem_mib %.3f texture_mib %.3f "
+                    "est_db %.3f lo %.3f hi %.3f over4 %.6f over4_hi %.6f why '%s'\n", step,
+                    int(r.rendered), r.images.size(), r.error.c_str(), r.seconds, r.memory_added_mib, r.texture_mib,
+                    r.estimated_psnr_db, r.psnr_db_lo, r.psnr_db_hi, r.over4_share, r.over4_share_hi,
+                    r.accuracy_why.c_str());
       if (rank == 0 && !o.dump.empty() && step == o.steps - 1) {
         std::ofstream out(o.dump, std::ios::binary);
         if (!o.no_grid) {
