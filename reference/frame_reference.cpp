@@ -111,6 +111,7 @@ FrameReference::FrameReference(Scene scene, int threads)
     in.shading = scene.render.shading;
     in.blend = scene.render.projection() ? scene.render.blend : VolumeBlend::kComposite;
     in.mip_exact = scene.render.mip_exact;
+    in.cells = scene.reference.integrator == ReferenceIntegrator::kCells;
     if (scene.render.blend == VolumeBlend::kIsosurface) {
       in.isovalues = scene.render.isovalues;
       for (const std::string& w : isovalueRangeWarnings(in.isovalues, lo, hi)) std::fprintf(stderr, "%s\n", w.c_str());
@@ -172,7 +173,7 @@ ImageF FrameReference::render(const Camera& cam, SurfaceImage* surface_out, int 
       out = renderProjectionReference(volume_->vol, volume_->tf, cam, volume_->step, threads_,
                                       volume_->blend, volume_->mip_exact);
     else if (volume_)
-      out = renderReference(volume_->vol, volume_->tf, cam, volume_->step, threads_, volume_->shading, g);
+      out = renderReference(volume_->vol, volume_->tf, cam, volume_->step, threads_, volume_->shading, g, volume_->cells);
     else if (g)
       addGlowOnly(out, cam, *g, nullptr);
   } else {
@@ -181,7 +182,7 @@ ImageF FrameReference::render(const Camera& cam, SurfaceImage* surface_out, int 
                                       volume_->mip_exact, &*surface, &colour);
     } else if (volume_) {
       out = renderReference(volume_->vol, volume_->tf, cam, volume_->step, threads_, *surface, colour,
-                            volume_->shading, g);
+                            volume_->shading, g, volume_->cells);
     } else {
       out = std::move(colour);
       if (g) addGlowOnly(out, cam, *g, &*surface);

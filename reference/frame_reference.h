@@ -56,6 +56,7 @@ class FrameReference {
     VolumeBlend blend = VolumeBlend::kComposite;  // a projection: reference/projection_reference.h
     bool mip_exact = false;
     std::vector<Isovalue> isovalues;  // render.blend: isosurface (reference/isosurface_reference.h)
+    bool cells = false;               // reference.integrator: cells
   };
   std::optional<VolumeInput> volume_;
   // Several fields (`volumes`): their mixture (reference/fields_reference.h) instead of volume_.

@@ -109,7 +109,6 @@ EmptyBlocks::EmptyBlocks(const BrickField& field, const TransferFunction& tf, do
 
 namespace {
 
-constexpr double kStopTransmit = 1e-4;
 // The cell march's error per voxel (the smallest spacing) of the ray's length: a ray through 100
 // visible voxels is within about 100 kCellTolerance of the exact integral (Marcher::refine).
 constexpr double kCellTolerance = 1e-5;
@@ -278,14 +277,15 @@ double cubicRoot(const double* k, double sa, double sb, double va, double value)
 class Marcher {
  public:
   Marcher(const BrickField& field, const TransferFunction& tf, const Shading& shading, double flat,
-          const glm::dvec3& o, const glm::dvec3& d)
-      : field_(field), tf_(tf), tfc_(tf), shading_(shading), flat_(flat), o_(o), d_(d), cursor_(field, o, d) {}
+          const glm::dvec3& o, const glm::dvec3& d, double stop)
+      : field_(field), tf_(tf), tfc_(tf), shading_(shading), flat_(flat), o_(o), d_(d), cursor_(field, o, d),
+        stop_(stop) {}
 
   // [ta, tb] cell by cell: each cell's crossing integrated to `tol` (crossing()). Where the
   // field clamps (the grid's or the held samples' edge), steps of h_min to tb.
   void cells(SegmentIntegral& out, double ta, double tb, double step, double h_min, double tol) {
     double t = ta;
-    while (t < tb && out.transmit > kStopTransmit) {
+    while (t < tb && out.transmit > stop_) {
       const double probe = t + std::min(0.25 * step, 0.5 * (tb - t));
       if (!cursor_.enterAt(probe)) {
         const long long n = std::max(1LL, (long long)std::ceil((tb - t) / h_min));
@@ -300,7 +300,7 @@ class Marcher {
     }
   }
 
-  // n equal steps of h from ta (stopping once the transmittance is below kStopTransmit), with
+  // n equal steps of h from ta (stopping once the transmittance is below stop_), with
   // the reference's rule (reference/reference.cpp): a step whose end values straddle a kink of
   // the function (TransferFunction::kinkValues) is cut where the values, linear between the
   // ends, meet it; each part composited with its middle's colour and its optical depth by
@@ -308,7 +308,7 @@ class Marcher {
   void steps(SegmentIntegral& out, double ta, long long n, double h) {
     const std::vector<double>& kinks = tf_.kinkValues();
     double va = cursor_.at(ta), xa = extinctionOf(va);
-    for (long long i = 0; i < n && out.transmit > kStopTransmit; ++i) {
+    for (long long i = 0; i < n && out.transmit > stop_; ++i) {
       const double sa = ta + double(i) * h, sb = ta + double(i + 1) * h;
       const double vb = cursor_.at(sb), xb = extinctionOf(vb);
       std::pair<double, double> cuts[kMaxStepCuts];
@@ -317,7 +317,7 @@ class Marcher {
         part(out, sa, sb, xa, xb);
       } else {
         double pa = sa, ea = xa;
-        for (int j = 0; j <= m && out.transmit > kStopTransmit; ++j) {
+        for (int j = 0; j <= m && out.transmit > stop_; ++j) {
           const double pb = j < m ? cuts[j].first : sb, eb = j < m ? extinctionOf(cuts[j].second) : xb;
           if (pb > pa) part(out, pa, pb, ea, eb);
           pa = pb, ea = eb;
@@ -362,7 +362,7 @@ class Marcher {
     // crossing's last end where this crossing starts there (the field is continuous across a
     // cell's face: the same value within rounding).
     Point a = last_t_ == ta ? Point{sa, {last_.c[0], last_.c[1], last_.c[2]}, last_.tau} : point(sa);
-    for (size_t i = 0; i + 1 < cuts_.size() && out.transmit > kStopTransmit; ++i) {
+    for (size_t i = 0; i + 1 < cuts_.size() && out.transmit > stop_; ++i) {
       if (!(cuts_[i + 1] > cuts_[i])) continue;
       const Point b = point(cuts_[i + 1]);
       // Opacity is linear in the scaled value on a piece, and that monotone: none at both
@@ -439,7 +439,7 @@ class Marcher {
       return;
     }
     refine(out, a, q1, m, left, tol, depth + 1);
-    if (out.transmit > kStopTransmit) refine(out, m, q3, b, right, tol, depth + 1);
+    if (out.transmit > stop_) refine(out, m, q3, b, right, tol, depth + 1);
   }
   static constexpr int kMaxRefine = 12;  // halves down to 1/8192 of a piece
 
@@ -476,6 +476,7 @@ class Marcher {
   double flat_;
   glm::dvec3 o_, d_;
   FieldCursor cursor_;
+  const double stop_;           // the transmittance the march stops below
   double k_[4] = {0, 0, 0, 0};  // the cubic of the cell crossing()'s works on (s = t - cursor_.refT())
   std::vector<double> cuts_;    // crossing()'s piece ends
   Point last_{};                // the last crossing's end (at ray parameter last_t_)
@@ -487,10 +488,10 @@ class Marcher {
 SegmentIntegral integrateSegment(const BrickField& field, const TransferFunction& tf,
                                  const Shading& shading, double flat, const glm::dvec3& o,
                                  const glm::dvec3& d, double t0, double t1, double step,
-                                 const EmptyBlocks* blocks) {
+                                 const EmptyBlocks* blocks, double stop_transmit) {
   SegmentIntegral out;
   if (!(t1 > t0)) return out;
-  Marcher march(field, tf, shading, flat, o, d);
+  Marcher march(field, tf, shading, flat, o, d, stop_transmit);
   if (!blocks) {
     const long long n = std::max(1LL, (long long)std::ceil((t1 - t0) / step));
     march.steps(out, t0, n, (t1 - t0) / double(n));
@@ -499,7 +500,7 @@ SegmentIntegral integrateSegment(const BrickField& field, const TransferFunction
   // Block by block: the block holding a point just past t, its exit along the ray, and in it
   // equal steps of at most its multiple of `step` (an empty block: none).
   double t = t0;
-  while (t < t1 && out.transmit > kStopTransmit) {
+  while (t < t1 && out.transmit > stop_transmit) {
     const double probe = t + std::min(0.25 * step, 0.5 * (t1 - t));
     const glm::dvec3 local = (field.grid.indexOfWorld(o + probe * d) - glm::dvec3(field.stored.lo)) /
                              double(EmptyBlocks::kCells);

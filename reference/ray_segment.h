@@ -60,8 +60,8 @@ struct SegmentIntegral {
 };
 
 // The integral over [t0, t1] of the ray o + t d (d unit) in steps of at most `step` world units
-// (each the same length, the last too). Stops once the transmittance is below 1e-4 (what is left
-// then moves no channel by more than 0.03/255). `flat`: flatGradient() of the transfer
+// (each the same length, the last too). Stops once the transmittance is below `stop_transmit`
+// (1e-4: what is left then moves no channel by more than 0.03/255). `flat`: flatGradient() of the transfer
 // function's range. `empty` (built for the same field, function and step): empty blocks are
 // jumped (which changes nothing but the time) and, under a linear scale, each other block is
 // integrated cell by cell instead of in steps: each cell's crossing is cut where the field (a
@@ -79,6 +79,6 @@ struct SegmentIntegral {
 SegmentIntegral integrateSegment(const BrickField& field, const TransferFunction& tf,
                                  const Shading& shading, double flat, const glm::dvec3& o,
                                  const glm::dvec3& d, double t0, double t1, double step,
-                                 const EmptyBlocks* empty = nullptr);
+                                 const EmptyBlocks* empty = nullptr, double stop_transmit = 1e-4);
 
 }  // namespace sortlast

@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <optional>
 #include <thread>
 
 #include "common/clip.h"
 #include "common/error.h"
+#include "reference/ray_segment.h"
 #include "reference/step_cuts.h"
 
 namespace sortlast {
@@ -39,10 +41,17 @@ namespace {
 // volume-only arithmetic exactly (min(t1, inf) = t1; adding a zero surface changes no bit).
 ImageF integrate(const WholeVolume& vol, const TransferFunction& tf, const Camera& cam, double step,
                  int threads, const SurfaceImage* stop, const ImageF* stop_colour,
-                 const Shading& shading, const GlowRays* glow) {
+                 const Shading& shading, const GlowRays* glow, bool cells) {
   ImageF img(cam.width, cam.height);
   const double flat = flatGradient(tf.rangeLo(), tf.rangeHi(), vol.grid.spacing);
   Box3 box = vol.grid.worldBox();
+  // reference.integrator: cells -- the whole volume as one brick for integrateSegment.
+  std::optional<BrickField> whole;
+  std::optional<EmptyBlocks> blocks;
+  if (cells && !vol.adaptive && !glow) {
+    whole = BrickField{vol.grid, IndexBox{glm::ivec3(0), vol.grid.dims - 1}, vol.samples.data()};
+    blocks.emplace(*whole, tf, step, shading.enabled);
+  }
   std::atomic<int> next_row{0};
   auto worker = [&] {
     for (int y; (y = next_row++) < cam.height;) {
@@ -65,7 +74,12 @@ ImageF integrate(const WholeVolume& vol, const TransferFunction& tf, const Camer
           clipSpan(vol.clip, o, d, t0, t1);  // clip.planes, clip.box (common/clip.h)
           if (stop && stop->hit(pixel)) t1 = std::min(t1, double(stop->t[pixel]));
           addGlow(0.0, std::min(t0, t_stop), 1.0);  // in front of the volume
-          long long n = t1 > t0 ? std::max(1LL, (long long)std::ceil((t1 - t0) / step)) : 0;
+          long long n = t1 > t0 && !whole ? std::max(1LL, (long long)std::ceil((t1 - t0) / step)) : 0;
+          if (whole && t1 > t0) {
+            const SegmentIntegral seg = integrateSegment(*whole, tf, shading, flat, o, d, t0, t1, step, &*blocks, 1e-15);
+            for (int k = 0; k < 3; ++k) rgb[k] = seg.rgb[k];
+            transmit = seg.transmit;
+          }
           double h = n > 0 ? (t1 - t0) / double(n) : 0.0;
           // One step over [ta, tb] (its length len): the colour of its middle (index point u),
           // its optical depth by Simpson's rule from the extinctions xa, xb at its ends and its
@@ -142,20 +156,20 @@ ImageF integrate(const WholeVolume& vol, const TransferFunction& tf, const Camer
 }  // namespace
 
 ImageF renderReference(const WholeVolume& vol, const TransferFunction& tf, const Camera& cam,
-                       double step, int threads, const Shading& shading, const GlowRays* glow) {
-  return integrate(vol, tf, cam, step, threads, nullptr, nullptr, shading, glow);
+                       double step, int threads, const Shading& shading, const GlowRays* glow, bool cells) {
+  return integrate(vol, tf, cam, step, threads, nullptr, nullptr, shading, glow, cells);
 }
 
 ImageF renderReference(const WholeVolume& vol, const TransferFunction& tf, const Camera& cam,
                        double step, int threads, const SurfaceImage& stop,
-                       const ImageF& stop_colour, const Shading& shading, const GlowRays* glow) {
+                       const ImageF& stop_colour, const Shading& shading, const GlowRays* glow, bool cells) {
   if (stop.width != cam.width || stop.height != cam.height || stop_colour.width != cam.width ||
       stop_colour.height != cam.height)
     throw InputError("reference: the surface images (" + std::to_string(stop.width) + "x" +
                      std::to_string(stop.height) + ", colour " + std::to_string(stop_colour.width) +
                      "x" + std::to_string(stop_colour.height) + ") are not the camera's size (" +
                      std::to_string(cam.width) + "x" + std::to_string(cam.height) + ")");
-  return integrate(vol, tf, cam, step, threads, &stop, &stop_colour, shading, glow);
+  return integrate(vol, tf, cam, step, threads, &stop, &stop_colour, shading, glow, cells);
 }
 
 }  // namespace sortlast

@@ -119,9 +119,16 @@ enum class ReferenceField { kOriginal, kAdaptive };
 template <>
 inline constexpr std::array kEnumNames<ReferenceField>{"original", "adaptive"};
 
+// reference.integrator: fixed steps of reference.step, or each cell's crossing to a tolerance
+// (reference/ray_segment.h).
+enum class ReferenceIntegrator { kSteps, kCells };
+template <>
+inline constexpr std::array kEnumNames<ReferenceIntegrator>{"steps", "cells"};
+
 struct ReferenceSection {
   double step = 0.0625;  // in units of the smallest voxel spacing
   ReferenceField field = ReferenceField::kOriginal;
+  ReferenceIntegrator integrator = ReferenceIntegrator::kCells;
 };
 
 // image.* (image.width and image.height are the camera's: Camera carries the image size).
