@@ -144,6 +144,9 @@ class TfCursor {
   size_t j_ = 1;
 };
 
+// k0 + k1 s + k2 s^2 + k3 s^3 by Horner's rule.
+double cubicAt(const double* k, double s) { return ((k[3] * s + k[2]) * s + k[1]) * s + k[0]; }
+
 // The field along a ray o + t d: inside one cell the trilinear field is a cubic in t, its
 // coefficients found once per cell the ray crosses and evaluated by Horner's rule (the ray's
 // samples in one cell: up to 16 a voxel at the reference's step). Where BrickField::at would clamp
@@ -166,7 +169,7 @@ class FieldCursor {
   double at(double t) {
     if (t >= t_lo_ && t <= t_hi_) {
       const double s = t - t_ref_;
-      return ((k_[3] * s + k_[2]) * s + k_[1]) * s + k_[0];
+      return cubicAt(k_, s);
     }
     const glm::dvec3 u = field_.grid.indexOfWorld(o_ + t * d_);
     if (!enter(t, u)) return field_.at(u);
@@ -233,8 +236,6 @@ struct Turns {
   int count = 0;
 };
 
-double cubicAt(const double* k, double s) { return ((k[3] * s + k[2]) * s + k[1]) * s + k[0]; }
-
 Turns turnsOf(const double* k, double sa, double sb) {
   Turns c;
   const double qa = 3.0 * k[3], qb = 2.0 * k[2], qc = k[1];  // v' = qa s^2 + qb s + qc
@@ -294,7 +295,6 @@ class Marcher {
       }
       double te = std::min(cursor_.exitT(), tb);
       if (te <= probe) te = std::min(tb, probe + 0.25 * step);  // rounding at a face
-      std::copy(cursor_.cubic(), cursor_.cubic() + 4, k_);
       crossing(out, t, te, tol);
       t = te;
     }
@@ -328,7 +328,7 @@ class Marcher {
   }
 
  private:
-  // One cell's crossing [ta, tb] (the field the cubic k_ in s = t - refT): cut where the field
+  // One cell's crossing [ta, tb] (the field the cursor's cubic in s = t - refT; nothing below moves the cursor): cut where the field
   // turns and where it meets a kink of opacity, so that on each piece the value is a monotone
   // cubic and opacity linear in its scaled value (transfer/value_scale.h: smooth and monotone in
   // the value between the kinks) -- extinction smooth along the ray -- and each piece integrated
@@ -339,8 +339,9 @@ class Marcher {
   // transparent there too).
   void crossing(SegmentIntegral& out, double ta, double tb, double tol) {
     const double ref = cursor_.refT(), sa = ta - ref, sb = tb - ref;
-    if (!std::isfinite(k_[0] + k_[1] + k_[2] + k_[3])) return;
-    const Turns c = turnsOf(k_, sa, sb);
+    const double* k = cursor_.cubic();
+    if (!std::isfinite(k[0] + k[1] + k[2] + k[3])) return;
+    const Turns c = turnsOf(k, sa, sb);
     // The piece ends in ray order: on a rising part the kinks it meets in increasing order, on a
     // falling one in decreasing order.
     const std::vector<double>& kinks = tf_.opacityKinkValues();
@@ -348,14 +349,14 @@ class Marcher {
     cuts_.push_back(sa);
     for (int i = 0; i <= c.count; ++i) {
       const double p = i == 0 ? sa : c.at[i - 1], q = i == c.count ? sb : c.at[i];
-      const double vp = cubicAt(k_, p), vq = cubicAt(k_, q);
+      const double vp = cubicAt(k, p), vq = cubicAt(k, q);
       const auto first = std::upper_bound(kinks.begin(), kinks.end(), std::min(vp, vq));
       auto last = first;
       while (last != kinks.end() && *last < std::max(vp, vq)) ++last;
       if (vp < vq)
-        for (auto kv = first; kv != last; ++kv) cuts_.push_back(cubicRoot(k_, p, q, vp, *kv));
+        for (auto kv = first; kv != last; ++kv) cuts_.push_back(cubicRoot(k, p, q, vp, *kv));
       else
-        for (auto kv = last; kv != first; --kv) cuts_.push_back(cubicRoot(k_, p, q, vp, *(kv - 1)));
+        for (auto kv = last; kv != first; --kv) cuts_.push_back(cubicRoot(k, p, q, vp, *(kv - 1)));
       cuts_.push_back(q);
     }
     // Each piece's start is the previous piece's end; the first piece's start, the previous
@@ -386,7 +387,7 @@ class Marcher {
   // whole crossing); the model's own kinks (the two-sided cosine, the flat-gradient blend, the
   // clamp) are left to refine's halving.
   Point point(double s) {
-    const std::array<double, 4> f = tfc_.at(cubicAt(k_, s));
+    const std::array<double, 4> f = tfc_.at(cubicAt(cursor_.cubic(), s));
     Point p{s, {f[0], f[1], f[2]}, f[3] > 0.0 ? tf_.extinctionOfOpacity(f[3]) : 0.0};
     if (shading_.enabled && p.tau > 0.0) {  // where tau is 0 the colour weighs nothing
       const glm::dvec3 u = field_.grid.indexOfWorld(o_ + (s + cursor_.refT()) * d_);
@@ -477,7 +478,6 @@ class Marcher {
   glm::dvec3 o_, d_;
   FieldCursor cursor_;
   const double stop_;           // the transmittance the march stops below
-  double k_[4] = {0, 0, 0, 0};  // the cubic of the cell crossing()'s works on (s = t - cursor_.refT())
   std::vector<double> cuts_;    // crossing()'s piece ends
   Point last_{};                // the last crossing's end (at ray parameter last_t_)
   double last_t_ = -HUGE_VAL;
