@@ -7,6 +7,7 @@
 #include "common/box.h"
 #include "common/pixel_threads.h"
 #include "common/trilinear.h"
+#include "reference/ray_cubic.h"
 #include "reference/step_cuts.h"
 #include "transfer/value_scale.h"
 
@@ -144,8 +145,6 @@ class TfCursor {
   size_t j_ = 1;
 };
 
-// k0 + k1 s + k2 s^2 + k3 s^3 by Horner's rule.
-double cubicAt(const double* k, double s) { return ((k[3] * s + k[2]) * s + k[1]) * s + k[0]; }
 
 // The field along a ray o + t d: inside one cell the trilinear field is a cubic in t, its
 // coefficients found once per cell the ray crosses and evaluated by Horner's rule (the ray's
@@ -228,50 +227,6 @@ class FieldCursor {
   double t_ref_ = 0.0, t_lo_ = HUGE_VAL, t_hi_ = -HUGE_VAL;
   double k_[4] = {0, 0, 0, 0};
 };
-
-// Where one cell crossing's field v(s) = k0 + k1 s + k2 s^2 + k3 s^3, s in (sa, sb) (FieldCursor's
-// cubic), turns: the roots of v' inside, in order (none, one or two).
-struct Turns {
-  double at[2];
-  int count = 0;
-};
-
-Turns turnsOf(const double* k, double sa, double sb) {
-  Turns c;
-  const double qa = 3.0 * k[3], qb = 2.0 * k[2], qc = k[1];  // v' = qa s^2 + qb s + qc
-  auto take = [&](double s) {
-    if (s > sa && s < sb) c.at[c.count++] = s;
-  };
-  if (qa != 0.0) {
-    const double disc = qb * qb - 4.0 * qa * qc;
-    if (disc > 0.0) {
-      const double r = std::sqrt(disc);
-      const double r1 = (-qb - r) / (2.0 * qa), r2 = (-qb + r) / (2.0 * qa);
-      take(std::min(r1, r2));
-      take(std::max(r1, r2));
-    }
-  } else if (qb != 0.0) {
-    take(-qc / qb);
-  }
-  return c;
-}
-
-// Where the cubic, monotone on [sa, sb] with va = v(sa) and vb = v(sb) on either side of `value`,
-// meets it: Newton's steps kept inside the bracket, bisection where one leaves it.
-double cubicRoot(const double* k, double sa, double sb, double va, double value) {
-  double lo = sa, hi = sb;
-  const bool rising = va < value;  // v(lo) < value < v(hi) when rising
-  double s = 0.5 * (sa + sb);
-  for (int i = 0; i < 60 && hi - lo > 1e-14 * (1.0 + std::abs(sa) + std::abs(sb)); ++i) {
-    const double f = cubicAt(k, s) - value;
-    if ((f < 0.0) == rising) lo = s; else hi = s;
-    if (f == 0.0) return s;
-    const double df = (3.0 * k[3] * s + 2.0 * k[2]) * s + k[1];
-    const double next = df != 0.0 ? s - f / df : 0.5 * (lo + hi);
-    s = next > lo && next < hi ? next : 0.5 * (lo + hi);
-  }
-  return s;
-}
 
 // The reference's integral along one ray through one brick, composited into `out`: in equal steps
 // with the reference's rule (steps()), or cell by cell to a tolerance (cells()).

@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "common/brick.h"
+#include "reference/ray_cubic.h"
 #include "reference/ray_segment.h"
 #include "reference/reference.h"
 #include "scene/scene.h"
@@ -273,6 +274,33 @@ TEST(FrameEstimate, ReferenceStepsAreCutAtTheFunctionsKinks) {
 // less. The crossings are integrated to a tolerance, so a weaker rule on a piece (midpoint
 // colours, kinks left uncut: both tried) only costs more halvings; a tolerance 1000 times looser
 // fails here (sharp 1.2e-3) and in the test above (shaded 2.9e-3).
+// The cell integrator cuts a crossing where its cubic turns. A crossing of the head CT whose field
+// is a parabola with a cubic term of rounding noise (k3 = 2.5e-16, the coefficients as the
+// reference found them for pixel (381, 123) of the sharp preset's frame at 512^2): the textbook
+// quadratic formula lost its turn to cancellation, the crossing was taken as monotone between its
+// ends (1726 and 1758), and the opacity peak it rises through inside (to 1887) was skipped: that
+// reference pixel was 118/255 off. Also a plain parabola and a cubic with two turns.
+TEST(FrameEstimate, CubicTurnsSurviveARoundingNoiseCubicTerm) {
+  const double noisy[4] = {1725.67, 171.882, -45.7839, 2.51598e-16};
+  const Turns t = turnsOf(noisy, 0.0, 3.551345);
+  ASSERT_EQ(t.count, 1);
+  EXPECT_NEAR(t.at[0], 171.882 / (2.0 * 45.7839), 1e-9);
+  const double parabola[4] = {1725.67, 171.882, -45.7839, 0.0};
+  const Turns p = turnsOf(parabola, 0.0, 3.551345);
+  ASSERT_EQ(p.count, 1);
+  EXPECT_NEAR(p.at[0], t.at[0], 1e-9);
+  const double two[4] = {0.0, -3.0, 0.0, 1.0};  // s^3 - 3 s: turns at -1 and 1
+  const Turns c = turnsOf(two, -2.0, 2.0);
+  ASSERT_EQ(c.count, 2);
+  EXPECT_NEAR(c.at[0], -1.0, 1e-12);
+  EXPECT_NEAR(c.at[1], 1.0, 1e-12);
+  EXPECT_EQ(turnsOf(two, 1.5, 2.0).count, 0);
+  // And the value the turn reaches lies where cubicRoot finds it from either side.
+  const double top = cubicAt(noisy, t.at[0]);
+  EXPECT_NEAR(cubicRoot(noisy, 0.0, t.at[0], cubicAt(noisy, 0.0), top - 1.0),
+              t.at[0] - std::sqrt(1.0 / 45.7839), 1e-6);
+}
+
 TEST(FrameEstimate, CellMarchIsAsCloseToAFinerMarchAsThePlainOne) {
   const WholeVolume v = blobVolume();
   const Camera cam = smallCamera();
