@@ -1000,7 +1000,7 @@ FrameResult RenderSession::renderStill(const FrameRequest& request, const Scene&
   nlohmann::json tried = nlohmann::json::array();
   AccuracyEstimate e;
   FrameResult out;
-  bool met = false;
+  bool met = false, topped_up = false;
   for (size_t i = 0; i < steps.size(); ++i) {
     FrameRequest r = request;
     r.overrides.push_back("render.sample_spacing=" + std::to_string(steps[i]));
@@ -1009,24 +1009,39 @@ FrameResult RenderSession::renderStill(const FrameRequest& request, const Scene&
     if (i > 0 && S.rank == 0) tries_s += out.stats["total_s"].get<double>();
     out = render(r);
     const double te = MPI_Wtime();
-    if (i == 0) {
+    // The sampled pixels of this frame (budget of them) integrated exactly; they serve every step.
+    auto drawSample = [&](int budget) {
       if (S.rank == 0)
         sample = chooseEstimatePixels(out.image, sc.image.background, screenRectOf(cam, S.layout.grid.worldBox()),
-                                      sc.render.estimate_pixels);
+                                      budget);
       broadcastSample(sample, S.comm);
       const EstimateVolume mine = estimateVolumeOf(sc, S.layout, S.estimateSamples(), S.dataRange(), &S.estimate_blocks, S.estimateDataId());
       exact = exactSampledPixels(sample, cam, mine, sc.image.background, pixelThreads(), S.comm);
+    };
+    if (i == 0) drawSample(sc.render.estimate_pixels);
+    int pass = 0, undecided = 0;
+    auto judge = [&] {
+      if (S.rank == 0) {
+        e = compareWithExact(sample, exact, &out.image, nullptr, sc.image.background);
+        nlohmann::json j = e.json();
+        j["step"] = steps[i];
+        j["view"] = "frame";
+        tried.push_back(j);
+        pass = meetsTarget(e, sc.render.target_db);
+        undecided = !pass && shareUndecided(e, sc.render.target_db);
+      }
+      int both[2] = {pass, undecided};
+      MPI_Bcast(both, 2, MPI_INT, 0, S.comm);
+      pass = both[0], undecided = both[1];
+    };
+    judge();
+    // Undecided (shareUndecided): a sample kStillTopUp times larger, once per frame, before a
+    // finer step is drawn; kept for the steps after.
+    if (undecided && !topped_up) {
+      drawSample(kStillTopUp * sc.render.estimate_pixels);
+      topped_up = true;
+      judge();
     }
-    int pass = 0;
-    if (S.rank == 0) {
-      e = compareWithExact(sample, exact, &out.image, nullptr, sc.image.background);
-      nlohmann::json j = e.json();
-      j["step"] = steps[i];
-      j["view"] = "frame";
-      tried.push_back(j);
-      pass = meetsTarget(e, sc.render.target_db);
-    }
-    MPI_Bcast(&pass, 1, MPI_INT, 0, S.comm);
     estimate_s += MPI_Wtime() - te;
     met = pass;
     if (pass) break;
