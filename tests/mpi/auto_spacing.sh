@@ -61,6 +61,28 @@ python3 -c "import sys; sys.exit(0 if float(sys.argv[1]) <= 0.5 else 1)" "$step"
   fail "sharp transfer function without pre-integration: auto took $step voxels"
 near_truth "$est" "$truth" || fail "sharp scene: estimate $est dB, true $truth dB"
 
+# 2b. A still frame whose estimate is undecided -- its PSNR bound and its share over 4/255 meet the
+# target, only the share's 95 % bound does not -- integrates four times the pixels at that step
+# before it draws a finer one (session/auto_spacing.h shareUndecided). neghip, sharp, ray caster,
+# 256^2: measured at 0.25 voxel 0.074 % over 4/255, bound 0.164 % from 3,958 pixels; then 0.132 %
+# from 13,266 (undecided no more: 0.125 voxel). The frame meets the target against the reference.
+run_np 1 render -q --psnr "$DATA/neghip.yaml" --set transfer.preset=sharp --set render.method=raycast \
+  --set transfer.preintegrated=auto --set render.sample_spacing=auto --set image.width=256 --set image.height=256 \
+  -o "$WORK/topup.png" --stats "$WORK/topup.json" || fail "undecided still render"
+python3 - "$WORK/topup.json" <<'PY' || fail "undecided still frame: no larger sample before a finer step, or the target missed"
+import json, sys
+f = json.load(open(sys.argv[1]))["frames"][0]
+tried = f["sample_spacing_auto"]["steps"]
+print("still, undecided:", [(t["step"], round(t["psnr_db_95"][0], 1), round(t["over4_share"], 5),
+                             round(t["over4_share_95"][1], 5), t["pixels_sampled"]) for t in tried])
+undecided = [i for i, t in enumerate(tried) if t["psnr_db_95"][0] >= 50 and t["over4_share"] <= 0.001 < t["over4_share_95"][1]]
+assert undecided, "no undecided estimate (the case this checks)"
+i = undecided[0]
+assert i + 1 < len(tried) and tried[i + 1]["step"] == tried[i]["step"], "a finer step drawn before a larger sample"
+assert tried[i + 1]["pixels_sampled"] >= 3 * tried[i]["pixels_sampled"], "the second sample is not larger"
+assert f["psnr_db"] >= 50 and f["over4_share"] <= 0.001, (f["psnr_db"], f["over4_share"])
+PY
+
 # 3. Ranks: the probes are composited like any frame, rank 0's choice is broadcast and each
 # rank integrates its own bricks' segments of the sampled rays: 3 ranks pick the step 1 rank
 # picks, give its image (within 1/255) and its estimate (within 0.05 dB).
