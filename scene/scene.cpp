@@ -267,7 +267,8 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
   if (r.isAuto("bricks.per_axis")) s.bricks.per_axis = glow_alone ? 1 : 2;
   s.adaptive.tolerance /= 100.0;  // given in percent
   // transfer.preintegrated `auto`: on where the opacity is steep and pre-integration is supported.
-  if (first_preint_auto.value_or(r.isAuto("transfer.preintegrated")) && !s.hasFields())
+  const bool preint_auto = first_preint_auto.value_or(r.isAuto("transfer.preintegrated")) && !s.hasFields();
+  if (preint_auto)
     s.transfer.preintegrated = s.adaptive.tolerance == 0.0 && s.render.sample_spacing <= 2.0 &&
                                hasSteepOpacity(s.transfer.points);
   if (s.transfer.preintegrated && s.adaptive.tolerance > 0.0)
@@ -275,6 +276,8 @@ Scene parseScene(const SceneText& text, const std::vector<std::string>& override
                      "is not supported with adaptive sampling; set transfer.preintegrated: false or "
                      "adaptive.tolerance: 0");
   applyIsosurfaceRules(r, s);
+  s.transfer.preintegrated_auto = preint_auto && s.adaptive.tolerance == 0.0 &&
+                                  s.render.blend == VolumeBlend::kComposite && s.render.sample_spacing_auto;
   // A segment's ends lie up to half a step beyond the brick that owns it; the bricks' one-voxel
   // ghost layer holds them for steps up to 2 voxels (beyond, brick faces showed seams of 55-74/255).
   if (s.transfer.preintegrated && s.render.sample_spacing > 2.0)

@@ -49,6 +49,33 @@ SpacingChoice chooseSpacing(const std::vector<ImageF>& probes, const glm::dvec3&
   return out;
 }
 
+std::vector<std::pair<double, bool>> stillTries(bool preintegrated, bool may_change) {
+  const std::vector<double>& steps = stillSpacings();
+  std::vector<std::pair<double, bool>> t;
+  for (size_t i = 0; i < steps.size(); ++i) {
+    t.push_back({steps[i], preintegrated});
+    // Unintegrated by the rule: pre-integrated at the same step before the finest unintegrated
+    // one, where that costs less. (Not before 0.25 too: where 0.5 unintegrated missed, 0.5
+    // pre-integrated missed as well in every case tried -- neghip default 0.17 %, the two steep
+    // functions of auto_spacing.h 0.19-0.24 % over 4/255 -- a frame for nothing.)
+    if (may_change && !preintegrated && i + 2 == steps.size() &&
+        sampleCost(steps[i], true) < sampleCost(steps[i + 1], false))
+      t.push_back({steps[i], true});
+  }
+  if (may_change) t.push_back({steps.back(), !preintegrated});  // the last resort
+  return t;
+}
+
+std::vector<double> otherChoiceSteps(bool preintegrated, bool met, double step) {
+  const std::vector<double>& all = estimatedSpacings();
+  if (met && (preintegrated || step > all.back())) return {};
+  std::vector<double> s;
+  for (double x : all)
+    if (x <= kOtherChoiceCoarsest && (!met || sampleCost(x, !preintegrated) < sampleCost(step, preintegrated)))
+      s.push_back(x);
+  return s;
+}
+
 std::pair<int, int> probeSize(int width, int height) {
   const int longer = std::max(width, height);
   const int side = std::max(8, std::min(kProbeSide, longer / kProbeFraction));

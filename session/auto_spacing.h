@@ -84,6 +84,30 @@ inline const std::vector<double>& stillSpacings() {
   static const std::vector<double> s{0.5, 0.25, 0.125};
   return s;
 }
+
+// transfer.preintegrated `auto` (TransferSpec::preintegrated_auto) decides by the steepness rule
+// (scene/sections.h hasSteepOpacity), which the estimate may overturn: the rule is a proxy, and a
+// function just under its slope can need pre-integration (neghip, ray cast, 256^2, opacity 0 ->
+// 0.24 -> 0 over 0.05 of the range each way, slope 4.8: unintegrated the estimate cannot certify
+// the target even at 0.125 voxel, pre-integrated it does at 0.25; tests/mpi/auto_spacing.sh). A
+// pre-integrated sample costs about kPreintegratedCost plain ones (results/accuracy: 50-70 % more
+// time).
+constexpr double kPreintegratedCost = 1.5;
+inline double sampleCost(double step, bool preintegrated) {
+  return (preintegrated ? kPreintegratedCost : 1.0) / step;
+}
+// A still frame's tries, in order (step, pre-integrated), the first that meets the target taken:
+// stillSpacings with the rule's choice; where the choice may change, after unintegrated 0.25
+// missed, pre-integrated at 0.25 (it costs less than unintegrated 0.125), and last the other
+// choice at 0.125. (Unintegrated is
+// not tried between pre-integrated steps: where the rule takes pre-integration the opacity is
+// steep, and unintegrated steps missed by 10-15 dB on every sharp cell of the matrix.)
+std::vector<std::pair<double, bool>> stillTries(bool preintegrated, bool may_change);
+// The probes' steps of the other choice, coarsest first, after the rule's choice met the target
+// at `step` (`met`) or missed at every step: pre-integrated after unintegrated met it only at the
+// finest step, where it costs less (sampleCost); either after a miss. At most kOtherChoiceCoarsest.
+constexpr double kOtherChoiceCoarsest = 0.5;
+std::vector<double> otherChoiceSteps(bool preintegrated, bool met, double step);
 constexpr double kTargetOver4Share = 0.001;  // IceT's image tests: at most 0.1 % over 4/255
 // Whether an estimate meets the target at its 95 % bound: PSNR >= target_db and at most
 // kTargetOver4Share of the pixels over 4/255.
@@ -112,6 +136,7 @@ struct EstimatedStep {
   double step = 0.0;
   AccuracyEstimate estimate;
   std::string view;  // "auto": the automatic view; "scene": the scene's own camera
+  bool preintegrated = false;
 };
 
 struct SpacingChoice {
@@ -120,6 +145,8 @@ struct SpacingChoice {
   std::vector<std::pair<double, double>> estimated_db;
   // Chosen against the exact model instead: each step tried and its estimate.
   std::vector<EstimatedStep> against_exact;
+  bool preintegrated = false;  // with it (where TransferSpec::preintegrated_auto let it choose)
+  bool preintegration_chosen = false;  // by the estimate (every rank): else the scene's stays
 };
 
 // probes[i]: the premultiplied float frame at probeSpacings()[i], all the same size; background:

@@ -263,8 +263,9 @@ struct RenderSession::State {
   VisibilityOrder frame_order;
   FrameFootprint frame_footprint;
   std::vector<double> spacingKey(const Scene& sc, std::pair<int, int> probe) const;
+  // preintegrated: -1 the scene's, else pinned (0, 1).
   FrameRequest probeRequest(const FrameRequest& request, double step, std::pair<int, int> size,
-                            const Scene* scene_view = nullptr) const;
+                            const Scene* scene_view = nullptr, int preintegrated = -1) const;
   // render.estimate (session/frame_estimate.h): the last estimate and what it depended on.
   struct {
     std::vector<double> key;
@@ -686,10 +687,11 @@ std::vector<double> RenderSession::State::spacingKey(const Scene& sc, std::pair<
 // A probe frame of the scene's automatic view (the default camera), whatever this frame's camera.
 // `scene_view`: the frame's own camera (the resolved request's, before any orbit) instead.
 FrameRequest RenderSession::State::probeRequest(const FrameRequest& request, double step, std::pair<int, int> size,
-                                                const Scene* scene_view) const {
+                                                const Scene* scene_view, int preintegrated) const {
   FrameRequest p;
   p.overrides = request.overrides;
   p.overrides.push_back("render.sample_spacing=" + std::to_string(step));
+  if (preintegrated >= 0) p.overrides.push_back(std::string("transfer.preintegrated=") + (preintegrated ? "true" : "false"));
   p.overrides.push_back("image.width=" + std::to_string(size.first));
   p.overrides.push_back("image.height=" + std::to_string(size.second));
   auto vec = [](const glm::dvec3& v) {
@@ -729,6 +731,7 @@ double RenderSession::autoSpacing(const Scene& sc, const FrameRequest& request, 
   double t0 = MPI_Wtime();
   if (!S.spacing.valid || key != S.spacing.key) {
     double chosen = 0.5;
+    bool preint = sc.transfer.preintegrated;  // the same on every rank (each probe's pass is broadcast)
     if (exact) {
       // Against the exact model (session/frame_estimate.h): coarsest first, the first step whose
       // estimate meets the target at its 95 % bound is taken; the exact values of the sampled
@@ -737,40 +740,60 @@ double RenderSession::autoSpacing(const Scene& sc, const FrameRequest& request, 
       // any orbit: an orbit probes once); the finer step wins. The second view starts at the
       // first's choice. (So a request that moves the camera probes again: the viewer asks for
       // `auto` on its full frames only.)
+      // transfer.preintegrated `auto`: the rule's choice first; the other one's probes where it
+      // could do better (otherChoiceSteps), taken where it meets the target at less cost.
       const EstimateVolume mine = estimateVolumeOf(sc, S.layout, S.estimateSamples(), S.dataRange(), &S.estimate_blocks, S.estimateDataId());
       std::vector<EstimatedStep> tried;
-      const std::vector<double>& steps = estimatedSpacings();
-      size_t first = 0;  // the coarsest step still to try
-      for (const bool scene_view : {false, true}) {
-        if (scene_view && sc.camera_auto) break;
-        EstimateSample sample;
-        std::vector<double> exact;  // rank 0's
-        bool integrated = false;
-        for (size_t i = first; i < steps.size(); ++i) {
-          FrameResult probe = render(S.probeRequest(request, steps[i], {w, h}, scene_view ? &sc : nullptr));
-          const Camera cam = probe.scene.frameCameras(S.layout.bounds)[0];
-          if (!integrated) {
-            if (S.rank == 0) {
-              sample = chooseEstimatePixels(toRGBA8(probe.image_f), sc.image.background, screenRectOf(cam, S.layout.grid.worldBox()),
-                                            std::min(sc.render.estimate_pixels, w * h / 2));
-            }
-            broadcastSample(sample, S.comm);
-            exact = exactSampledPixels(sample, cam, mine, sc.image.background, pixelThreads(), S.comm);
-            integrated = true;
-          }
+      EstimateSample samples[2];
+      std::vector<double> exacts[2];  // rank 0's, per view: they serve every probe of that view
+      bool integrated[2] = {false, false};
+      // The probes of one choice over `steps` (coarsest first), from both views: the step taken
+      // (the finer of the views' choices) and whether it met the target.
+      auto probeSteps = [&](const std::vector<double>& steps, bool pre) {
+        size_t first = 0;  // the coarsest step still to try
+        bool met = true;
+        for (const bool scene_view : {false, true}) {
+          if (scene_view && sc.camera_auto) break;
+          EstimateSample& sample = samples[scene_view];
+          std::vector<double>& exact = exacts[scene_view];
           int pass = 0;
-          if (S.rank == 0) {
-            const AccuracyEstimate e = compareWithExact(sample, exact, nullptr, &probe.image_f, sc.image.background);
-            tried.push_back({steps[i], e, scene_view ? "scene" : "auto"});
-            pass = meetsTarget(e, sc.render.target_db);
+          for (size_t i = first; i < steps.size(); ++i) {
+            FrameResult probe = render(S.probeRequest(request, steps[i], {w, h}, scene_view ? &sc : nullptr,
+                                                      sc.transfer.preintegrated_auto ? int(pre) : -1));
+            const Camera cam = probe.scene.frameCameras(S.layout.bounds)[0];
+            if (!integrated[scene_view]) {
+              if (S.rank == 0) {
+                sample = chooseEstimatePixels(toRGBA8(probe.image_f), sc.image.background, screenRectOf(cam, S.layout.grid.worldBox()),
+                                              std::min(sc.render.estimate_pixels, w * h / 2));
+              }
+              broadcastSample(sample, S.comm);
+              exact = exactSampledPixels(sample, cam, mine, sc.image.background, pixelThreads(), S.comm);
+              integrated[scene_view] = true;
+            }
+            if (S.rank == 0) {
+              const AccuracyEstimate e = compareWithExact(sample, exact, nullptr, &probe.image_f, sc.image.background);
+              tried.push_back({steps[i], e, scene_view ? "scene" : "auto", pre});
+              pass = meetsTarget(e, sc.render.target_db);
+            }
+            MPI_Bcast(&pass, 1, MPI_INT, 0, S.comm);
+            first = i;
+            if (pass) break;
           }
-          MPI_Bcast(&pass, 1, MPI_INT, 0, S.comm);
-          first = i;
-          if (pass) break;
+          met = met && pass;
+        }
+        return std::pair<double, bool>{steps[first], met};
+      };
+      const bool rule = sc.transfer.preintegrated;
+      auto [step, met] = probeSteps(estimatedSpacings(), rule);
+      if (sc.transfer.preintegrated_auto) {
+        const std::vector<double> other = otherChoiceSteps(rule, met, step);
+        if (!other.empty()) {
+          const auto [o_step, o_met] = probeSteps(other, !rule);
+          if (o_met && (!met || sampleCost(o_step, !rule) < sampleCost(step, rule))) step = o_step, preint = !rule;
         }
       }
-      chosen = steps[first];
-      if (S.rank == 0) S.spacing.choice = {chosen, {}, std::move(tried)};
+      chosen = step;
+      if (S.rank == 0) S.spacing.choice = {chosen, {}, std::move(tried), preint};
     } else {
       // What the estimate does not model (its `why`): the steps' differences to each other.
       std::vector<ImageF> probes;
@@ -781,6 +804,8 @@ double RenderSession::autoSpacing(const Scene& sc, const FrameRequest& request, 
     // Rank 0 decides; every rank takes its step (so all ranks agree whatever the rounding).
     MPI_Bcast(&chosen, 1, MPI_DOUBLE, 0, S.comm);
     S.spacing.choice.spacing = chosen;
+    S.spacing.choice.preintegrated = preint;
+    S.spacing.choice.preintegration_chosen = exact;
     S.spacing.key = std::move(key);
     S.spacing.valid = true;
     probed = true;
@@ -793,11 +818,12 @@ double RenderSession::autoSpacing(const Scene& sc, const FrameRequest& request, 
       for (const EstimatedStep& e : c.against_exact) {
         nlohmann::json j = e.estimate.json();
         j["step"] = e.step;
+        j["preintegrated"] = e.preintegrated;
         j["view"] = e.view;
         steps.push_back(j);
         met = met || meetsTarget(e.estimate, sc.render.target_db);
       }
-      info = {{"chosen", c.spacing}, {"by", "estimate against the exact model"}, {"steps", steps},
+      info = {{"chosen", c.spacing}, {"preintegrated", c.preintegrated}, {"by", "estimate against the exact model"}, {"steps", steps},
               {"target_db", sc.render.target_db}, {"target_over4_share", kTargetOver4Share},
               {"target_met", met}, {"probed", probed}, {"probe_s", probed ? MPI_Wtime() - t0 : 0.0}};
     } else {
@@ -948,6 +974,9 @@ FrameResult RenderSession::render(const FrameRequest& request) {
   if (sc.render.sample_spacing_auto && sc.hasVolume() && !request.probe) {
     const double t0 = MPI_Wtime();
     sc.render.sample_spacing = autoSpacing(sc, request, spacing_info);
+    // transfer.preintegrated `auto`: the probes' choice (the rule's where they did not choose).
+    if (sc.transfer.preintegrated_auto && S.spacing.choice.preintegration_chosen)
+      sc.transfer.preintegrated = S.spacing.choice.preintegrated;
     probe_s = MPI_Wtime() - t0;
   }
   const Camera cam = sc.frameCameras(S.layout.bounds)[size_t(std::max(0, request.orbit_frame))];
@@ -993,7 +1022,10 @@ FrameResult RenderSession::render(const FrameRequest& request) {
 FrameResult RenderSession::renderStill(const FrameRequest& request, const Scene& sc) {
   State& S = *s_;
   const Camera cam = sc.frameCameras(S.layout.bounds)[size_t(std::max(0, request.orbit_frame))];
-  const std::vector<double>& steps = stillSpacings();
+  // (step, pre-integrated): the steps, and where transfer.preintegrated is `auto` the other choice
+  // too (stillTries); the exact values serve every try (they do not depend on either).
+  const bool may_change = sc.transfer.preintegrated_auto;
+  const std::vector<std::pair<double, bool>> tries = stillTries(sc.transfer.preintegrated, may_change);
   EstimateSample sample;
   std::vector<double> exact;  // rank 0's
   double estimate_s = 0.0, tries_s = 0.0;
@@ -1001,9 +1033,10 @@ FrameResult RenderSession::renderStill(const FrameRequest& request, const Scene&
   AccuracyEstimate e;
   FrameResult out;
   bool met = false, topped_up = false;
-  for (size_t i = 0; i < steps.size(); ++i) {
+  for (size_t i = 0; i < tries.size(); ++i) {
     FrameRequest r = request;
-    r.overrides.push_back("render.sample_spacing=" + std::to_string(steps[i]));
+    r.overrides.push_back("render.sample_spacing=" + std::to_string(tries[i].first));
+    if (may_change) r.overrides.push_back(std::string("transfer.preintegrated=") + (tries[i].second ? "true" : "false"));
     r.probe = true;  // no probe, no estimate, not counted: this function does those
     r.job_frames = 0;
     if (i > 0 && S.rank == 0) tries_s += out.stats["total_s"].get<double>();
@@ -1024,7 +1057,8 @@ FrameResult RenderSession::renderStill(const FrameRequest& request, const Scene&
       if (S.rank == 0) {
         e = compareWithExact(sample, exact, &out.image, nullptr, sc.image.background);
         nlohmann::json j = e.json();
-        j["step"] = steps[i];
+        j["step"] = tries[i].first;
+        j["preintegrated"] = tries[i].second;
         j["view"] = "frame";
         tried.push_back(j);
         pass = meetsTarget(e, sc.render.target_db);
@@ -1051,6 +1085,7 @@ FrameResult RenderSession::renderStill(const FrameRequest& request, const Scene&
     const double frame_s = out.stats["total_s"].get<double>();
     out.stats["total_s"] = frame_s + tries_s;
     out.stats["sample_spacing_auto"] = {{"chosen", out.scene.render.sample_spacing},
+                                        {"preintegrated", out.scene.transfer.preintegrated},
                                         {"by", "still image: the frame checked by its estimate"},
                                         {"steps", tried},
                                         {"target_db", sc.render.target_db},

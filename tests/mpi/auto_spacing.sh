@@ -83,6 +83,29 @@ assert tried[i + 1]["pixels_sampled"] >= 3 * tried[i]["pixels_sampled"], "the se
 assert f["psnr_db"] >= 50 and f["over4_share"] <= 0.001, (f["psnr_db"], f["over4_share"])
 PY
 
+# 2c. transfer.preintegrated `auto` chosen from the estimate: a function just under the steepness
+# rule's slope (opacity 0 -> 0.24 -> 0 over 0.05 of the range each way: slope 4.8, the rule says
+# unintegrated): unintegrated, the estimate cannot certify the target even at 0.125 voxel (true
+# 56.1 dB, 0.075 % over 4/255, its bound above 0.1 %: target_met false); pre-integrated it meets
+# it at 0.25 (true 60.8 dB, none over), at 0.75x the samples' cost. The still frame and an orbit's
+# probes must both take pre-integration, and their frames meet the target.
+steep=("$DATA/neghip.yaml" --set transfer.preset=null --set render.method=raycast --set transfer.preintegrated=auto
+       --set render.sample_spacing=auto --set image.width=256 --set image.height=256
+       --set "transfer.points=[[0,0,0,0,0],[0.30,0.2,0.5,1,0],[0.35,1,0.8,0.3,0.24],[0.40,1,0.2,0.1,0],[1,1,1,1,0]]")
+for frames in 0 2; do
+  run_np 1 render -q --psnr "${steep[@]}" --set camera.orbit.frames=$frames -o "$WORK/steep$frames.png" \
+    --stats "$WORK/steep$frames.json" || fail "steep render ($frames orbit frames)"
+  python3 - "$WORK/steep$frames.json" <<'PY' || fail "steep function ($frames orbit frames): pre-integration not chosen, or the target missed"
+import json, sys
+f = json.load(open(sys.argv[1]))["frames"][0]
+a = f["sample_spacing_auto"]
+print("steep:", a["by"], "step", a["chosen"], "pre-integrated", a["preintegrated"], "true", round(f["psnr_db"], 2), "dB,",
+      f["over4_share"], "over 4/255; tried", [(t["step"], t["preintegrated"]) for t in a["steps"]])
+assert a["preintegrated"] is True
+assert f["psnr_db"] >= 50 and f["over4_share"] <= 0.001
+PY
+done
+
 # 3. Ranks: the probes are composited like any frame, rank 0's choice is broadcast and each
 # rank integrates its own bricks' segments of the sampled rays: 3 ranks pick the step 1 rank
 # picks, give its image (within 1/255) and its estimate (within 0.05 dB).

@@ -55,4 +55,24 @@ TEST(AutoSpacing, ProbeSizeKeepsTheAspectWithinItsSide) {
 }
 
 }  // namespace
+// transfer.preintegrated `auto` (auto_spacing.h): what a still frame tries, in order, and which
+// probes of the other choice follow the rule's.
+TEST(AutoSpacing, TriesTheOtherPreintegrationWhereItCanPay) {
+  using Tries = std::vector<std::pair<double, bool>>;
+  // Unintegrated by the rule: pre-integrated at 0.25 (cost 6) before unintegrated 0.125 (8);
+  // the other choice last.
+  EXPECT_EQ(stillTries(false, true), (Tries{{0.5, false}, {0.25, false}, {0.25, true}, {0.125, false}, {0.125, true}}));
+  // Pre-integrated by the rule (a steep function): unintegrated only as the last resort.
+  EXPECT_EQ(stillTries(true, true), (Tries{{0.5, true}, {0.25, true}, {0.125, true}, {0.125, false}}));
+  // Pinned by the scene: the steps alone.
+  EXPECT_EQ(stillTries(true, false), (Tries{{0.5, true}, {0.25, true}, {0.125, true}}));
+  // Probes: unintegrated met the target only at the finest step -> pre-integrated where cheaper.
+  EXPECT_EQ(otherChoiceSteps(false, true, 0.125), (std::vector<double>{0.5, 0.25}));
+  EXPECT_TRUE(otherChoiceSteps(false, true, 0.25).empty());  // met above the finest: no probes
+  EXPECT_TRUE(otherChoiceSteps(true, true, 0.125).empty());   // pre-integrated met it: kept
+  // Missed at every step: the other choice at every step up to kOtherChoiceCoarsest.
+  EXPECT_EQ(otherChoiceSteps(true, false, 0.125), (std::vector<double>{0.5, 0.25, 0.125}));
+  EXPECT_EQ(otherChoiceSteps(false, false, 0.125), (std::vector<double>{0.5, 0.25, 0.125}));
+}
+
 }  // namespace sortlast
