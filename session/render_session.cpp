@@ -1033,6 +1033,11 @@ FrameResult RenderSession::renderStill(const FrameRequest& request, const Scene&
   AccuracyEstimate e;
   FrameResult out;
   bool met = false, topped_up = false;
+  // Where no try meets the target, the one estimated closest to it (the highest estimated PSNR)
+  // is the frame, not merely the last: the last may be the other pre-integration choice.
+  FrameResult best;
+  AccuracyEstimate best_e;
+  double best_db = -HUGE_VAL;  // rank 0's
   for (size_t i = 0; i < tries.size(); ++i) {
     FrameRequest r = request;
     r.overrides.push_back("render.sample_spacing=" + std::to_string(tries[i].first));
@@ -1079,11 +1084,17 @@ FrameResult RenderSession::renderStill(const FrameRequest& request, const Scene&
     estimate_s += MPI_Wtime() - te;
     met = pass;
     if (pass) break;
+    int better = 0;
+    if (S.rank == 0) better = e.psnr_db() > best_db;
+    MPI_Bcast(&better, 1, MPI_INT, 0, S.comm);
+    if (better) best = out, best_e = e, best_db = e.psnr_db();
   }
+  double last_s = 0.0;  // the last try's own time (the others are in tries_s)
+  if (S.rank == 0) last_s = out.stats["total_s"].get<double>();
+  if (!met) out = std::move(best), e = best_e;
   const int frame = request.orbit_frame >= 0 ? request.orbit_frame : S.frames_rendered;
   if (S.rank == 0) {
-    const double frame_s = out.stats["total_s"].get<double>();
-    out.stats["total_s"] = frame_s + tries_s;
+    out.stats["total_s"] = last_s + tries_s;
     out.stats["sample_spacing_auto"] = {{"chosen", out.scene.render.sample_spacing},
                                         {"preintegrated", out.scene.transfer.preintegrated},
                                         {"by", "still image: the frame checked by its estimate"},
