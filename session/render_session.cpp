@@ -718,8 +718,11 @@ FrameRequest RenderSession::State::probeRequest(const FrameRequest& request, dou
 double RenderSession::autoSpacing(const Scene& sc, const FrameRequest& request, nlohmann::json& info) {
   State& S = *s_;
   const bool exact = S.estimateWhyNot(sc).empty();
-  const auto [w, h] = exact ? estimateProbeSize(sc.camera.width, sc.camera.height)
-                            : probeSize(sc.camera.width, sc.camera.height);
+  // Plain ints, not a structured binding: the probes' lambda below captures them (clang before 16
+  // refuses to capture a binding).
+  const std::pair<int, int> probe_size = exact ? estimateProbeSize(sc.camera.width, sc.camera.height)
+                                               : probeSize(sc.camera.width, sc.camera.height);
+  const int w = probe_size.first, h = probe_size.second;
   std::vector<double> key = S.spacingKey(sc, {w, h});
   key.insert(key.end(), {sc.render.target_db, double(sc.render.estimate_pixels)});
   if (exact && !sc.camera_auto) {  // the frame's own view is probed too
