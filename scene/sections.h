@@ -194,7 +194,7 @@ struct TransferSpec {
   bool preintegrated = false;  // segments from a pre-integrated 2D table (transfer/preintegration.h)
   // transfer.preintegrated was `auto` where either choice renders (a composite volume of one field,
   // no adaptive sampling): render.sample_spacing `auto` may then overturn the steepness rule's
-  // choice from the frame's estimate (session/auto_spacing.h preintegrationTries).
+  // choice from the frame's estimate (session/auto_spacing.h stillTries, otherChoiceSteps).
   bool preintegrated_auto = false;
   ValueScaleKind scale = ValueScaleKind::kLinear;  // transfer.scale (transfer/value_scale.h)
   double linear_width = 1.0;                       // transfer.linear_width: symlog's w
